@@ -1,0 +1,63 @@
+//! Error types of the library.
+//!
+//! Every variant carries data, not prose; the `Display` impls turn them into one line that names
+//! the field (or the solver state) and the problem.
+
+use thiserror::Error;
+
+/// Invalid input: a field of the beam, a load or an option has a value the model cannot use.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("{field}: {reason}")]
+pub struct InputError {
+    /// Dotted path of the offending field, e.g. `beam.section.EI`.
+    pub field: String,
+    /// What is wrong with it.
+    pub reason: String,
+}
+
+impl InputError {
+    /// Build an error for `field` with the given reason.
+    ///
+    /// ```
+    /// let e = flexwing::InputError::new("beam.length", "must be positive, got -1");
+    /// assert_eq!(e.to_string(), "beam.length: must be positive, got -1");
+    /// ```
+    pub fn new(field: impl Into<String>, reason: impl Into<String>) -> Self {
+        Self {
+            field: field.into(),
+            reason: reason.into(),
+        }
+    }
+}
+
+/// Failure of a numerical algorithm.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum SolveError {
+    /// The mass matrix is not positive definite (a massless degree of freedom).
+    #[error("mass matrix is not positive definite (is some degree of freedom massless?)")]
+    MassNotPositiveDefinite,
+    /// The symmetric eigensolver produced a non-finite or negative eigenvalue.
+    #[error("modal analysis: eigenvalue {index} is {value} (stiffness not positive definite at this state?)")]
+    BadEigenvalue {
+        /// Index of the eigenvalue in ascending order.
+        index: usize,
+        /// The offending value of `ω²`.
+        value: f64,
+    },
+}
+
+/// Any error of the library.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// Invalid input.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// A solver failed.
+    #[error(transparent)]
+    Solve(#[from] SolveError),
+}
+
+/// Result alias of the library.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -1,0 +1,232 @@
+//! The full lumped-mass model of `n` elements.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::{Kinematics, Load, StructuralModel};
+use crate::beam::Beam;
+
+/// The full model: `n` rigid elements, `n` bending joints and (with torsion data) `n` torsion
+/// joints, so `n_dofs()` is `2n`, or `n` for a bending-only beam.
+#[derive(Debug, Clone)]
+pub struct FullModel {
+    pub(super) beam: Beam,
+    pub(super) n: usize,
+    pub(super) torsion: bool,
+    /// Element lengths `ℓ_i`.
+    pub(super) ell: Vec<f64>,
+    /// Element masses `m_i`.
+    pub(super) mass: Vec<f64>,
+    /// Mass-centre offsets `d0_i`.
+    pub(super) d0: Vec<f64>,
+    /// Polar inertias about the mass centre `J_i`.
+    pub(super) inertia: Vec<f64>,
+    /// `μ_k = m_k / 2 + Σ_{i>k} m_i`: `A_jk = ℓ_j ℓ_k μ_k` for `j < k`.
+    pub(super) mu: Vec<f64>,
+    /// `A_kk = ℓ_k² (m_k / 4 + Σ_{i>k} m_i)`.
+    pub(super) a_diag: Vec<f64>,
+    /// Diagonal of `K`.
+    pub(super) stiffness: Vec<f64>,
+}
+
+impl FullModel {
+    /// Build the full model of a beam.
+    ///
+    /// ```
+    /// use flexwing::beam::{Beam, Calibration, Discretization, Profile, SectionProperties};
+    /// use flexwing::model::FullModel;
+    /// let section = SectionProperties {
+    ///     ei: Profile::Uniform(50.0),
+    ///     mass_per_length: Profile::Uniform(0.2),
+    ///     torsion: None,
+    /// };
+    /// let beam = Beam::new(1.0, &section, &Discretization::Uniform(4), Calibration::TipLoad)?;
+    /// let model = FullModel::new(beam);
+    /// assert_eq!(model.n_dofs(), 4);
+    /// # Ok::<(), flexwing::InputError>(())
+    /// ```
+    pub fn new(beam: Beam) -> Self {
+        let n = beam.n_elements();
+        let mass = beam.masses().to_vec();
+        let ell = beam.lengths().to_vec();
+        let mut outboard = 0.0; // Σ_{i>k} m_i
+        let mut mu = vec![0.0; n];
+        let mut a_diag = vec![0.0; n];
+        for k in (0..n).rev() {
+            mu[k] = 0.5 * mass[k] + outboard;
+            a_diag[k] = ell[k] * ell[k] * (0.25 * mass[k] + outboard);
+            outboard += mass[k];
+        }
+        let mut stiffness = beam.bending_stiffness().to_vec();
+        if let Some(kt) = beam.torsion_stiffness() {
+            stiffness.extend_from_slice(kt);
+        }
+        Self {
+            n,
+            torsion: beam.has_torsion(),
+            ell,
+            mass,
+            d0: beam.offsets().to_vec(),
+            inertia: beam.inertias().to_vec(),
+            mu,
+            a_diag,
+            stiffness,
+            beam,
+        }
+    }
+
+    /// The beam this model was built from.
+    pub fn beam(&self) -> &Beam {
+        &self.beam
+    }
+    /// Number of elements `n`.
+    pub fn n_elements(&self) -> usize {
+        self.n
+    }
+    /// Number of generalized coordinates: `2n` with torsion, `n` without.
+    pub fn n_dofs(&self) -> usize {
+        if self.torsion {
+            2 * self.n
+        } else {
+            self.n
+        }
+    }
+    /// Whether the model has torsion coordinates.
+    pub fn has_torsion(&self) -> bool {
+        self.torsion
+    }
+    /// Diagonal of the stiffness matrix `K` (N·m/rad).
+    pub fn stiffness(&self) -> &[f64] {
+        &self.stiffness
+    }
+
+    /// Kinematics of the configuration `q`.
+    ///
+    /// # Panics
+    /// If `q.len() != self.n_dofs()`.
+    pub fn kinematics(&self, q: &[f64]) -> Kinematics {
+        assert_eq!(q.len(), self.n_dofs(), "q has the wrong length");
+        let mut k = Kinematics::new(self.n);
+        k.update(q);
+        k
+    }
+
+    /// Node positions `P_0 … P_n` on the elastic axis (m).
+    pub fn node_positions(&self, kin: &Kinematics) -> Vec<[f64; 3]> {
+        let mut p = [0.0; 3];
+        let mut out = Vec::with_capacity(self.n + 1);
+        out.push(p);
+        for i in 0..self.n {
+            p[0] += self.ell[i] * kin.cos_theta[i];
+            p[1] += self.ell[i] * kin.sin_theta[i];
+            out.push(p);
+        }
+        out
+    }
+
+    /// Element mass centres `g_1 … g_n` (m).
+    pub fn mass_centres(&self, kin: &Kinematics) -> Vec<[f64; 3]> {
+        let nodes = self.node_positions(kin);
+        (0..self.n)
+            .map(|i| {
+                let (c, s) = (kin.cos_theta[i], kin.sin_theta[i]);
+                let (cp, sp) = (kin.cos_psi[i], kin.sin_psi[i]);
+                let h = 0.5 * self.ell[i];
+                let d = self.d0[i];
+                [
+                    nodes[i][0] + h * c - d * sp * s,
+                    nodes[i][1] + h * s + d * sp * c,
+                    d * cp,
+                ]
+            })
+            .collect()
+    }
+
+    /// Element containing span position `span` and the distance from its inboard node: the
+    /// smallest `k ≥ 1` with `x_k ≥ span`; `(0, 0)` at the clamp.
+    pub(super) fn locate(&self, span: f64) -> (usize, f64) {
+        let nodes = self.beam.nodes();
+        let k = nodes.partition_point(|&x| x < span).min(self.n);
+        if k == 0 {
+            (0, 0.0)
+        } else {
+            (k, span - nodes[k - 1])
+        }
+    }
+
+    /// Position of the elastic-axis point at span `span` (m).
+    pub fn point_position(&self, kin: &Kinematics, span: f64) -> [f64; 3] {
+        let (k, a) = self.locate(span);
+        let mut p = [0.0; 3];
+        for j in 0..k {
+            let len = if j + 1 == k { a } else { self.ell[j] };
+            p[0] += len * kin.cos_theta[j];
+            p[1] += len * kin.sin_theta[j];
+        }
+        p
+    }
+
+    /// Jacobian `∂X/∂q` (3 × `n_dofs`) of the elastic-axis point at span `span`.
+    pub fn point_jacobian(&self, kin: &Kinematics, span: f64) -> DMatrix<f64> {
+        let (k, a) = self.locate(span);
+        let mut jac = DMatrix::zeros(3, self.n_dofs());
+        // ∂X/∂θ_j = ℓ_j n(θ_j) for j < k, a n(θ_k) for j = k; then ∂/∂q_j = Σ_{i=j}^{k} ∂/∂θ_i.
+        let (mut sx, mut sy) = (0.0, 0.0);
+        for j in (0..k).rev() {
+            let len = if j + 1 == k { a } else { self.ell[j] };
+            sx -= len * kin.sin_theta[j];
+            sy += len * kin.cos_theta[j];
+            jac[(0, j)] = sx;
+            jac[(1, j)] = sy;
+        }
+        jac
+    }
+
+    /// Jacobian `∂g_i/∂q` (3 × `n_dofs`) of the mass centre of element `i` (0-based).
+    pub fn mass_centre_jacobian(&self, kin: &Kinematics, i: usize) -> DMatrix<f64> {
+        let mut jac = DMatrix::zeros(3, self.n_dofs());
+        let (c, s) = (kin.cos_theta[i], kin.sin_theta[i]);
+        let (cp, sp) = (kin.cos_psi[i], kin.sin_psi[i]);
+        let d = self.d0[i];
+        // ∂g_i/∂θ_i = (ℓ_i/2) n_i − d0 sin ψ_i e_i.
+        let mut sx = -0.5 * self.ell[i] * s - d * sp * c;
+        let mut sy = 0.5 * self.ell[i] * c - d * sp * s;
+        jac[(0, i)] = sx;
+        jac[(1, i)] = sy;
+        for j in (0..i).rev() {
+            sx -= self.ell[j] * kin.sin_theta[j];
+            sy += self.ell[j] * kin.cos_theta[j];
+            jac[(0, j)] = sx;
+            jac[(1, j)] = sy;
+        }
+        if self.torsion {
+            // ∂g_i/∂ψ_i = d0 (cos ψ_i n_i − sin ψ_i ẑ), the same for every q_{n+j}, j ≤ i.
+            let col = [-d * cp * s, d * cp * c, -d * sp];
+            for j in 0..=i {
+                for r in 0..3 {
+                    jac[(r, self.n + j)] = col[r];
+                }
+            }
+        }
+        jac
+    }
+}
+
+impl StructuralModel for FullModel {
+    fn n_dofs(&self) -> usize {
+        FullModel::n_dofs(self)
+    }
+
+    fn mass_matrix_into(&self, q: &[f64], out: &mut DMatrix<f64>) {
+        let kin = self.kinematics(q);
+        self.mass_matrix_kin_into(&kin, out);
+    }
+
+    fn stiffness_matrix(&self) -> DMatrix<f64> {
+        DMatrix::from_diagonal(&DVector::from_column_slice(&self.stiffness))
+    }
+
+    fn generalized_forces_into(&self, q: &[f64], loads: &[Load], out: &mut DVector<f64>) {
+        let kin = self.kinematics(q);
+        self.generalized_forces_kin_into(&kin, loads, out);
+    }
+}

@@ -1,0 +1,90 @@
+//! The configuration-dependent mass matrix in O(n²).
+//!
+//! In absolute angles `(θ, ψ)` the kinetic energy `T = ½ Σ m_i |ġ_i|² + ½ Σ J_i ψ̇_i²` has the
+//! matrix (model.md, "Equations of motion"; `a_kj = ℓ_j` for `j < k`, `ℓ_k/2` for `j = k`):
+//!
+//! ```text
+//! θθ, j < k :  A_jk cos(θ_j − θ_k) − m_k d0_k sin ψ_k ℓ_j sin(θ_k − θ_j)
+//! θθ, k = k :  A_kk + m_k d0_k² sin² ψ_k
+//! θψ, j ≤ k :  m_k d0_k cos ψ_k a_kj cos(θ_j − θ_k)          (zero for j > k)
+//! ψψ, k = k :  m_k d0_k² + J_k                               (diagonal)
+//! ```
+//!
+//! with `A_jk = Σ_{i ≥ max(j,k)} m_i a_ij a_ik = ℓ_j ℓ_k μ_k` (`j < k`). The `d0` terms come from
+//! `∂g_k/∂θ_k = (ℓ_k/2) n_k − d0_k sin ψ_k e_k` and `∂g_k/∂ψ_k = d0_k (cos ψ_k n_k − sin ψ_k ẑ)`.
+//! The joint-coordinate matrix is `M(q) = Tᵀ M_abs T`, a two-sided suffix sum, also O(n²): no
+//! dense product `Jᵀ M J` is formed.
+
+use nalgebra::DMatrix;
+
+use super::{FullModel, Kinematics};
+
+impl FullModel {
+    /// Mass matrix `M(q)` at the configuration described by `kin`, into `out`.
+    /// Costs O(n²) and allocates nothing.
+    ///
+    /// # Panics
+    /// If `out` is not `n_dofs × n_dofs`.
+    pub fn mass_matrix_kin_into(&self, kin: &Kinematics, out: &mut DMatrix<f64>) {
+        let n = self.n;
+        let nd = self.n_dofs();
+        assert_eq!(out.shape(), (nd, nd), "mass matrix buffer has the wrong shape");
+        let (ct, st) = (&kin.cos_theta, &kin.sin_theta);
+        for k in 0..n {
+            let dk = self.d0[k];
+            let coupling = self.mass[k] * dk * kin.sin_psi[k];
+            for j in 0..k {
+                let cos_jk = ct[j] * ct[k] + st[j] * st[k];
+                let sin_kj = st[k] * ct[j] - ct[k] * st[j];
+                let v = self.ell[j] * (self.ell[k] * self.mu[k] * cos_jk - coupling * sin_kj);
+                out[(j, k)] = v;
+                out[(k, j)] = v;
+            }
+            out[(k, k)] = self.a_diag[k] + coupling * dk * kin.sin_psi[k];
+        }
+        if self.torsion {
+            for k in 0..n {
+                let w = self.mass[k] * self.d0[k] * kin.cos_psi[k];
+                for j in 0..n {
+                    let v = if j < k {
+                        w * self.ell[j] * (ct[j] * ct[k] + st[j] * st[k])
+                    } else if j == k {
+                        w * 0.5 * self.ell[k]
+                    } else {
+                        0.0
+                    };
+                    out[(j, n + k)] = v;
+                    out[(n + k, j)] = v;
+                }
+                for j in 0..n {
+                    out[(n + j, n + k)] = 0.0;
+                }
+                out[(n + k, n + k)] = self.mass[k] * self.d0[k] * self.d0[k] + self.inertia[k];
+            }
+        }
+        suffix_sum_blocks(out, n);
+    }
+}
+
+/// In place `X ← Tᵀ X T` with `T = blockdiag(T_n, …)`, `T_n` lower-triangular ones:
+/// `(Tᵀ X T)_ab = Σ_{j ≥ a} Σ_{k ≥ b} X_jk`, the sums running to the end of each block.
+fn suffix_sum_blocks(x: &mut DMatrix<f64>, n: usize) {
+    let nd = x.nrows();
+    let data = x.as_mut_slice(); // column-major: column c is data[c * nd..(c + 1) * nd]
+    for column in data.chunks_mut(nd) {
+        for block in column.chunks_mut(n) {
+            for r in (0..n - 1).rev() {
+                block[r] += block[r + 1];
+            }
+        }
+    }
+    for start in (0..nd).step_by(n) {
+        for col in (start..start + n - 1).rev() {
+            let (left, right) = data.split_at_mut((col + 1) * nd);
+            let dst = &mut left[col * nd..];
+            for (d, s) in dst.iter_mut().zip(&right[..nd]) {
+                *d += *s;
+            }
+        }
+    }
+}
