@@ -37,9 +37,8 @@ fn tip_load(ei: &Profile, nodes: &[f64]) -> Vec<f64> {
         .windows(2)
         .map(|seg| {
             let (a, b) = (seg[0], seg[1]);
-            let w_b = w
-                + (b - a) * slope
-                + integrate(&[ei], a, b, |s| (b - s) * (length - s) / ei.at(s));
+            let w_b =
+                w + (b - a) * slope + integrate(&[ei], a, b, |s| (b - s) * (length - s) / ei.at(s));
             slope += integrate(&[ei], a, b, |s| (length - s) / ei.at(s));
             let chord = (w_b - w) / (b - a);
             let q = chord - chord_prev;

@@ -227,9 +227,7 @@ fn stations(length: f64, d: &Discretization) -> Result<Vec<f64>, InputError> {
                     "must be at least 1, got 0",
                 ));
             }
-            Ok((0..=*n)
-                .map(|i| length * i as f64 / *n as f64)
-                .collect())
+            Ok((0..=*n).map(|i| length * i as f64 / *n as f64).collect())
         }
         Discretization::Stations(x) => {
             let f = "beam.stations";

@@ -47,7 +47,10 @@ impl Profile {
                     Sign::NonNegative => "a finite non-negative number",
                     Sign::Any => "a finite number",
                 };
-                Err(InputError::new(field, format!("{what} must be {need}, got {v}")))
+                Err(InputError::new(
+                    field,
+                    format!("{what} must be {need}, got {v}"),
+                ))
             }
         };
         match self {
@@ -56,11 +59,7 @@ impl Profile {
                 if x.len() != value.len() {
                     return Err(InputError::new(
                         field,
-                        format!(
-                            "table has {} stations but {} values",
-                            x.len(),
-                            value.len()
-                        ),
+                        format!("table has {} stations but {} values", x.len(), value.len()),
                     ));
                 }
                 if x.len() < 2 {

@@ -58,9 +58,9 @@ impl Load {
     /// Span position of the load (m).
     pub fn span(&self) -> f64 {
         match *self {
-            Load::PointForce { span, .. } | Load::Moment { span, .. } | Load::Torque { span, .. } => {
-                span
-            }
+            Load::PointForce { span, .. }
+            | Load::Moment { span, .. }
+            | Load::Torque { span, .. } => span,
         }
     }
 }
@@ -118,7 +118,11 @@ impl FullModel {
         out: &mut DVector<f64>,
     ) {
         let n = self.n;
-        assert_eq!(out.len(), self.n_dofs(), "force buffer has the wrong length");
+        assert_eq!(
+            out.len(),
+            self.n_dofs(),
+            "force buffer has the wrong length"
+        );
         out.fill(0.0);
         // Accumulate the forces conjugate to the absolute angles, then Q = Tᵀ Q_abs.
         for load in loads {

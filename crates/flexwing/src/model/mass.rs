@@ -28,7 +28,11 @@ impl FullModel {
     pub fn mass_matrix_kin_into(&self, kin: &Kinematics, out: &mut DMatrix<f64>) {
         let n = self.n;
         let nd = self.n_dofs();
-        assert_eq!(out.shape(), (nd, nd), "mass matrix buffer has the wrong shape");
+        assert_eq!(
+            out.shape(),
+            (nd, nd),
+            "mass matrix buffer has the wrong shape"
+        );
         let (ct, st) = (&kin.cos_theta, &kin.sin_theta);
         for k in 0..n {
             let dk = self.d0[k];

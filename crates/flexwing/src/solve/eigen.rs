@@ -51,13 +51,10 @@ pub fn generalized_symmetric_eigen(
         let v = lt
             .solve_upper_triangular(&eig.eigenvectors.column(i).into_owned())
             .ok_or(SolveError::MassNotPositiveDefinite)?;
-        let big = v.iter().copied().fold(0.0_f64, |b, x| {
-            if x.abs() > b.abs() {
-                x
-            } else {
-                b
-            }
-        });
+        let big = v
+            .iter()
+            .copied()
+            .fold(0.0_f64, |b, x| if x.abs() > b.abs() { x } else { b });
         let sign = if big < 0.0 { -1.0 } else { 1.0 };
         phi.set_column(col, &(v * sign));
     }

@@ -106,6 +106,26 @@ impl Modes {
         &self.about
     }
 
+    /// Share of mode `k`'s strain energy stored in the bending springs,
+    /// `φ_bᵀ K_b φ_b / φᵀ K φ`: 1 for a pure bending mode, 0 for a pure torsion mode.
+    ///
+    /// # Panics
+    /// If `k >= n_modes()`.
+    pub fn bending_energy_fraction(&self, model: &FullModel, k: usize) -> f64 {
+        let phi = self.shapes.column(k);
+        let kd = model.stiffness();
+        let n = model.n_elements();
+        let energy =
+            |r: std::ops::Range<usize>| -> f64 { r.map(|i| kd[i] * phi[i] * phi[i]).sum() };
+        let bending = energy(0..n);
+        let total = bending + energy(n..model.n_dofs());
+        if total > 0.0 {
+            bending / total
+        } else {
+            1.0
+        }
+    }
+
     /// Nodal displacements and twists of mode `k` (0-based): `δP_i = Σ_{j ≤ i} ℓ_j n(θ*_j) δθ_j`
     /// with `δθ = T φ_b`, and `δψ = T φ_t`.
     ///

@@ -1,0 +1,99 @@
+//! Shared helpers of the integration tests: beams of the validated cases and reference data.
+#![allow(dead_code)]
+
+use flexwing::beam::{
+    Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties, TorsionProperties,
+};
+use flexwing::model::FullModel;
+use std::path::PathBuf;
+
+/// A two-point (linear root → tip) table over `[0, length]`.
+pub fn linear(length: f64, root: f64, tip: f64) -> Profile {
+    Profile::Table {
+        x: vec![0.0, length],
+        value: vec![root, tip],
+    }
+}
+
+pub fn bending_only(ei: Profile, m: Profile) -> SectionProperties {
+    SectionProperties {
+        ei,
+        mass_per_length: m,
+        torsion: None,
+    }
+}
+
+pub fn coupled(
+    ei: Profile,
+    m: Profile,
+    gj: Profile,
+    i_cg: Profile,
+    d0: Profile,
+) -> SectionProperties {
+    SectionProperties {
+        ei,
+        mass_per_length: m,
+        torsion: Some(TorsionProperties {
+            gj,
+            polar_inertia: i_cg,
+            inertia_axis: InertiaAxis::MassCentre,
+            offset: d0,
+        }),
+    }
+}
+
+pub fn model(length: f64, section: &SectionProperties, n: usize, cal: Calibration) -> FullModel {
+    FullModel::new(
+        Beam::new(length, section, &Discretization::Uniform(n), cal).expect("valid beam"),
+    )
+}
+
+/// The Table 1 beam with the parameter set of model.md (item 6): L = 16 m, EI = 2e4 N·m²,
+/// GJ = 1e3 N·m², m = 0.75 kg/m, I_cg = 0.1 kg·m about the mass centre, d0 = 0.267 m.
+pub fn table1_section() -> SectionProperties {
+    coupled(
+        Profile::Uniform(2e4),
+        Profile::Uniform(0.75),
+        Profile::Uniform(1e3),
+        Profile::Uniform(0.1),
+        Profile::Uniform(0.267),
+    )
+}
+
+/// `omega_rad_s` column of a reference CSV in `tests/data/continuous_beam/`.
+pub fn reference_frequencies(file: &str) -> Vec<f64> {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/continuous_beam")
+        .join(file);
+    let mut rdr = csv::Reader::from_path(&path).expect("reference file");
+    let headers = rdr.headers().expect("header").clone();
+    let col = headers
+        .iter()
+        .position(|h| h == "omega_rad_s")
+        .expect("omega_rad_s column");
+    rdr.records()
+        .map(|r| r.expect("record")[col].parse::<f64>().expect("number"))
+        .collect()
+}
+
+/// Roots of the Euler–Bernoulli cantilever frequency equation `1 + cos x cosh x = 0`, by bisection
+/// in each bracket `[(k − 1)π, kπ]`, which holds exactly one root (independent of the code under
+/// test).
+pub fn euler_bernoulli_roots(count: usize) -> Vec<f64> {
+    let f = |x: f64| 1.0 + x.cos() * x.cosh();
+    (1..=count)
+        .map(|k| {
+            let pi = std::f64::consts::PI;
+            let (mut a, mut b) = ((k as f64 - 1.0) * pi, k as f64 * pi);
+            for _ in 0..200 {
+                let m = 0.5 * (a + b);
+                if f(a) * f(m) <= 0.0 {
+                    b = m;
+                } else {
+                    a = m;
+                }
+            }
+            0.5 * (a + b)
+        })
+        .collect()
+}

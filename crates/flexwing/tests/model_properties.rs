@@ -1,0 +1,238 @@
+//! Property tests of the model's invariants (style.md, "Tests"): the O(n²) closed-form mass
+//! matrix equals `Σ m_i J_iᵀ J_i + Σ J_i ∇ψ_iᵀ ∇ψ_i` built from the Jacobians, the Jacobians agree
+//! with central finite differences of the positions, `M(q)` is symmetric positive definite, the
+//! generalized forces of dead loads are the gradient of their work, and modes are `M`-orthonormal.
+
+use flexwing::beam::{
+    Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties, TorsionProperties,
+};
+use flexwing::model::{Force, FullModel, Load, StructuralModel};
+use flexwing::solve::Modes;
+use nalgebra::{DMatrix, DVector};
+use proptest::prelude::*;
+
+/// A coupled beam with varying properties and uneven stations, so no term hides behind symmetry.
+fn model(n: usize, torsion: bool) -> FullModel {
+    let length = 2.0;
+    let stations: Vec<f64> = (0..=n)
+        .map(|i| {
+            let t = i as f64 / n as f64;
+            length * (t + 0.15 * (std::f64::consts::PI * t).sin() * (1.0 - t)) / 1.0
+        })
+        .collect();
+    let table = |a: f64, b: f64| Profile::Table {
+        x: vec![0.0, length],
+        value: vec![a, b],
+    };
+    let section = SectionProperties {
+        ei: table(30.0, 10.0),
+        mass_per_length: table(0.5, 0.2),
+        torsion: torsion.then(|| TorsionProperties {
+            gj: table(8.0, 3.0),
+            polar_inertia: table(0.02, 0.01),
+            inertia_axis: InertiaAxis::MassCentre,
+            offset: table(0.1, -0.05),
+        }),
+    };
+    let beam = Beam::new(
+        length,
+        &section,
+        &Discretization::Stations(stations),
+        Calibration::TipLoad,
+    )
+    .expect("valid beam");
+    FullModel::new(beam)
+}
+
+fn mass_from_jacobians(m: &FullModel, q: &[f64]) -> DMatrix<f64> {
+    let kin = m.kinematics(q);
+    let nd = m.n_dofs();
+    let n = m.n_elements();
+    let mut out = DMatrix::zeros(nd, nd);
+    for i in 0..n {
+        let j = m.mass_centre_jacobian(&kin, i);
+        out += m.beam().masses()[i] * j.transpose() * &j;
+        if m.has_torsion() {
+            // ψ_i = Σ_{j ≤ i} q_{n+j}.
+            let mut g = DVector::zeros(nd);
+            for k in 0..=i {
+                g[n + k] = 1.0;
+            }
+            out += m.beam().inertias()[i] * &g * g.transpose();
+        }
+    }
+    out
+}
+
+fn q_strategy(nd: usize) -> impl Strategy<Value = Vec<f64>> {
+    proptest::collection::vec(-1.5f64..1.5, nd)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn closed_form_mass_matrix_equals_jacobian_product(q in q_strategy(14), torsion in any::<bool>()) {
+        let m = model(7, torsion);
+        let q = &q[..m.n_dofs()];
+        let mut closed = DMatrix::zeros(m.n_dofs(), m.n_dofs());
+        m.mass_matrix_into(q, &mut closed);
+        let reference = mass_from_jacobians(&m, q);
+        let scale = reference.amax();
+        // Both are sums of O(n²) terms of size ≤ scale: agreement to 1e-13 of the largest entry
+        // is round-off.
+        prop_assert!((&closed - &reference).amax() <= 1e-13 * scale,
+            "difference {}", (&closed - &reference).amax());
+    }
+
+    #[test]
+    fn mass_matrix_is_symmetric_positive_definite(q in q_strategy(16)) {
+        let m = model(8, true);
+        let mut mm = DMatrix::zeros(16, 16);
+        m.mass_matrix_into(&q, &mut mm);
+        prop_assert!((&mm - mm.transpose()).amax() <= 1e-14 * mm.amax());
+        let eig = mm.symmetric_eigenvalues();
+        prop_assert!(eig.min() > 0.0, "smallest eigenvalue {}", eig.min());
+    }
+
+    #[test]
+    fn jacobians_agree_with_finite_differences(q in q_strategy(12), span in 0.0f64..2.0) {
+        let m = model(6, true);
+        let kin = m.kinematics(&q);
+        let h = 1e-6;
+        // Central differences: truncation error h² |X'''| ≲ 1e-12 · L, round-off ~ 1e-16 L / h.
+        let tol = 1e-8;
+        for i in 0..m.n_elements() {
+            let jac = m.mass_centre_jacobian(&kin, i);
+            for d in 0..m.n_dofs() {
+                let (mut qp, mut qm) = (q.clone(), q.clone());
+                qp[d] += h;
+                qm[d] -= h;
+                let gp = m.mass_centres(&m.kinematics(&qp))[i];
+                let gm = m.mass_centres(&m.kinematics(&qm))[i];
+                for r in 0..3 {
+                    let fd = (gp[r] - gm[r]) / (2.0 * h);
+                    prop_assert!((fd - jac[(r, d)]).abs() < tol, "g_{i} r{r} q{d}: {fd} vs {}", jac[(r, d)]);
+                }
+            }
+        }
+        let jac = m.point_jacobian(&kin, span);
+        for d in 0..m.n_dofs() {
+            let (mut qp, mut qm) = (q.clone(), q.clone());
+            qp[d] += h;
+            qm[d] -= h;
+            let xp = m.point_position(&m.kinematics(&qp), span);
+            let xm = m.point_position(&m.kinematics(&qm), span);
+            for r in 0..3 {
+                let fd = (xp[r] - xm[r]) / (2.0 * h);
+                prop_assert!((fd - jac[(r, d)]).abs() < tol);
+            }
+        }
+    }
+
+    #[test]
+    fn generalized_forces_are_virtual_work(q in q_strategy(12), span in 0.0f64..2.0,
+                                          fx in -5.0f64..5.0, fy in -5.0f64..5.0,
+                                          mz in -3.0f64..3.0, tx in -3.0f64..3.0,
+                                          ft in -5.0f64..5.0, fnorm in -5.0f64..5.0) {
+        let m = model(6, true);
+        let kin = m.kinematics(&q);
+        // Dead loads and moments: Q = ∂W/∂q with W = F·X(q) + M_z θ_k + T_x ψ_k.
+        let dead = [
+            Load::PointForce { span, force: Force::Dead { fx, fy } },
+            Load::Moment { span, value: mz },
+            Load::Torque { span, value: tx },
+        ];
+        let mut f = DVector::zeros(12);
+        m.generalized_forces_kin_into(&kin, &dead, &mut f);
+        let work = |q: &[f64]| {
+            let kin = m.kinematics(q);
+            let x = m.point_position(&kin, span);
+            let k = m.beam().nodes().partition_point(|&s| s < span);
+            let (th, ps) = if k == 0 { (0.0, 0.0) } else { (kin.theta[k - 1], kin.psi[k - 1]) };
+            fx * x[0] + fy * x[1] + mz * th + tx * ps
+        };
+        let h = 1e-6;
+        for d in 0..12 {
+            let (mut qp, mut qm) = (q.clone(), q.clone());
+            qp[d] += h;
+            qm[d] -= h;
+            let fd = (work(&qp) - work(&qm)) / (2.0 * h);
+            prop_assert!((fd - f[d]).abs() < 1e-7, "dof {d}: {fd} vs {}", f[d]);
+        }
+        // Follower force: Q = J_Xᵀ F(q) with F rotated into the carrying element's frame.
+        let follower = [Load::PointForce { span, force: Force::Follower { tangential: ft, normal: fnorm } }];
+        m.generalized_forces_kin_into(&kin, &follower, &mut f);
+        let k = m.beam().nodes().partition_point(|&s| s < span);
+        let (c, s) = if k == 0 { (1.0, 0.0) } else { (kin.cos_theta[k - 1], kin.sin_theta[k - 1]) };
+        let force = nalgebra::Vector3::new(ft * c - fnorm * s, ft * s + fnorm * c, 0.0);
+        let expected = m.point_jacobian(&kin, span).transpose() * force;
+        prop_assert!((&f - &expected).amax() < 1e-12 * (1.0 + expected.amax()));
+    }
+}
+
+#[test]
+fn modes_are_mass_orthonormal_and_stiffness_diagonal() {
+    for torsion in [false, true] {
+        let m = model(12, torsion);
+        let modes = Modes::undeformed(&m).expect("modes");
+        let phi = modes.shapes();
+        let nd = m.n_dofs();
+        let mut mm = DMatrix::zeros(nd, nd);
+        m.mass_matrix_into(&vec![0.0; nd], &mut mm);
+        let orth = phi.transpose() * &mm * phi;
+        assert!((&orth - DMatrix::identity(nd, nd)).amax() < 1e-10);
+        let kk = phi.transpose() * m.stiffness_matrix() * phi;
+        for i in 0..nd {
+            let w2 = modes.omega()[i].powi(2);
+            assert!((kk[(i, i)] - w2).abs() < 1e-9 * w2);
+            for j in 0..nd {
+                if i != j {
+                    assert!(kk[(i, j)].abs() < 1e-9 * modes.omega()[nd - 1].powi(2));
+                }
+            }
+        }
+        for w in modes.omega().windows(2) {
+            assert!(w[0] <= w[1]);
+        }
+        // Sign convention: the largest-magnitude component of each mode is positive.
+        for col in phi.column_iter() {
+            let big = col
+                .iter()
+                .copied()
+                .fold(0.0f64, |b, x| if x.abs() > b.abs() { x } else { b });
+            assert!(big > 0.0);
+        }
+    }
+}
+
+#[test]
+fn bending_only_model_equals_coupled_model_without_offset() {
+    let bending = SectionProperties {
+        ei: Profile::Uniform(50.0),
+        mass_per_length: Profile::Uniform(0.2),
+        torsion: None,
+    };
+    let coupled = SectionProperties {
+        torsion: Some(TorsionProperties {
+            gj: Profile::Uniform(10.0),
+            polar_inertia: Profile::Uniform(1e-3),
+            inertia_axis: InertiaAxis::MassCentre,
+            offset: Profile::Uniform(0.0),
+        }),
+        ..bending.clone()
+    };
+    let d = Discretization::Uniform(10);
+    let mb = FullModel::new(Beam::new(1.0, &bending, &d, Calibration::TipLoad).unwrap());
+    let mc = FullModel::new(Beam::new(1.0, &coupled, &d, Calibration::TipLoad).unwrap());
+    let wb = Modes::undeformed(&mb).unwrap();
+    let wc = Modes::undeformed(&mc).unwrap();
+    let bending_c: Vec<f64> = (0..20)
+        .filter(|&k| wc.bending_energy_fraction(&mc, k) > 0.5)
+        .map(|k| wc.omega()[k])
+        .collect();
+    assert_eq!(bending_c.len(), 10);
+    for (a, b) in wb.omega().iter().zip(&bending_c) {
+        assert!((a - b).abs() < 1e-10 * a, "{a} vs {b}");
+    }
+}
