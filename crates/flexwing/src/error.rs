@@ -37,6 +37,22 @@ pub enum SolveError {
     /// The mass matrix is not positive definite (a massless degree of freedom).
     #[error("mass matrix is not positive definite (is some degree of freedom massless?)")]
     MassNotPositiveDefinite,
+    /// Newton's method could not reach the requested load even with the smallest load step.
+    #[error(
+        "static solver did not converge: equilibrium found up to load factor {load_factor:.6}, \
+         failed at {attempted:.6} (residual {residual_norm:.3e} after {iterations} Newton iterations \
+         with the smallest load step)"
+    )]
+    StaticDiverged {
+        /// Last load factor (0 → 1) at which an equilibrium was found.
+        load_factor: f64,
+        /// Load factor of the failed attempt.
+        attempted: f64,
+        /// Newton iterations of the last failed attempt.
+        iterations: usize,
+        /// `‖K x − Q(x)‖∞` at the end of the last failed attempt (NaN if it blew up).
+        residual_norm: f64,
+    },
     /// The symmetric eigensolver produced a non-finite or negative eigenvalue.
     #[error("modal analysis: eigenvalue {index} is {value} (stiffness not positive definite at this state?)")]
     BadEigenvalue {
@@ -45,6 +61,13 @@ pub enum SolveError {
         /// The offending value of `ω²`.
         value: f64,
     },
+}
+
+impl SolveError {
+    /// Whether the error is a failure to converge (as opposed to a singular problem).
+    pub fn is_divergence(&self) -> bool {
+        matches!(self, SolveError::StaticDiverged { .. })
+    }
 }
 
 /// Any error of the library.

@@ -104,25 +104,21 @@ fn load_errors_name_the_load() {
         force: Force::Dead { fx: 0.0, fy },
     };
     assert_eq!(
-        m.check_loads(&[dead(1.0, 1.0), dead(1.5, 1.0)], "loads")
+        m.apply(&[dead(1.0, 1.0), dead(1.5, 1.0)], "loads")
             .unwrap_err()
             .field,
         "loads[1].span"
     );
     assert_eq!(
-        m.check_loads(&[dead(-0.1, 1.0)], "loads")
-            .unwrap_err()
-            .field,
+        m.apply(&[dead(-0.1, 1.0)], "loads").unwrap_err().field,
         "loads[0].span"
     );
     assert_eq!(
-        m.check_loads(&[dead(0.5, f64::NAN)], "loads")
-            .unwrap_err()
-            .field,
+        m.apply(&[dead(0.5, f64::NAN)], "loads").unwrap_err().field,
         "loads[0].fy"
     );
     assert_eq!(
-        m.check_loads(
+        m.apply(
             &[Load::Torque {
                 span: 1.0,
                 value: 1.0
@@ -134,7 +130,7 @@ fn load_errors_name_the_load() {
         "loads[0].torque"
     );
     assert!(m
-        .check_loads(
+        .apply(
             &[
                 dead(1.0, 1.0),
                 Load::Moment {

@@ -18,7 +18,8 @@ fn tip_deflections(beam: Beam) -> Vec<[f64; 2]> {
         span: length,
         force: Force::Dead { fx: 0.0, fy: P },
     }];
-    linear_static(&model, &load).expect("valid load").1
+    let applied = model.apply(&load, "loads").expect("valid load");
+    linear_static(&model, &applied).1
 }
 
 #[test]

@@ -6,7 +6,7 @@
 use flexwing::beam::{
     Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties, TorsionProperties,
 };
-use flexwing::model::{Force, FullModel, Load, StructuralModel};
+use flexwing::model::{DistributedForce, Force, FullModel, Load, StructuralModel};
 use flexwing::solve::Modes;
 use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
@@ -144,7 +144,8 @@ proptest! {
             Load::Torque { span, value: tx },
         ];
         let mut f = DVector::zeros(12);
-        m.generalized_forces_kin_into(&kin, &dead, &mut f);
+        let applied = m.apply(&dead, "loads").unwrap();
+        m.generalized_forces_kin_into(&kin, &applied, &[1.0; 3], &mut f);
         let work = |q: &[f64]| {
             let kin = m.kinematics(q);
             let x = m.point_position(&kin, span);
@@ -160,14 +161,86 @@ proptest! {
             let fd = (work(&qp) - work(&qm)) / (2.0 * h);
             prop_assert!((fd - f[d]).abs() < 1e-7, "dof {d}: {fd} vs {}", f[d]);
         }
+        // Gravity: Q = −∂V/∂q with V = g Σ m_i y(g_i), the mass centres including the offset.
+        let g = 9.81;
+        let applied = m.apply(&[Load::Gravity { g }], "loads").unwrap();
+        m.generalized_forces_kin_into(&kin, &applied, &[1.0], &mut f);
+        let potential = |q: &[f64]| -> f64 {
+            let c = m.mass_centres(&m.kinematics(q));
+            (0..m.n_elements()).map(|i| g * m.beam().masses()[i] * c[i][1]).sum()
+        };
+        for d in 0..12 {
+            let (mut qp, mut qm) = (q.clone(), q.clone());
+            qp[d] += h;
+            qm[d] -= h;
+            let fd = -(potential(&qp) - potential(&qm)) / (2.0 * h);
+            prop_assert!((fd - f[d]).abs() < 1e-7, "gravity dof {d}: {fd} vs {}", f[d]);
+        }
         // Follower force: Q = J_Xᵀ F(q) with F rotated into the carrying element's frame.
         let follower = [Load::PointForce { span, force: Force::Follower { tangential: ft, normal: fnorm } }];
-        m.generalized_forces_kin_into(&kin, &follower, &mut f);
+        let applied = m.apply(&follower, "loads").unwrap();
+        m.generalized_forces_kin_into(&kin, &applied, &[1.0], &mut f);
         let k = m.beam().nodes().partition_point(|&s| s < span);
         let (c, s) = if k == 0 { (1.0, 0.0) } else { (kin.cos_theta[k - 1], kin.sin_theta[k - 1]) };
         let force = nalgebra::Vector3::new(ft * c - fnorm * s, ft * s + fnorm * c, 0.0);
         let expected = m.point_jacobian(&kin, span).transpose() * force;
         prop_assert!((&f - &expected).amax() < 1e-12 * (1.0 + expected.amax()));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn load_jacobian_agrees_with_finite_differences(q in q_strategy(12), span in 0.0f64..2.0,
+                                                    s in proptest::collection::vec(-2.0f64..2.0, 7),
+                                                    torsion in any::<bool>()) {
+        let m = model(6, torsion);
+        let q = &q[..m.n_dofs()];
+        let mut loads = vec![
+            Load::PointForce { span, force: Force::Dead { fx: 3.0, fy: -2.0 } },
+            Load::PointForce { span: 2.0 - 0.5 * span, force: Force::Follower { tangential: 1.5, normal: 4.0 } },
+            Load::Moment { span, value: 1.0 },
+            Load::Distributed(DistributedForce::Dead {
+                fx: Profile::Uniform(0.5),
+                fy: Profile::Table { x: vec![0.0, 2.0], value: vec![-1.0, 2.0] },
+            }),
+            Load::Distributed(DistributedForce::Follower {
+                tangential: Profile::Uniform(-0.3),
+                normal: Profile::Table { x: vec![0.0, 1.0, 2.0], value: vec![2.0, 0.0, 1.0] },
+            }),
+            Load::Gravity { g: 9.81 },
+        ];
+        if torsion {
+            loads.push(Load::Torque { span, value: 0.7 });
+        }
+        let applied = m.apply(&loads, "loads").unwrap();
+        let scales = &s[..loads.len()];
+        let nd = m.n_dofs();
+        let mut jac = DMatrix::zeros(nd, nd);
+        m.load_jacobian_into(q, &applied, scales, &mut jac);
+        let h = 1e-6;
+        let (mut fp, mut fm) = (DVector::zeros(nd), DVector::zeros(nd));
+        for d in 0..nd {
+            let (mut qp, mut qm) = (q.to_vec(), q.to_vec());
+            qp[d] += h;
+            qm[d] -= h;
+            m.generalized_forces_into(&qp, &applied, scales, &mut fp);
+            m.generalized_forces_into(&qm, &applied, scales, &mut fm);
+            for r in 0..nd {
+                let fd = (fp[r] - fm[r]) / (2.0 * h);
+                // Central differences of O(10 N·m) forces: truncation h² ≈ 1e-12, round-off
+                // ≈ 1e-15 · 10 / 1e-6 = 1e-8.
+                prop_assert!((fd - jac[(r, d)]).abs() < 1e-6, "({r}, {d}): fd {fd} vs {}", jac[(r, d)]);
+            }
+        }
+        // Conservative loads only (no follower items): the Jacobian is symmetric.
+        let conservative: Vec<Load> = loads.iter().filter(|l| !matches!(l,
+            Load::PointForce { force: Force::Follower { .. }, .. } | Load::Distributed(DistributedForce::Follower { .. }))).cloned().collect();
+        let applied = m.apply(&conservative, "loads").unwrap();
+        let sc = vec![1.0; conservative.len()];
+        m.load_jacobian_into(q, &applied, &sc, &mut jac);
+        prop_assert!((&jac - jac.transpose()).amax() <= 1e-12 * (1.0 + jac.amax()));
     }
 }
 

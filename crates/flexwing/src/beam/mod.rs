@@ -5,7 +5,7 @@
 //! mass-centre offsets, polar inertias and the spring stiffnesses of the lumped model.
 
 mod calibration;
-mod profile;
+pub(crate) mod profile;
 
 pub use calibration::Calibration;
 pub use profile::Profile;

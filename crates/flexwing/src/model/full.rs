@@ -2,7 +2,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::{Kinematics, Load, StructuralModel};
+use super::{AppliedLoads, Kinematics, StructuralModel};
 use crate::beam::Beam;
 
 /// The full model: `n` rigid elements, `n` bending joints and (with torsion data) `n` torsion
@@ -225,8 +225,33 @@ impl StructuralModel for FullModel {
         DMatrix::from_diagonal(&DVector::from_column_slice(&self.stiffness))
     }
 
-    fn generalized_forces_into(&self, q: &[f64], loads: &[Load], out: &mut DVector<f64>) {
+    fn generalized_forces_into(
+        &self,
+        q: &[f64],
+        loads: &AppliedLoads,
+        scales: &[f64],
+        out: &mut DVector<f64>,
+    ) {
         let kin = self.kinematics(q);
-        self.generalized_forces_kin_into(&kin, loads, out);
+        self.generalized_forces_kin_into(&kin, loads, scales, out);
+    }
+
+    fn load_jacobian_into(
+        &self,
+        q: &[f64],
+        loads: &AppliedLoads,
+        scales: &[f64],
+        out: &mut DMatrix<f64>,
+    ) {
+        let kin = self.kinematics(q);
+        self.load_jacobian_kin_into(&kin, loads, scales, out);
+    }
+
+    fn full_coordinates(&self, x: &[f64]) -> Vec<f64> {
+        x.to_vec()
+    }
+
+    fn full_model(&self) -> &FullModel {
+        self
     }
 }

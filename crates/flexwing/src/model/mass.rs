@@ -72,7 +72,7 @@ impl FullModel {
 
 /// In place `X ← Tᵀ X T` with `T = blockdiag(T_n, …)`, `T_n` lower-triangular ones:
 /// `(Tᵀ X T)_ab = Σ_{j ≥ a} Σ_{k ≥ b} X_jk`, the sums running to the end of each block.
-fn suffix_sum_blocks(x: &mut DMatrix<f64>, n: usize) {
+pub(crate) fn suffix_sum_blocks(x: &mut DMatrix<f64>, n: usize) {
     let nd = x.nrows();
     let data = x.as_mut_slice(); // column-major: column c is data[c * nd..(c + 1) * nd]
     for column in data.chunks_mut(nd) {

@@ -8,10 +8,13 @@ mod full;
 mod kinematics;
 mod loads;
 mod mass;
+mod reduced;
 
 pub use full::FullModel;
 pub use kinematics::Kinematics;
-pub use loads::{Force, Load};
+pub use loads::{AppliedLoads, DistributedForce, Force, Load};
+pub(crate) use mass::suffix_sum_blocks;
+pub use reduced::ReducedModel;
 
 use nalgebra::{DMatrix, DVector};
 
@@ -24,6 +27,24 @@ pub trait StructuralModel {
     fn mass_matrix_into(&self, q: &[f64], out: &mut DMatrix<f64>);
     /// Stiffness matrix `K` (constant).
     fn stiffness_matrix(&self) -> DMatrix<f64>;
-    /// Generalized forces `Q(q)` of `loads` into `out`.
-    fn generalized_forces_into(&self, q: &[f64], loads: &[Load], out: &mut DVector<f64>);
+    /// Generalized forces `Q(q) = Σ_k scales[k] Q_k(q)` into `out`.
+    fn generalized_forces_into(
+        &self,
+        q: &[f64],
+        loads: &AppliedLoads,
+        scales: &[f64],
+        out: &mut DVector<f64>,
+    );
+    /// Load Jacobian `∂Q/∂q` into `out`.
+    fn load_jacobian_into(
+        &self,
+        q: &[f64],
+        loads: &AppliedLoads,
+        scales: &[f64],
+        out: &mut DMatrix<f64>,
+    );
+    /// Joint rotations `q` of the full model for the model's coordinates `x`.
+    fn full_coordinates(&self, x: &[f64]) -> Vec<f64>;
+    /// The full model underneath (itself for the full model).
+    fn full_model(&self) -> &FullModel;
 }

@@ -1,4 +1,4 @@
-//! Solvers: modal analysis and (linear) statics.
+//! Solvers: modal analysis and non-linear statics.
 
 mod eigen;
 mod modes;
@@ -6,4 +6,6 @@ mod statics;
 
 pub use eigen::generalized_symmetric_eigen;
 pub use modes::{ModeShape, Modes};
-pub use statics::linear_static;
+pub use statics::{
+    continue_static, linear_static, solve_static, StaticOptions, StaticSolution, StaticStats,
+};

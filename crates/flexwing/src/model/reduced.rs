@@ -1,0 +1,178 @@
+//! The non-linear reduced-order model (model.md, "Reduced-order model"): `q ≈ Φ_r η`.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::{AppliedLoads, FullModel, StructuralModel};
+use crate::error::InputError;
+
+/// The full model projected on `r` of its natural modes: `M_r(η) = Φᵀ M(Φη) Φ`, `K_r = Φᵀ K Φ`,
+/// `Q_r = Φᵀ Q(Φη)`. Positions and displacements are always recovered through `q = Φ η`, so the
+/// reduced model keeps the full geometric non-linearity.
+#[derive(Debug, Clone)]
+pub struct ReducedModel {
+    full: FullModel,
+    phi: DMatrix<f64>,
+    indices: Vec<usize>,
+    k_r: DMatrix<f64>,
+}
+
+impl ReducedModel {
+    /// Project `full` on the columns `indices` (0-based) of `shapes`, the mass-normalized mode
+    /// shapes as columns (`Modes::shapes()`).
+    ///
+    /// # Errors
+    /// No index, a repeated index, or one beyond the number of modes (field `reduced.modes`).
+    ///
+    /// # Panics
+    /// If `shapes` does not have `full.n_dofs()` rows.
+    pub fn new(
+        full: &FullModel,
+        shapes: &DMatrix<f64>,
+        indices: &[usize],
+    ) -> Result<Self, InputError> {
+        assert_eq!(
+            shapes.nrows(),
+            full.n_dofs(),
+            "mode shapes of another model"
+        );
+        let f = "reduced.modes";
+        if indices.is_empty() {
+            return Err(InputError::new(f, "needs at least one mode"));
+        }
+        for (i, &k) in indices.iter().enumerate() {
+            if k >= shapes.ncols() {
+                return Err(InputError::new(
+                    f,
+                    format!(
+                        "mode {} is out of range: the model has {} modes",
+                        k + 1,
+                        shapes.ncols()
+                    ),
+                ));
+            }
+            if indices[..i].contains(&k) {
+                return Err(InputError::new(
+                    f,
+                    format!("mode {} is listed twice", k + 1),
+                ));
+            }
+        }
+        let nd = full.n_dofs();
+        let mut phi = DMatrix::zeros(nd, indices.len());
+        for (c, &k) in indices.iter().enumerate() {
+            phi.set_column(c, &shapes.column(k));
+        }
+        let k_diag = DVector::from_column_slice(full.stiffness());
+        let kphi = DMatrix::from_fn(nd, indices.len(), |r, c| k_diag[r] * phi[(r, c)]);
+        let k_r = phi.transpose() * kphi;
+        Ok(Self {
+            full: full.clone(),
+            phi,
+            indices: indices.to_vec(),
+            k_r,
+        })
+    }
+
+    /// Project on the first `r` columns of `shapes`.
+    ///
+    /// # Errors
+    /// `r = 0` or `r` larger than the number of modes (field `reduced.modes`).
+    ///
+    /// ```
+    /// use flexwing::beam::{Beam, Calibration, Discretization, Profile, SectionProperties};
+    /// use flexwing::{model::{FullModel, ReducedModel}, solve::Modes};
+    /// let section = SectionProperties {
+    ///     ei: Profile::Uniform(50.0),
+    ///     mass_per_length: Profile::Uniform(0.2),
+    ///     torsion: None,
+    /// };
+    /// let full = FullModel::new(Beam::new(1.0, &section, &Discretization::Uniform(20), Calibration::TipLoad)?);
+    /// let rom = ReducedModel::first(&full, Modes::undeformed(&full)?.shapes(), 3)?;
+    /// assert_eq!(rom.n_modes(), 3);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn first(full: &FullModel, shapes: &DMatrix<f64>, r: usize) -> Result<Self, InputError> {
+        if r == 0 || r > shapes.ncols() {
+            return Err(InputError::new(
+                "reduced.modes",
+                format!(
+                    "must be between 1 and {} (the number of modes), got {r}",
+                    shapes.ncols()
+                ),
+            ));
+        }
+        Self::new(full, shapes, &(0..r).collect::<Vec<_>>())
+    }
+
+    /// Number of retained modes `r`.
+    pub fn n_modes(&self) -> usize {
+        self.indices.len()
+    }
+    /// 0-based indices of the retained modes.
+    pub fn mode_indices(&self) -> &[usize] {
+        &self.indices
+    }
+    /// The projection basis `Φ_r` (`n_dofs(full) × r`).
+    pub fn basis(&self) -> &DMatrix<f64> {
+        &self.phi
+    }
+
+    fn project_matrix(&self, full: &DMatrix<f64>) -> DMatrix<f64> {
+        self.phi.transpose() * (full * &self.phi)
+    }
+}
+
+impl StructuralModel for ReducedModel {
+    fn n_dofs(&self) -> usize {
+        self.indices.len()
+    }
+
+    fn mass_matrix_into(&self, eta: &[f64], out: &mut DMatrix<f64>) {
+        let q = self.full_coordinates(eta);
+        let nd = self.full.n_dofs();
+        let mut m = DMatrix::zeros(nd, nd);
+        self.full.mass_matrix_into(&q, &mut m);
+        out.copy_from(&self.project_matrix(&m));
+    }
+
+    fn stiffness_matrix(&self) -> DMatrix<f64> {
+        self.k_r.clone()
+    }
+
+    fn generalized_forces_into(
+        &self,
+        eta: &[f64],
+        loads: &AppliedLoads,
+        scales: &[f64],
+        out: &mut DVector<f64>,
+    ) {
+        let q = self.full_coordinates(eta);
+        let mut f = DVector::zeros(self.full.n_dofs());
+        self.full.generalized_forces_into(&q, loads, scales, &mut f);
+        out.copy_from(&(self.phi.transpose() * f));
+    }
+
+    fn load_jacobian_into(
+        &self,
+        eta: &[f64],
+        loads: &AppliedLoads,
+        scales: &[f64],
+        out: &mut DMatrix<f64>,
+    ) {
+        let q = self.full_coordinates(eta);
+        let nd = self.full.n_dofs();
+        let mut d = DMatrix::zeros(nd, nd);
+        self.full.load_jacobian_into(&q, loads, scales, &mut d);
+        out.copy_from(&self.project_matrix(&d));
+    }
+
+    fn full_coordinates(&self, eta: &[f64]) -> Vec<f64> {
+        (&self.phi * DVector::from_column_slice(eta))
+            .as_slice()
+            .to_vec()
+    }
+
+    fn full_model(&self) -> &FullModel {
+        &self.full
+    }
+}
