@@ -53,6 +53,15 @@ pub enum SolveError {
         /// `‖K x − Q(x)‖∞` at the end of the last failed attempt (NaN if it blew up).
         residual_norm: f64,
     },
+    /// Modes were asked about a state whose tangent stiffness is not symmetric (follower loads).
+    #[error(
+        "modal analysis: the tangent stiffness is not symmetric (relative asymmetry {asymmetry:.2e}); \
+         follower loads are non-conservative and are not supported for loaded modes"
+    )]
+    NonSymmetricTangent {
+        /// `max |K_T − K_Tᵀ| / max |K_T|`.
+        asymmetry: f64,
+    },
     /// The symmetric eigensolver produced a non-finite or negative eigenvalue.
     #[error("modal analysis: eigenvalue {index} is {value} (stiffness not positive definite at this state?)")]
     BadEigenvalue {

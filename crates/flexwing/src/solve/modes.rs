@@ -4,7 +4,7 @@ use nalgebra::DMatrix;
 
 use super::generalized_symmetric_eigen;
 use crate::error::SolveError;
-use crate::model::{FullModel, StructuralModel};
+use crate::model::{AppliedLoads, FullModel, StructuralModel};
 
 /// Natural frequencies and mass-normalized mode shapes, sorted by frequency.
 #[derive(Debug, Clone)]
@@ -46,10 +46,11 @@ impl Modes {
         let (lambda, shapes) = generalized_symmetric_eigen(k_tangent, &m)?;
         let mut omega = Vec::with_capacity(nd);
         for (index, &l) in lambda.iter().enumerate() {
-            // Round-off can make a zero eigenvalue slightly negative; anything beyond that is a
-            // genuinely indefinite tangent stiffness.
+            // The eigenvalues of L⁻¹ K L⁻ᵀ carry an absolute round-off of about ε·λ_max, so a
+            // zero eigenvalue may come out as −64 ε λ_max at worst; below that the tangent
+            // stiffness is indefinite (the equilibrium is unstable).
             let scale = lambda.last().copied().unwrap_or(1.0).abs();
-            if !l.is_finite() || l < -1e-12 * scale {
+            if !l.is_finite() || l < -64.0 * f64::EPSILON * scale {
                 return Err(SolveError::BadEigenvalue { index, value: l });
             }
             omega.push(l.max(0.0).sqrt());
@@ -80,6 +81,32 @@ impl Modes {
     pub fn undeformed(model: &FullModel) -> Result<Self, SolveError> {
         let q0 = vec![0.0; model.n_dofs()];
         Self::about(model, &q0, &model.stiffness_matrix())
+    }
+
+    /// Modes about a loaded equilibrium `q_star` (a static solution for `loads` scaled by
+    /// `scales`): `K_T = K − ∂Q/∂q` at `q_star`.
+    ///
+    /// # Errors
+    /// [`SolveError::NonSymmetricTangent`] if the loads include follower forces (whose tangent is
+    /// not symmetric: the problem is then non-conservative and its eigenvalues may be complex),
+    /// and the errors of [`Modes::about`].
+    pub fn loaded(
+        model: &FullModel,
+        q_star: &[f64],
+        loads: &AppliedLoads,
+        scales: &[f64],
+    ) -> Result<Self, SolveError> {
+        let nd = model.n_dofs();
+        let mut jac = DMatrix::zeros(nd, nd);
+        model.load_jacobian_into(q_star, loads, scales, &mut jac);
+        let k_t = model.stiffness_matrix() - jac;
+        let asym = (&k_t - k_t.transpose()).amax();
+        if asym > 1e-10 * k_t.amax() {
+            return Err(SolveError::NonSymmetricTangent {
+                asymmetry: asym / k_t.amax(),
+            });
+        }
+        Self::about(model, q_star, &((&k_t + k_t.transpose()) * 0.5))
     }
 
     /// Number of modes (`n_dofs`).

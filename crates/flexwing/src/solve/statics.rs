@@ -254,3 +254,53 @@ pub fn linear_static(model: &FullModel, loads: &AppliedLoads) -> (DVector<f64>, 
     }
     (q, disp)
 }
+
+/// A load sweep that stopped early: the equilibria found so far and why it stopped.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepError {
+    /// Equilibria of the sweep points completed before the failure, in order.
+    pub completed: Vec<StaticSolution>,
+    /// Index of the sweep point that failed.
+    pub point: usize,
+    /// The solver's error at that point.
+    pub error: SolveError,
+}
+
+impl std::fmt::Display for SweepError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "sweep point {}: {}", self.point + 1, self.error)
+    }
+}
+
+impl std::error::Error for SweepError {}
+
+/// Solve a sequence of load levels, each continued from the previous equilibrium (the first one
+/// from rest), as in the paper's Figure 4.
+///
+/// # Errors
+/// [`SweepError`] with the equilibria found before the point that failed.
+pub fn sweep_static<M: StructuralModel>(
+    model: &M,
+    loads: &AppliedLoads,
+    points: &[Vec<f64>],
+    options: &StaticOptions,
+) -> Result<Vec<StaticSolution>, SweepError> {
+    let mut done: Vec<StaticSolution> = Vec::with_capacity(points.len());
+    for (i, scales) in points.iter().enumerate() {
+        let result = match done.last() {
+            None => solve_static(model, loads, scales, options),
+            Some(prev) => continue_static(model, loads, (&prev.x, &prev.scales), scales, options),
+        };
+        match result {
+            Ok(sol) => done.push(sol),
+            Err(error) => {
+                return Err(SweepError {
+                    completed: done,
+                    point: i,
+                    error,
+                })
+            }
+        }
+    }
+    Ok(done)
+}
