@@ -234,6 +234,11 @@ proptest! {
                 prop_assert!((fd - jac[(r, d)]).abs() < 1e-6, "({r}, {d}): fd {fd} vs {}", jac[(r, d)]);
             }
         }
+        // The matrix-free product (∂Q/∂q) V used by reduced models equals the dense one.
+        let v = DMatrix::from_fn(nd, 3, |r, c| ((r * 7 + c * 3) as f64).sin());
+        let mut jv = DMatrix::zeros(nd, 3);
+        m.load_jacobian_times_kin_into(&m.kinematics(q), &applied, scales, &v, &mut jv);
+        prop_assert!((&jv - &jac * &v).amax() <= 1e-10 * (1.0 + jv.amax()));
         // Conservative loads only (no follower items): the Jacobian is symmetric.
         let conservative: Vec<Load> = loads.iter().filter(|l| !matches!(l,
             Load::PointForce { force: Force::Follower { .. }, .. } | Load::Distributed(DistributedForce::Follower { .. }))).cloned().collect();

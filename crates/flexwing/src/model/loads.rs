@@ -236,7 +236,7 @@ impl FullModel {
     }
 
     /// Generalized forces `Q(q) = Σ_k scales[k] Q_k(q)` at the configuration `kin`, into `out`.
-    /// Costs O(n · items) and allocates nothing.
+    /// Costs O(n + items).
     ///
     /// # Panics
     /// If `out.len() != n_dofs()` or `scales.len() != loads.n_loads()`.
@@ -247,58 +247,53 @@ impl FullModel {
         scales: &[f64],
         out: &mut DVector<f64>,
     ) {
-        let n = self.n;
         assert_eq!(
             out.len(),
             self.n_dofs(),
             "force buffer has the wrong length"
         );
-        assert_eq!(scales.len(), loads.n_loads, "one scale per load");
-        out.fill(0.0);
+        let r = Resultants::new(self, kin, loads, scales);
+        let n = self.n;
         let (c, s) = (&kin.cos_theta, &kin.sin_theta);
-        for it in &loads.items {
-            let sc = scales[it.load];
-            if sc == 0.0 {
-                continue;
+        // Q_θ,j = n_j · (ℓ_j R_j + A_j) + M_j, R_j the resultant of the forces outboard of
+        // element j, A_j the arm-weighted forces on element j itself.
+        let mut outboard = [0.0; 2];
+        for j in (0..n).rev() {
+            let lever = [
+                self.ell[j] * outboard[0] + r.arm_force[j][0],
+                self.ell[j] * outboard[1] + r.arm_force[j][1],
+            ];
+            out[j] = -s[j] * lever[0] + c[j] * lever[1] + r.moment[j];
+            outboard[0] += r.force[j][0];
+            outboard[1] += r.force[j][1];
+            if self.torsion {
+                out[n + j] = r.torque[j];
             }
-            let k = it.element;
-            match it.kind {
-                ItemKind::Dead { .. } | ItemKind::Follower { .. } => {
-                    let (fx, fy) = it.global_force(kin, sc);
-                    for j in 0..=k {
-                        let len = if j == k { it.arm } else { self.ell[j] };
-                        out[j] += len * (-fx * s[j] + fy * c[j]);
-                    }
+        }
+        if r.gravity != 0.0 {
+            // V = g Σ_i m_i y(g_i), Q = −∂V/∂(θ, ψ), W_j = Σ_{i>j} m_i.
+            let w = r.gravity;
+            let mut mass_out = 0.0;
+            for j in (0..n).rev() {
+                let (mj, d) = (self.mass[j], self.d0[j]);
+                out[j] -= w
+                    * (c[j] * self.ell[j] * mass_out
+                        + mj * (0.5 * self.ell[j] * c[j] - d * kin.sin_psi[j] * s[j]));
+                if self.torsion {
+                    out[n + j] -= w * mj * d * kin.cos_psi[j] * c[j];
                 }
-                ItemKind::Moment(m) => out[k] += sc * m,
-                ItemKind::Torque(t) => out[n + k] += sc * t,
-                ItemKind::Gravity(g) => {
-                    // V = g Σ_i m_i y(g_i); Q = −∂V/∂(θ, ψ); W_j = Σ_{i>j} m_i.
-                    let w = sc * g;
-                    let mut outboard = 0.0;
-                    for j in (0..n).rev() {
-                        let (mj, d) = (self.mass[j], self.d0[j]);
-                        out[j] -= w
-                            * (c[j] * self.ell[j] * outboard
-                                + mj * (0.5 * self.ell[j] * c[j] - d * kin.sin_psi[j] * s[j]));
-                        if self.torsion {
-                            out[n + j] -= w * mj * d * kin.cos_psi[j] * c[j];
-                        }
-                        outboard += mj;
-                    }
-                }
+                mass_out += mj;
             }
         }
         for block in out.as_mut_slice().chunks_mut(n) {
-            for r in (0..n - 1).rev() {
-                block[r] += block[r + 1];
+            for i in (0..n - 1).rev() {
+                block[i] += block[i + 1];
             }
         }
     }
 
     /// Load Jacobian `∂Q/∂q` at `kin`, into `out` (`n_dofs × n_dofs`). Symmetric for conservative
-    /// loads (dead forces, moments, torques, gravity), not for follower forces.
-    /// Costs O(n²) and allocates nothing.
+    /// loads (dead forces, moments, torques, gravity), not for follower forces. Costs O(n²).
     ///
     /// # Panics
     /// If `out` has the wrong shape or `scales.len() != loads.n_loads()`.
@@ -309,74 +304,172 @@ impl FullModel {
         scales: &[f64],
         out: &mut DMatrix<f64>,
     ) {
-        let n = self.n;
         let nd = self.n_dofs();
         assert_eq!(out.shape(), (nd, nd), "Jacobian buffer has the wrong shape");
-        assert_eq!(scales.len(), loads.n_loads, "one scale per load");
-        out.fill(0.0);
-        let (c, s) = (&kin.cos_theta, &kin.sin_theta);
-        for it in &loads.items {
-            let sc = scales[it.load];
-            if sc == 0.0 {
-                continue;
-            }
-            let k = it.element;
-            match it.kind {
-                ItemKind::Dead { .. } | ItemKind::Follower { .. } => {
-                    // Q_j = len_j F·n_j:  ∂/∂θ_j = −len_j F·e_j;  ∂/∂θ_k = len_j (∂F/∂θ_k)·n_j.
-                    let (fx, fy) = it.global_force(kin, sc);
-                    let dfdk = match it.kind {
-                        ItemKind::Follower { ft, fn_ } => {
-                            // ∂F/∂θ_k = f_t n_k − f_n e_k.
-                            let (ft, fn_) = (sc * ft, sc * fn_);
-                            Some((-ft * s[k] - fn_ * c[k], ft * c[k] - fn_ * s[k]))
-                        }
-                        _ => None,
-                    };
-                    for j in 0..=k {
-                        let len = if j == k { it.arm } else { self.ell[j] };
-                        out[(j, j)] -= len * (fx * c[j] + fy * s[j]);
-                        if let Some((dx, dy)) = dfdk {
-                            out[(j, k)] += len * (-dx * s[j] + dy * c[j]);
-                        }
-                    }
+        let r = Resultants::new(self, kin, loads, scales);
+        // Column c of ∂Q_abs/∂(θ, ψ) is the derivative along the unit direction c.
+        let mut dir = vec![0.0; nd];
+        for col in 0..nd {
+            dir[col] = 1.0;
+            let mut column = out.column_mut(col);
+            self.directional_abs(kin, &r, &dir, column.as_mut_slice());
+            dir[col] = 0.0;
+        }
+        suffix_sum_blocks(out, self.n);
+    }
+
+    /// `(∂Q/∂q) V` for a block of directions `V` (`n_dofs × r`, joint coordinates), into `out`
+    /// (`n_dofs × r`), without forming `∂Q/∂q`: O((n + items) r). This is what makes the
+    /// tangent of a reduced model cheap.
+    ///
+    /// # Panics
+    /// If the shapes do not match or `scales.len() != loads.n_loads()`.
+    pub fn load_jacobian_times_kin_into(
+        &self,
+        kin: &Kinematics,
+        loads: &AppliedLoads,
+        scales: &[f64],
+        v: &DMatrix<f64>,
+        out: &mut DMatrix<f64>,
+    ) {
+        let n = self.n;
+        let nd = self.n_dofs();
+        assert_eq!(v.nrows(), nd, "directions have the wrong length");
+        assert_eq!(out.shape(), v.shape(), "output block has the wrong shape");
+        let r = Resultants::new(self, kin, loads, scales);
+        let mut dir = vec![0.0; nd];
+        for col in 0..v.ncols() {
+            // Absolute-angle direction T v: prefix sums within each block.
+            for (dst, src) in dir.chunks_mut(n).zip(v.column(col).as_slice().chunks(n)) {
+                let mut acc = 0.0;
+                for (d, x) in dst.iter_mut().zip(src) {
+                    acc += x;
+                    *d = acc;
                 }
-                ItemKind::Moment(_) | ItemKind::Torque(_) => {}
-                ItemKind::Gravity(g) => {
-                    let w = sc * g;
-                    let mut outboard = 0.0;
-                    for j in (0..n).rev() {
-                        let (mj, d) = (self.mass[j], self.d0[j]);
-                        let (cp, sp) = (kin.cos_psi[j], kin.sin_psi[j]);
-                        out[(j, j)] += w
-                            * (s[j] * self.ell[j] * outboard
-                                + mj * (0.5 * self.ell[j] * s[j] + d * sp * c[j]));
-                        if self.torsion {
-                            let tp = w * mj * d * cp * s[j];
-                            out[(j, n + j)] += tp;
-                            out[(n + j, j)] += tp;
-                            out[(n + j, n + j)] += w * mj * d * sp * c[j];
-                        }
-                        outboard += mj;
-                    }
+            }
+            let mut column = out.column_mut(col);
+            let o = column.as_mut_slice();
+            self.directional_abs(kin, &r, &dir, o);
+            for block in o.chunks_mut(n) {
+                for i in (0..n - 1).rev() {
+                    block[i] += block[i + 1];
                 }
             }
         }
-        suffix_sum_blocks(out, n);
+    }
+
+    /// Derivative of `Q_abs` along the absolute-angle direction `dir = (dθ, dψ)`, into `out`.
+    fn directional_abs(&self, kin: &Kinematics, r: &Resultants, dir: &[f64], out: &mut [f64]) {
+        let n = self.n;
+        let (c, s) = (&kin.cos_theta, &kin.sin_theta);
+        let mut outboard = [0.0; 2];
+        let mut d_outboard = [0.0; 2];
+        for j in (0..n).rev() {
+            let dth = dir[j];
+            let lever = [
+                self.ell[j] * outboard[0] + r.arm_force[j][0],
+                self.ell[j] * outboard[1] + r.arm_force[j][1],
+            ];
+            let d_lever = [
+                self.ell[j] * d_outboard[0] + r.arm_rate[j][0] * dth,
+                self.ell[j] * d_outboard[1] + r.arm_rate[j][1] * dth,
+            ];
+            // d(n_j · lever) = −e_j · lever dθ_j + n_j · d lever.
+            out[j] =
+                -(c[j] * lever[0] + s[j] * lever[1]) * dth - s[j] * d_lever[0] + c[j] * d_lever[1];
+            outboard[0] += r.force[j][0];
+            outboard[1] += r.force[j][1];
+            d_outboard[0] += r.force_rate[j][0] * dth;
+            d_outboard[1] += r.force_rate[j][1] * dth;
+            if self.torsion {
+                out[n + j] = 0.0;
+            }
+        }
+        if r.gravity != 0.0 {
+            let w = r.gravity;
+            let mut mass_out = 0.0;
+            for j in (0..n).rev() {
+                let (mj, d) = (self.mass[j], self.d0[j]);
+                let (cp, sp) = (kin.cos_psi[j], kin.sin_psi[j]);
+                out[j] += w
+                    * (s[j] * self.ell[j] * mass_out
+                        + mj * (0.5 * self.ell[j] * s[j] + d * sp * c[j]))
+                    * dir[j];
+                if self.torsion {
+                    let tp = w * mj * d * cp * s[j];
+                    out[j] += tp * dir[n + j];
+                    out[n + j] += tp * dir[j] + w * mj * d * sp * c[j] * dir[n + j];
+                }
+                mass_out += mj;
+            }
+        }
     }
 }
 
-impl Item {
-    /// Global components of a force item at `kin`, scaled by `sc`.
-    fn global_force(&self, kin: &Kinematics, sc: f64) -> (f64, f64) {
-        let k = self.element;
-        match self.kind {
-            ItemKind::Dead { fx, fy } => (sc * fx, sc * fy),
-            ItemKind::Follower { ft, fn_ } => {
-                let (c, s) = (kin.cos_theta[k], kin.sin_theta[k]);
-                (sc * (ft * c - fn_ * s), sc * (ft * s + fn_ * c))
+/// Per-element resultants of the applied loads at one configuration: what the O(n) recursions
+/// for `Q` and its directional derivatives need.
+struct Resultants {
+    /// Σ of the global forces on element k.
+    force: Vec<[f64; 2]>,
+    /// Σ arm · force on element k.
+    arm_force: Vec<[f64; 2]>,
+    /// Σ ∂F/∂θ_k of the follower forces on element k.
+    force_rate: Vec<[f64; 2]>,
+    /// Σ arm · ∂F/∂θ_k.
+    arm_rate: Vec<[f64; 2]>,
+    moment: Vec<f64>,
+    torque: Vec<f64>,
+    /// Σ scale · g of the gravity loads.
+    gravity: f64,
+}
+
+impl Resultants {
+    fn new(model: &FullModel, kin: &Kinematics, loads: &AppliedLoads, scales: &[f64]) -> Self {
+        assert_eq!(scales.len(), loads.n_loads, "one scale per load");
+        let n = model.n;
+        let mut r = Self {
+            force: vec![[0.0; 2]; n],
+            arm_force: vec![[0.0; 2]; n],
+            force_rate: vec![[0.0; 2]; n],
+            arm_rate: vec![[0.0; 2]; n],
+            moment: vec![0.0; n],
+            torque: vec![0.0; n],
+            gravity: 0.0,
+        };
+        for it in &loads.items {
+            let sc = scales[it.load];
+            let k = it.element;
+            let (c, s) = (kin.cos_theta[k], kin.sin_theta[k]);
+            let (f, rate) = match it.kind {
+                ItemKind::Dead { fx, fy } => ([sc * fx, sc * fy], [0.0, 0.0]),
+                ItemKind::Follower { ft, fn_ } => {
+                    let (ft, fn_) = (sc * ft, sc * fn_);
+                    // F = f_t e_k + f_n n_k, ∂F/∂θ_k = f_t n_k − f_n e_k.
+                    (
+                        [ft * c - fn_ * s, ft * s + fn_ * c],
+                        [-ft * s - fn_ * c, ft * c - fn_ * s],
+                    )
+                }
+                ItemKind::Moment(m) => {
+                    r.moment[k] += sc * m;
+                    continue;
+                }
+                ItemKind::Torque(t) => {
+                    r.torque[k] += sc * t;
+                    continue;
+                }
+                ItemKind::Gravity(g) => {
+                    r.gravity += sc * g;
+                    continue;
+                }
+            };
+            for a in 0..2 {
+                r.force[k][a] += f[a];
+                r.arm_force[k][a] += it.arm * f[a];
+                r.force_rate[k][a] += rate[a];
+                r.arm_rate[k][a] += it.arm * rate[a];
             }
-            _ => (0.0, 0.0),
         }
+        r
     }
 }

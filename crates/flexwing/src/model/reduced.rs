@@ -159,11 +159,13 @@ impl StructuralModel for ReducedModel {
         scales: &[f64],
         out: &mut DMatrix<f64>,
     ) {
+        // Φᵀ (∂Q/∂q Φ): the product is formed column by column in O(n r), never ∂Q/∂q itself.
         let q = self.full_coordinates(eta);
-        let nd = self.full.n_dofs();
-        let mut d = DMatrix::zeros(nd, nd);
-        self.full.load_jacobian_into(&q, loads, scales, &mut d);
-        out.copy_from(&self.project_matrix(&d));
+        let kin = self.full.kinematics(&q);
+        let mut jphi = DMatrix::zeros(self.phi.nrows(), self.phi.ncols());
+        self.full
+            .load_jacobian_times_kin_into(&kin, loads, scales, &self.phi, &mut jphi);
+        out.copy_from(&(self.phi.transpose() * jphi));
     }
 
     fn full_coordinates(&self, eta: &[f64]) -> Vec<f64> {

@@ -29,6 +29,7 @@ import sys
 import os
 import time
 import mpmath as mp
+from operator import mul
 
 mp.mp.dps = 30
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -53,109 +54,129 @@ def note(name, value):
 # ---------------------------------------------------------------------------
 # Taylor-series integrator
 # ---------------------------------------------------------------------------
+FB = 124                        # fixed-point fraction bits (2^-124 ~ 5e-38)
+ONE = 1 << FB
+
+
+def tofix(v):
+    return int(mp.nint(mp.ldexp(mp.mpf(v), FB)))
+
+
+def tompf(V):
+    return mp.mpf((V, -FB))
+
+
 def horner(coef, t):
-    r = mp.mpf(0)
+    """fixed-point Horner: sum coef[k] t^k"""
+    r = 0
     for cf in reversed(coef):
-        r = r * t + cf
+        r = ((r * t) >> FB) + cf
     return r
 
 
 def dhorner(coef, t):
-    r = mp.mpf(0)
+    r = 0
     for k in range(len(coef) - 1, 0, -1):
-        r = r * t + k * coef[k]
+        r = ((r * t) >> FB) + k * coef[k]
     return r
 
 
 def taylor_step(th0, th1, z0, z1, A0, A1, B0, B1, P, var):
-    """Taylor coefficients in the local variable tau = s - s0 of
-        theta'' = (A0 + A1 tau) cos(theta) + (B0 + B1 tau) sin(theta)
-    (and of cos theta, sin theta and of z'' = q z, q = -a sin(theta) + b cos(theta))."""
-    th = [th0, th1] + [None] * (P - 1)
-    c = [mp.cos(th0)] + [None] * P
-    sn = [mp.sin(th0)] + [None] * P
+    """Exact Taylor coefficients (fixed point, local variable tau = s - s0) of
+        theta'' = (A0 + A1 tau) cos(theta) + (B0 + B1 tau) sin(theta),
+    of cos(theta), sin(theta), and of the variational equation
+        z'' = q z,  q = -(A0 + A1 tau) sin(theta) + (B0 + B1 tau) cos(theta).
+    Recurrences: (k+1) c_{k+1} = -sum_j j th_j sn_{k+1-j},
+                 (k+1) sn_{k+1} = sum_j j th_j c_{k+1-j}."""
+    t0 = tompf(th0)
+    th = [th0, th1] + [0] * (P - 1)
+    jth = [0, th1] + [0] * (P - 1)            # j * th_j
+    c = [tofix(mp.cos(t0))] + [0] * P
+    sn = [tofix(mp.sin(t0))] + [0] * P
     if var:
-        z = [z0, z1] + [None] * (P - 1)
-        q = [None] * (P + 1)
+        z = [z0, z1] + [0] * (P - 1)
+        q = [0] * (P + 1)
     for k in range(P - 1):
         r = A0 * c[k] + B0 * sn[k]
         if k:
             r += A1 * c[k - 1] + B1 * sn[k - 1]
-        th[k + 2] = r / ((k + 1) * (k + 2))
+        th[k + 2] = (r >> FB) // ((k + 1) * (k + 2))
+        jth[k + 2] = (k + 2) * th[k + 2]
         if var:
             qk = -A0 * sn[k] + B0 * c[k]
             if k:
                 qk += -A1 * sn[k - 1] + B1 * c[k - 1]
-            q[k] = qk
-            acc = mp.mpf(0)
-            for j in range(k + 1):
-                acc += q[j] * z[k - j]
-            z[k + 2] = acc / ((k + 1) * (k + 2))
-        sc = mp.mpf(0)
-        ss = mp.mpf(0)
-        for j in range(1, k + 2):
-            jt = j * th[j]
-            sc += jt * sn[k + 1 - j]
-            ss += jt * c[k + 1 - j]
-        c[k + 1] = -sc / (k + 1)
-        sn[k + 1] = ss / (k + 1)
+            q[k] = qk >> FB
+            acc = sum(map(mul, q[:k + 1], reversed(z[:k + 1])))
+            z[k + 2] = (acc >> FB) // ((k + 1) * (k + 2))
+        jj = jth[1:k + 2]
+        sc = sum(map(mul, jj, reversed(sn[:k + 1])))
+        ss = sum(map(mul, jj, reversed(c[:k + 1])))
+        c[k + 1] = -((sc >> FB) // (k + 1))
+        sn[k + 1] = (ss >> FB) // (k + 1)
     return th, c, sn, (z if var else None)
 
 
 def integrate(kappa0, segs, cfg, var=True, nodes=False, theta0=0):
-    """Integrate theta'' = a(s) cos + b(s) sin from s = 0 to L.
+    """Integrate theta'' = a(s) cos(theta) + b(s) sin(theta) from s = 0 to L with
+    theta(0) = theta0, theta'(0) = kappa0, x(0) = y(0) = 0.
     segs: list of (s_start, s_end, a0, a1, b0, b1) with a(s) = a0 + a1 s, b(s) = b0 + b1 s
     (global s).  Segment ends must be multiples of L/NNODE.
-    Returns dict with end values and (optionally) node values [(s, x, y, theta)] and the
-    value at s = L/2."""
+    Returns a dict with the end values (mpf), optionally the node values
+    [(s, x, y, theta)] at s_k = k L/NNODE (dense output of the Taylor polynomials),
+    and the values at s = L/2."""
     nsteps, P = cfg
     h = L / nsteps
-    th, dth = mp.mpf(theta0), mp.mpf(kappa0)
-    x = y = W = mp.mpf(0)           # W = int_0^s x ds (used for the moment check)
-    z, dz = mp.mpf(0), mp.mpf(1)
-    out_nodes = [(mp.mpf(0), x, y, th)] if nodes else None
+    hf = tofix(h)
+    th, dth = tofix(theta0), tofix(kappa0)
+    x = y = W = 0                   # W = int_0^s x ds (used for the moment check)
+    z, dz = 0, ONE
+    out_nodes = [(mp.mpf(0), mp.mpf(0), mp.mpf(0), tompf(th))] if nodes else None
     mid = None
     ds_node = L / NNODE
     for (sa, sb, a0, a1, b0, b1) in segs:
         n = int(mp.nint((sb - sa) / h))
         assert abs(n * h - (sb - sa)) < mp.mpf(10) ** (-25)
+        A1, B1 = tofix(a1), tofix(b1)
         for i in range(n):
             s0 = sa + i * h
-            A0 = a0 + a1 * s0
-            B0 = b0 + b1 * s0
-            tc, cc, sc, zc = taylor_step(th, dth, z, dz, A0, a1, B0, b1, P, var)
-            xc = [x] + [cc[k] / (k + 1) for k in range(P)]
-            yc = [y] + [sc[k] / (k + 1) for k in range(P)]
-            Wc = [W] + [xc[k] / (k + 1) for k in range(P)]
+            A0 = tofix(a0 + a1 * s0)
+            B0 = tofix(b0 + b1 * s0)
+            tc, cc, sc, zc = taylor_step(th, dth, z, dz, A0, A1, B0, B1, P, var)
+            xc = [x] + [cc[k] // (k + 1) for k in range(P)]
+            yc = [y] + [sc[k] // (k + 1) for k in range(P)]
+            Wc = [W] + [xc[k] // (k + 1) for k in range(P)]
             if nodes:
-                # node positions strictly inside (s0, s0 + h]
+                # nodes strictly inside (s0, s0 + h]
                 kfirst = int(mp.floor(s0 / ds_node + mp.mpf('1e-20'))) + 1
                 klast = int(mp.floor((s0 + h) / ds_node + mp.mpf('1e-20')))
                 for kk in range(kfirst, klast + 1):
-                    tau = kk * ds_node - s0
-                    out_nodes.append((kk * ds_node, horner(xc, tau), horner(yc, tau),
-                                      horner(tc, tau)))
-            th, dth = horner(tc, h), dhorner(tc, h)
-            x, y, W = horner(xc, h), horner(yc, h), horner(Wc, h)
+                    tau = tofix(kk * ds_node - s0)
+                    out_nodes.append((kk * ds_node, tompf(horner(xc, tau)),
+                                      tompf(horner(yc, tau)), tompf(horner(tc, tau))))
+            th, dth = horner(tc, hf), dhorner(tc, hf)
+            x, y, W = horner(xc, hf), horner(yc, hf), horner(Wc, hf)
             if var:
-                z, dz = horner(zc, h), dhorner(zc, h)
+                z, dz = horner(zc, hf), dhorner(zc, hf)
             if abs(s0 + h - MID) < mp.mpf(10) ** (-25):
-                mid = (x, y, th)
-    return dict(theta=th, dtheta=dth, x=x, y=y, W=W, z=z, dz=dz, nodes=out_nodes, mid=mid)
+                mid = (tompf(x), tompf(y), tompf(th))
+    return dict(theta=tompf(th), dtheta=tompf(dth), x=tompf(x), y=tompf(y), W=tompf(W),
+                z=tompf(z), dz=tompf(dz), nodes=out_nodes, mid=mid)
 
 
-def shoot(segs, kappa_guess, cfg, tol=mp.mpf(10) ** (-26), maxit=40):
-    """Newton on kappa0 = theta'(0) so that theta'(L) = 0."""
+def shoot(segs, kappa_guess, cfg, maxit=40):
+    """Newton on kappa0 = theta'(0) so that theta'(L) = 0 (derivative from the
+    variational equation).  Stops once the Newton step is < 1e-15: by quadratic
+    convergence the returned kappa0 is then correct to ~1e-28."""
     k = mp.mpf(kappa_guess)
     for it in range(maxit):
         r = integrate(k, segs, cfg, var=True)
         dk = -r['dtheta'] / r['dz']
-        # damp very large steps (only matters for poor initial guesses)
-        lim = 1 + abs(k)
+        lim = 1 + abs(k)            # damp very large steps (poor initial guesses only)
         if abs(dk) > lim:
             dk = lim * mp.sign(dk)
         k += dk
-        if abs(dk) < tol:
+        if abs(dk) < mp.mpf(10) ** (-15):
             return k
     raise RuntimeError('shooting did not converge')
 
@@ -233,10 +254,27 @@ def follower_quadrature(alpha):
     def length(thL):
         return mp.quad(lambda u: 2 * u / mp.sqrt(2 * alpha * mp.sin(u * u)),
                        [0, mp.sqrt(thL)])
-    # ds = dpsi / sqrt(2 alpha sin psi); small-alpha guess thL ~ alpha/2
-    T = mp.findroot(lambda t: length(t) - 1, (mp.mpf(alpha) / 2 * mp.mpf('0.9'),
-                                              min(mp.pi * mp.mpf('0.999'), mp.mpf(alpha) / 2 * mp.mpf('1.1') + mp.mpf('0.01'))),
-                    solver='anderson', tol=mp.mpf(10) ** (-28))
+    # length(T) increases from 0 (T = 0) to (Gamma(1/4)^2/sqrt(2 pi))/sqrt(2 alpha) (T = pi),
+    # which exceeds 1 for alpha < 13.7; safeguarded Newton-bisection on (0, pi),
+    # d length/dT = 1/sqrt(2 alpha sin T).
+    lo, hi = mp.mpf(0), mp.pi
+    assert length(hi) > 1
+    T = min(mp.mpf(alpha) / 2, mp.pi / 2)
+    for it in range(200):
+        f = length(T) - 1
+        if f > 0:
+            hi = T
+        else:
+            lo = T
+        Tn = T - f * mp.sqrt(2 * alpha * mp.sin(T))
+        if not (lo < Tn < hi):
+            Tn = (lo + hi) / 2
+        if abs(Tn - T) < mp.mpf(10) ** (-26):
+            T = Tn
+            break
+        T = Tn
+    else:
+        raise RuntimeError('follower quadrature: no convergence')
     w = lambda u: 2 * u / mp.sqrt(2 * alpha * mp.sin(u * u))
     xt = mp.quad(lambda u: mp.cos(T - u * u) * w(u), [0, mp.sqrt(T)]) * L
     yt = mp.quad(lambda u: mp.sin(T - u * u) * w(u), [0, mp.sqrt(T)]) * L
