@@ -1,1 +1,110 @@
-fn main() {}
+//! `flexwing`: the command-line tool of the flexwing library. It reads a case file (TOML), calls
+//! the library and writes results; all physics lives in the library.
+//!
+//! Errors are printed as one line, `error: …`, on stderr. Exit status: 0 on success, 2 for bad
+//! input (command line or case file), 1 when the run fails (a solver, or writing the results).
+
+mod case;
+mod commands;
+mod output;
+mod plot;
+
+use std::io::Write as _;
+use std::process::ExitCode;
+
+use clap::error::ErrorKind;
+use clap::{Parser, Subcommand};
+
+use commands::{modes, Failure};
+
+/// Non-linear dynamics of very flexible beams (lumped-mass model).
+#[derive(Debug, Parser)]
+#[command(
+    name = "flexwing",
+    version,
+    long_about = "Non-linear dynamics of very flexible beams and wings with a lumped-mass model \
+                  (rigid elements joined by bending and torsion springs).\n\n\
+                  A run reads a case file (TOML, see docs/case-file.md), prints a summary and \
+                  writes result files (CSV, optionally plots) into an output directory."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Natural frequencies and mode shapes about the undeformed state.
+    #[command(
+        long_about = "Natural frequencies and mode shapes about the undeformed state.\n\n\
+        Prints a table (mode, ω in rad/s, f in Hz, share of the strain energy in bending, and \
+        whether the mode is bending, torsion or coupled) and writes frequencies.csv and \
+        mode_shapes.csv (mass-normalized nodal shapes) into the output directory. \
+        With --plot also mode_shapes.svg and mode_shapes.png; with --json one JSON document \
+        replaces the table. See docs/cli.md."
+    )]
+    Modes(modes::ModesArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage_error(&e),
+    };
+    let result = match &cli.command {
+        Command::Modes(args) => modes::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(failure) => {
+            report(&failure);
+            ExitCode::from(failure.exit_status())
+        }
+    }
+}
+
+fn report(failure: &Failure) {
+    // `{:#}` joins the context chain with ": ".
+    print_error(&case::one_line(&format!("{:#}", failure.error())));
+}
+
+/// `error: MESSAGE` on stderr; a closed stderr is ignored (`eprintln!` would panic).
+fn print_error(message: &str) {
+    let _ = writeln!(std::io::stderr(), "error: {message}");
+}
+
+/// `--help` and `--version` print and succeed; a usage error becomes one line and exit status 2.
+fn usage_error(e: &clap::Error) -> ExitCode {
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            let _ = e.print();
+            ExitCode::SUCCESS
+        }
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            ExitCode::from(2)
+        }
+        _ => {
+            let rendered = e.render().to_string();
+            // Keep the message and tips, drop the usage block that follows them.
+            let message = rendered
+                .split("\nUsage:")
+                .next()
+                .unwrap_or(&rendered)
+                .trim_start_matches("error:");
+            let mut line = String::new();
+            for part in message
+                .lines()
+                .map(case::one_line)
+                .filter(|l| !l.is_empty())
+            {
+                if !line.is_empty() {
+                    line.push_str(if line.ends_with(':') { " " } else { "; " });
+                }
+                line.push_str(&part);
+            }
+            print_error(&format!("{line}; try '--help'"));
+            ExitCode::from(2)
+        }
+    }
+}

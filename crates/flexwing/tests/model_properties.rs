@@ -76,7 +76,7 @@ proptest! {
         let m = model(7, torsion);
         let q = &q[..m.n_dofs()];
         let mut closed = DMatrix::zeros(m.n_dofs(), m.n_dofs());
-        m.mass_matrix_into(q, &mut closed);
+        m.mass_matrix_into(q, &mut m.workspace(), &mut closed);
         let reference = mass_from_jacobians(&m, q);
         let scale = reference.amax();
         // Both are sums of O(n²) terms of size ≤ scale: agreement to 1e-13 of the largest entry
@@ -89,7 +89,7 @@ proptest! {
     fn mass_matrix_is_symmetric_positive_definite(q in q_strategy(16)) {
         let m = model(8, true);
         let mut mm = DMatrix::zeros(16, 16);
-        m.mass_matrix_into(&q, &mut mm);
+        m.mass_matrix_into(&q, &mut m.workspace(), &mut mm);
         prop_assert!((&mm - mm.transpose()).amax() <= 1e-14 * mm.amax());
         let eig = mm.symmetric_eigenvalues();
         prop_assert!(eig.min() > 0.0, "smallest eigenvalue {}", eig.min());
@@ -218,15 +218,15 @@ proptest! {
         let scales = &s[..loads.len()];
         let nd = m.n_dofs();
         let mut jac = DMatrix::zeros(nd, nd);
-        m.load_jacobian_into(q, &applied, scales, &mut jac);
+        m.load_jacobian_into(q, &applied, scales, &mut m.workspace(), &mut jac);
         let h = 1e-6;
         let (mut fp, mut fm) = (DVector::zeros(nd), DVector::zeros(nd));
         for d in 0..nd {
             let (mut qp, mut qm) = (q.to_vec(), q.to_vec());
             qp[d] += h;
             qm[d] -= h;
-            m.generalized_forces_into(&qp, &applied, scales, &mut fp);
-            m.generalized_forces_into(&qm, &applied, scales, &mut fm);
+            m.generalized_forces_into(&qp, &applied, scales, &mut m.workspace(), &mut fp);
+            m.generalized_forces_into(&qm, &applied, scales, &mut m.workspace(), &mut fm);
             for r in 0..nd {
                 let fd = (fp[r] - fm[r]) / (2.0 * h);
                 // Central differences of O(10 N·m) forces: truncation h² ≈ 1e-12, round-off
@@ -244,7 +244,7 @@ proptest! {
             Load::PointForce { force: Force::Follower { .. }, .. } | Load::Distributed(DistributedForce::Follower { .. }))).cloned().collect();
         let applied = m.apply(&conservative, "loads").unwrap();
         let sc = vec![1.0; conservative.len()];
-        m.load_jacobian_into(q, &applied, &sc, &mut jac);
+        m.load_jacobian_into(q, &applied, &sc, &mut m.workspace(), &mut jac);
         prop_assert!((&jac - jac.transpose()).amax() <= 1e-12 * (1.0 + jac.amax()));
     }
 }
@@ -257,7 +257,7 @@ fn modes_are_mass_orthonormal_and_stiffness_diagonal() {
         let phi = modes.shapes();
         let nd = m.n_dofs();
         let mut mm = DMatrix::zeros(nd, nd);
-        m.mass_matrix_into(&vec![0.0; nd], &mut mm);
+        m.mass_matrix_into(&vec![0.0; nd], &mut m.workspace(), &mut mm);
         let orth = phi.transpose() * &mm * phi;
         assert!((&orth - DMatrix::identity(nd, nd)).amax() < 1e-10);
         let kk = phi.transpose() * m.stiffness_matrix() * phi;

@@ -101,7 +101,7 @@ fn compressive_tip_load_buckles_at_the_euler_load() {
     // Stable while the tangent K − ∂Q/∂q is positive definite (its Cholesky factor exists).
     let stable = |p: f64| {
         let mut jac = DMatrix::zeros(n, n);
-        full.load_jacobian_into(&q0, &loads_for(p), &[1.0], &mut jac);
+        full.load_jacobian_into(&q0, &loads_for(p), &[1.0], &mut full.workspace(), &mut jac);
         (full.stiffness_matrix() - jac).cholesky().is_some()
     };
     let (mut lo, mut hi) = (0.5 * p_euler, 1.5 * p_euler);

@@ -2,6 +2,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::loads::Resultants;
 use super::{AppliedLoads, Kinematics, StructuralModel};
 use crate::beam::Beam;
 
@@ -211,14 +212,40 @@ impl FullModel {
     }
 }
 
+/// Scratch buffers of the full model: the kinematics of the current configuration and the
+/// per-element load resultants.
+#[derive(Debug, Clone)]
+pub struct Workspace {
+    pub(super) kin: Kinematics,
+    pub(super) resultants: Resultants,
+    pub(super) dir: Vec<f64>,
+}
+
+impl Workspace {
+    /// The kinematics of the last configuration evaluated.
+    pub fn kinematics(&self) -> &Kinematics {
+        &self.kin
+    }
+}
+
 impl StructuralModel for FullModel {
+    type Workspace = Workspace;
+
+    fn workspace(&self) -> Workspace {
+        Workspace {
+            kin: Kinematics::new(self.n),
+            resultants: Resultants::zeros(self.n),
+            dir: vec![0.0; self.n_dofs()],
+        }
+    }
+
     fn n_dofs(&self) -> usize {
         FullModel::n_dofs(self)
     }
 
-    fn mass_matrix_into(&self, q: &[f64], out: &mut DMatrix<f64>) {
-        let kin = self.kinematics(q);
-        self.mass_matrix_kin_into(&kin, out);
+    fn mass_matrix_into(&self, q: &[f64], ws: &mut Workspace, out: &mut DMatrix<f64>) {
+        ws.kin.update(q);
+        self.mass_matrix_kin_into(&ws.kin, out);
     }
 
     fn stiffness_matrix(&self) -> DMatrix<f64> {
@@ -230,10 +257,12 @@ impl StructuralModel for FullModel {
         q: &[f64],
         loads: &AppliedLoads,
         scales: &[f64],
+        ws: &mut Workspace,
         out: &mut DVector<f64>,
     ) {
-        let kin = self.kinematics(q);
-        self.generalized_forces_kin_into(&kin, loads, scales, out);
+        ws.kin.update(q);
+        ws.resultants.update(self, &ws.kin, loads, scales);
+        self.forces_from(&ws.kin, &ws.resultants, out);
     }
 
     fn load_jacobian_into(
@@ -241,10 +270,12 @@ impl StructuralModel for FullModel {
         q: &[f64],
         loads: &AppliedLoads,
         scales: &[f64],
+        ws: &mut Workspace,
         out: &mut DMatrix<f64>,
     ) {
-        let kin = self.kinematics(q);
-        self.load_jacobian_kin_into(&kin, loads, scales, out);
+        ws.kin.update(q);
+        ws.resultants.update(self, &ws.kin, loads, scales);
+        self.jacobian_from(&ws.kin, &ws.resultants, &mut ws.dir, out);
     }
 
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64> {

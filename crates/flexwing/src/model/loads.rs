@@ -247,12 +247,17 @@ impl FullModel {
         scales: &[f64],
         out: &mut DVector<f64>,
     ) {
+        let mut r = Resultants::zeros(self.n);
+        r.update(self, kin, loads, scales);
+        self.forces_from(kin, &r, out);
+    }
+
+    pub(super) fn forces_from(&self, kin: &Kinematics, r: &Resultants, out: &mut DVector<f64>) {
         assert_eq!(
             out.len(),
             self.n_dofs(),
             "force buffer has the wrong length"
         );
-        let r = Resultants::new(self, kin, loads, scales);
         let n = self.n;
         let (c, s) = (&kin.cos_theta, &kin.sin_theta);
         // Q_θ,j = n_j · (ℓ_j R_j + A_j) + M_j, R_j the resultant of the forces outboard of
@@ -304,15 +309,27 @@ impl FullModel {
         scales: &[f64],
         out: &mut DMatrix<f64>,
     ) {
+        let mut r = Resultants::zeros(self.n);
+        r.update(self, kin, loads, scales);
+        let mut dir = vec![0.0; self.n_dofs()];
+        self.jacobian_from(kin, &r, &mut dir, out);
+    }
+
+    /// Dense `∂Q/∂q` from the resultants; `dir` is scratch of length `n_dofs`, left zero.
+    pub(super) fn jacobian_from(
+        &self,
+        kin: &Kinematics,
+        r: &Resultants,
+        dir: &mut [f64],
+        out: &mut DMatrix<f64>,
+    ) {
         let nd = self.n_dofs();
         assert_eq!(out.shape(), (nd, nd), "Jacobian buffer has the wrong shape");
-        let r = Resultants::new(self, kin, loads, scales);
         // Column c of ∂Q_abs/∂(θ, ψ) is the derivative along the unit direction c.
-        let mut dir = vec![0.0; nd];
         for col in 0..nd {
             dir[col] = 1.0;
             let mut column = out.column_mut(col);
-            self.directional_abs(kin, &r, &dir, column.as_mut_slice());
+            self.directional_abs(kin, r, dir, column.as_mut_slice());
             dir[col] = 0.0;
         }
         suffix_sum_blocks(out, self.n);
@@ -332,12 +349,25 @@ impl FullModel {
         v: &DMatrix<f64>,
         out: &mut DMatrix<f64>,
     ) {
+        let mut r = Resultants::zeros(self.n);
+        r.update(self, kin, loads, scales);
+        let mut dir = vec![0.0; self.n_dofs()];
+        self.jacobian_times_from(kin, &r, v, &mut dir, out);
+    }
+
+    /// `(∂Q/∂q) V` from the resultants; `dir` is scratch of length `n_dofs`.
+    pub(super) fn jacobian_times_from(
+        &self,
+        kin: &Kinematics,
+        r: &Resultants,
+        v: &DMatrix<f64>,
+        dir: &mut [f64],
+        out: &mut DMatrix<f64>,
+    ) {
         let n = self.n;
         let nd = self.n_dofs();
         assert_eq!(v.nrows(), nd, "directions have the wrong length");
         assert_eq!(out.shape(), v.shape(), "output block has the wrong shape");
-        let r = Resultants::new(self, kin, loads, scales);
-        let mut dir = vec![0.0; nd];
         for col in 0..v.ncols() {
             // Absolute-angle direction T v: prefix sums within each block.
             for (dst, src) in dir.chunks_mut(n).zip(v.column(col).as_slice().chunks(n)) {
@@ -349,7 +379,7 @@ impl FullModel {
             }
             let mut column = out.column_mut(col);
             let o = column.as_mut_slice();
-            self.directional_abs(kin, &r, &dir, o);
+            self.directional_abs(kin, r, dir, o);
             for block in o.chunks_mut(n) {
                 for i in (0..n - 1).rev() {
                     block[i] += block[i + 1];
@@ -408,7 +438,8 @@ impl FullModel {
 
 /// Per-element resultants of the applied loads at one configuration: what the O(n) recursions
 /// for `Q` and its directional derivatives need.
-struct Resultants {
+#[derive(Debug, Clone)]
+pub(super) struct Resultants {
     /// Σ of the global forces on element k.
     force: Vec<[f64; 2]>,
     /// Σ arm · force on element k.
@@ -424,10 +455,8 @@ struct Resultants {
 }
 
 impl Resultants {
-    fn new(model: &FullModel, kin: &Kinematics, loads: &AppliedLoads, scales: &[f64]) -> Self {
-        assert_eq!(scales.len(), loads.n_loads, "one scale per load");
-        let n = model.n;
-        let mut r = Self {
+    pub(super) fn zeros(n: usize) -> Self {
+        Self {
             force: vec![[0.0; 2]; n],
             arm_force: vec![[0.0; 2]; n],
             force_rate: vec![[0.0; 2]; n],
@@ -435,7 +464,27 @@ impl Resultants {
             moment: vec![0.0; n],
             torque: vec![0.0; n],
             gravity: 0.0,
-        };
+        }
+    }
+
+    /// Recompute for the configuration `kin` and load scales `scales` (no allocation).
+    pub(super) fn update(
+        &mut self,
+        model: &FullModel,
+        kin: &Kinematics,
+        loads: &AppliedLoads,
+        scales: &[f64],
+    ) {
+        assert_eq!(scales.len(), loads.n_loads, "one scale per load");
+        debug_assert_eq!(self.force.len(), model.n);
+        self.force.fill([0.0; 2]);
+        self.arm_force.fill([0.0; 2]);
+        self.force_rate.fill([0.0; 2]);
+        self.arm_rate.fill([0.0; 2]);
+        self.moment.fill(0.0);
+        self.torque.fill(0.0);
+        self.gravity = 0.0;
+        let r = self;
         for it in &loads.items {
             let sc = scales[it.load];
             let k = it.element;
@@ -470,6 +519,5 @@ impl Resultants {
                 r.arm_rate[k][a] += it.arm * rate[a];
             }
         }
-        r
     }
 }

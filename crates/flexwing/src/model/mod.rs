@@ -10,37 +10,47 @@ mod loads;
 mod mass;
 mod reduced;
 
-pub use full::FullModel;
+pub use full::{FullModel, Workspace};
 pub use kinematics::Kinematics;
 pub use loads::{AppliedLoads, DistributedForce, Force, Load};
 pub(crate) use mass::suffix_sum_blocks;
-pub use reduced::ReducedModel;
+pub use reduced::{ReducedModel, ReducedWorkspace};
 
 use nalgebra::{DMatrix, DVector};
 
-/// What the solvers need of a structural model; implemented by the full model (and, later, the
-/// reduced one) so that statics, modes and time integration are written once.
+/// What the solvers need of a structural model; implemented by the full and the reduced model so
+/// that statics, modes and time integration are written once.
+///
+/// Evaluations take a caller-owned [`StructuralModel::Workspace`] (from
+/// [`StructuralModel::workspace`]) and write into caller-owned buffers, so a solver loop
+/// allocates nothing.
 pub trait StructuralModel {
+    /// Scratch buffers for evaluations.
+    type Workspace;
+    /// Fresh scratch buffers for this model.
+    fn workspace(&self) -> Self::Workspace;
     /// Number of generalized coordinates.
     fn n_dofs(&self) -> usize;
-    /// Mass matrix `M(q)` into `out` (`n_dofs × n_dofs`).
-    fn mass_matrix_into(&self, q: &[f64], out: &mut DMatrix<f64>);
     /// Stiffness matrix `K` (constant).
     fn stiffness_matrix(&self) -> DMatrix<f64>;
-    /// Generalized forces `Q(q) = Σ_k scales[k] Q_k(q)` into `out`.
+    /// Mass matrix `M(x)` into `out` (`n_dofs × n_dofs`).
+    fn mass_matrix_into(&self, x: &[f64], ws: &mut Self::Workspace, out: &mut DMatrix<f64>);
+    /// Generalized forces `Q(x) = Σ_k scales[k] Q_k(x)` into `out`.
     fn generalized_forces_into(
         &self,
-        q: &[f64],
+        x: &[f64],
         loads: &AppliedLoads,
         scales: &[f64],
+        ws: &mut Self::Workspace,
         out: &mut DVector<f64>,
     );
-    /// Load Jacobian `∂Q/∂q` into `out`.
+    /// Load Jacobian `∂Q/∂x` into `out`.
     fn load_jacobian_into(
         &self,
-        q: &[f64],
+        x: &[f64],
         loads: &AppliedLoads,
         scales: &[f64],
+        ws: &mut Self::Workspace,
         out: &mut DMatrix<f64>,
     );
     /// Joint rotations `q` of the full model for the model's coordinates `x`.

@@ -2,7 +2,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::{AppliedLoads, FullModel, StructuralModel};
+use super::{AppliedLoads, FullModel, StructuralModel, Workspace};
 use crate::error::InputError;
 
 /// The full model projected on `r` of its natural modes: `M_r(η) = Φᵀ M(Φη) Φ`, `K_r = Φᵀ K Φ`,
@@ -116,23 +116,52 @@ impl ReducedModel {
     pub fn basis(&self) -> &DMatrix<f64> {
         &self.phi
     }
+}
 
-    fn project_matrix(&self, full: &DMatrix<f64>) -> DMatrix<f64> {
-        self.phi.transpose() * (full * &self.phi)
+/// Scratch buffers of a reduced model: those of the full model plus full-size intermediates.
+#[derive(Debug, Clone)]
+pub struct ReducedWorkspace {
+    full: Workspace,
+    q: Vec<f64>,
+    f: DVector<f64>,
+    m: DMatrix<f64>,
+    block: DMatrix<f64>,
+}
+
+impl ReducedModel {
+    fn expand(&self, eta: &[f64], q: &mut [f64]) {
+        q.fill(0.0);
+        for (c, &e) in eta.iter().enumerate() {
+            for (qi, p) in q.iter_mut().zip(self.phi.column(c).iter()) {
+                *qi += p * e;
+            }
+        }
     }
 }
 
 impl StructuralModel for ReducedModel {
+    type Workspace = ReducedWorkspace;
+
+    fn workspace(&self) -> ReducedWorkspace {
+        let nd = self.full.n_dofs();
+        ReducedWorkspace {
+            full: self.full.workspace(),
+            q: vec![0.0; nd],
+            f: DVector::zeros(nd),
+            m: DMatrix::zeros(nd, nd),
+            block: DMatrix::zeros(nd, self.phi.ncols()),
+        }
+    }
+
     fn n_dofs(&self) -> usize {
         self.indices.len()
     }
 
-    fn mass_matrix_into(&self, eta: &[f64], out: &mut DMatrix<f64>) {
-        let q = self.full_coordinates(eta);
-        let nd = self.full.n_dofs();
-        let mut m = DMatrix::zeros(nd, nd);
-        self.full.mass_matrix_into(&q, &mut m);
-        out.copy_from(&self.project_matrix(&m));
+    fn mass_matrix_into(&self, eta: &[f64], ws: &mut ReducedWorkspace, out: &mut DMatrix<f64>) {
+        self.expand(eta, &mut ws.q);
+        self.full.mass_matrix_into(&ws.q, &mut ws.full, &mut ws.m);
+        ws.m.mul_to(&self.phi, &mut ws.block);
+        self.phi.tr_mul_to(&ws.block, out);
     }
 
     fn stiffness_matrix(&self) -> DMatrix<f64> {
@@ -144,12 +173,13 @@ impl StructuralModel for ReducedModel {
         eta: &[f64],
         loads: &AppliedLoads,
         scales: &[f64],
+        ws: &mut ReducedWorkspace,
         out: &mut DVector<f64>,
     ) {
-        let q = self.full_coordinates(eta);
-        let mut f = DVector::zeros(self.full.n_dofs());
-        self.full.generalized_forces_into(&q, loads, scales, &mut f);
-        out.copy_from(&(self.phi.transpose() * f));
+        self.expand(eta, &mut ws.q);
+        self.full
+            .generalized_forces_into(&ws.q, loads, scales, &mut ws.full, &mut ws.f);
+        self.phi.tr_mul_to(&ws.f, out);
     }
 
     fn load_jacobian_into(
@@ -157,21 +187,28 @@ impl StructuralModel for ReducedModel {
         eta: &[f64],
         loads: &AppliedLoads,
         scales: &[f64],
+        ws: &mut ReducedWorkspace,
         out: &mut DMatrix<f64>,
     ) {
         // Φᵀ (∂Q/∂q Φ): the product is formed column by column in O(n r), never ∂Q/∂q itself.
-        let q = self.full_coordinates(eta);
-        let kin = self.full.kinematics(&q);
-        let mut jphi = DMatrix::zeros(self.phi.nrows(), self.phi.ncols());
-        self.full
-            .load_jacobian_times_kin_into(&kin, loads, scales, &self.phi, &mut jphi);
-        out.copy_from(&(self.phi.transpose() * jphi));
+        self.expand(eta, &mut ws.q);
+        let full = &mut ws.full;
+        full.kin.update(&ws.q);
+        full.resultants.update(&self.full, &full.kin, loads, scales);
+        self.full.jacobian_times_from(
+            &full.kin,
+            &full.resultants,
+            &self.phi,
+            &mut full.dir,
+            &mut ws.block,
+        );
+        self.phi.tr_mul_to(&ws.block, out);
     }
 
     fn full_coordinates(&self, eta: &[f64]) -> Vec<f64> {
-        (&self.phi * DVector::from_column_slice(eta))
-            .as_slice()
-            .to_vec()
+        let mut q = vec![0.0; self.full.n_dofs()];
+        self.expand(eta, &mut q);
+        q
     }
 
     fn full_model(&self) -> &FullModel {

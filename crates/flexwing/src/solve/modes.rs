@@ -42,7 +42,7 @@ impl Modes {
     ) -> Result<Self, SolveError> {
         let nd = model.n_dofs();
         let mut m = DMatrix::zeros(nd, nd);
-        model.mass_matrix_into(q_star, &mut m);
+        model.mass_matrix_into(q_star, &mut model.workspace(), &mut m);
         let (lambda, shapes) = generalized_symmetric_eigen(k_tangent, &m)?;
         let mut omega = Vec::with_capacity(nd);
         for (index, &l) in lambda.iter().enumerate() {
@@ -98,7 +98,7 @@ impl Modes {
     ) -> Result<Self, SolveError> {
         let nd = model.n_dofs();
         let mut jac = DMatrix::zeros(nd, nd);
-        model.load_jacobian_into(q_star, loads, scales, &mut jac);
+        model.load_jacobian_into(q_star, loads, scales, &mut model.workspace(), &mut jac);
         let k_t = model.stiffness_matrix() - jac;
         let asym = (&k_t - k_t.transpose()).amax();
         if asym > 1e-10 * k_t.amax() {

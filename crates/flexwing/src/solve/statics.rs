@@ -158,6 +158,7 @@ struct Newton<'a, M: StructuralModel> {
     model: &'a M,
     loads: &'a AppliedLoads,
     options: &'a StaticOptions,
+    ws: M::Workspace,
     k: DMatrix<f64>,
     f: DVector<f64>,
     jac: DMatrix<f64>,
@@ -171,6 +172,7 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
             model,
             loads,
             options,
+            ws: model.workspace(),
             k: model.stiffness_matrix(),
             f: DVector::zeros(nd),
             jac: DMatrix::zeros(nd, nd),
@@ -181,8 +183,13 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
     /// `R = K x − Q(x)`; leaves `Q` in `self.f`.
     fn residual(&mut self, x: &DVector<f64>, scales: &[f64]) -> DVector<f64> {
         self.stats.residual_evaluations += 1;
-        self.model
-            .generalized_forces_into(x.as_slice(), self.loads, scales, &mut self.f);
+        self.model.generalized_forces_into(
+            x.as_slice(),
+            self.loads,
+            scales,
+            &mut self.ws,
+            &mut self.f,
+        );
         &self.k * x - &self.f
     }
 
@@ -207,8 +214,13 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
             }
             self.stats.iterations += 1;
             self.stats.factorizations += 1;
-            self.model
-                .load_jacobian_into(x.as_slice(), self.loads, scales, &mut self.jac);
+            self.model.load_jacobian_into(
+                x.as_slice(),
+                self.loads,
+                scales,
+                &mut self.ws,
+                &mut self.jac,
+            );
             let tangent = &self.k - &self.jac;
             let Some(dx) = tangent.lu().solve(&(-&r)) else {
                 return Err((it + 1, r.amax()));

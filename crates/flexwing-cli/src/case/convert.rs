@@ -1,0 +1,98 @@
+//! The one place where a case file becomes library types. The library validates values
+//! (positivity, NaN, table coverage, increasing stations); this module only checks what the
+//! library cannot see: which keys were given together.
+
+use flexwing::beam::{
+    Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties, TorsionProperties,
+};
+use flexwing::InputError;
+
+use super::spec::{BeamSpec, CalibrationSpec, Case, InertiaAxisSpec, SectionSpec};
+
+impl Case {
+    /// The lumped-mass beam of `[beam]`, validated by [`Beam::new`].
+    pub fn to_beam(&self) -> Result<Beam, InputError> {
+        let b = &self.beam;
+        let section = section(&b.section)?;
+        Beam::new(
+            b.length,
+            &section,
+            &discretization(b)?,
+            calibration(b.calibration),
+        )
+    }
+}
+
+fn discretization(b: &BeamSpec) -> Result<Discretization, InputError> {
+    match (b.elements, &b.stations) {
+        (Some(n), None) => Ok(Discretization::Uniform(n)),
+        (None, Some(x)) => Ok(Discretization::Stations(x.clone())),
+        (Some(_), Some(_)) => Err(InputError::new(
+            "beam.elements",
+            "give either `elements` (number of equal elements) or `stations` \
+             (node positions, m), not both",
+        )),
+        (None, None) => Err(InputError::new(
+            "beam.elements",
+            "missing: give `elements` (number of equal elements) or `stations` \
+             (node positions, m)",
+        )),
+    }
+}
+
+fn calibration(c: CalibrationSpec) -> Calibration {
+    match c {
+        CalibrationSpec::TipLoad => Calibration::TipLoad,
+        CalibrationSpec::Uniform => Calibration::Uniform,
+    }
+}
+
+fn section(s: &SectionSpec) -> Result<SectionProperties, InputError> {
+    let torsion = match &s.gj {
+        None => {
+            let torsion_only = [
+                ("polar_inertia", s.polar_inertia.is_some()),
+                ("polar_inertia_about", s.polar_inertia_about.is_some()),
+                ("d0", s.d0.is_some()),
+            ];
+            if let Some((key, _)) = torsion_only.iter().find(|(_, given)| *given) {
+                return Err(InputError::new(
+                    format!("beam.section.{key}"),
+                    "is torsion data and needs `GJ` (torsional stiffness, N·m²); \
+                     give GJ, or remove the torsion keys for a bending-only beam",
+                ));
+            }
+            None
+        }
+        Some(gj) => {
+            let polar_inertia = s.polar_inertia.as_ref().ok_or_else(|| {
+                InputError::new(
+                    "beam.section.polar_inertia",
+                    "missing: required when GJ is given (polar mass moment of inertia \
+                     per length, kg·m)",
+                )
+            })?;
+            let about = s.polar_inertia_about.ok_or_else(|| {
+                InputError::new(
+                    "beam.section.polar_inertia_about",
+                    "missing: say which axis polar_inertia is about, \
+                     \"mass-centre\" or \"elastic-axis\"",
+                )
+            })?;
+            Some(TorsionProperties {
+                gj: gj.0.clone(),
+                polar_inertia: polar_inertia.0.clone(),
+                inertia_axis: match about {
+                    InertiaAxisSpec::MassCentre => InertiaAxis::MassCentre,
+                    InertiaAxisSpec::ElasticAxis => InertiaAxis::ElasticAxis,
+                },
+                offset: s.d0.as_ref().map_or(Profile::Uniform(0.0), |d| d.0.clone()),
+            })
+        }
+    };
+    Ok(SectionProperties {
+        ei: s.ei.0.clone(),
+        mass_per_length: s.mass_per_length.0.clone(),
+        torsion,
+    })
+}

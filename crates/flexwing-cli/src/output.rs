@@ -1,0 +1,116 @@
+//! Writing result files: atomically (temporary file in the same directory, then rename), so an
+//! interrupted run never leaves a half-written file that looks complete.
+
+use std::fs::{self, File};
+use std::io::Write;
+use std::path::Path;
+
+use anyhow::{anyhow, Context, Result};
+
+/// Write `path` through `write`, which must create the file it is given. The temporary file lives
+/// in the same directory (so the rename is atomic) and keeps the extension of `path` (some
+/// encoders pick the format from it). On failure the temporary file is removed.
+pub fn write_atomic(path: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let stem = path
+        .file_stem()
+        .ok_or_else(|| anyhow!("{}: not a file name", path.display()))?
+        .to_string_lossy();
+    let mut tmp_name = format!(".{stem}.{}.tmp", std::process::id());
+    if let Some(ext) = path.extension() {
+        tmp_name.push('.');
+        tmp_name.push_str(&ext.to_string_lossy());
+    }
+    let tmp = dir.join(tmp_name);
+    let result = write(&tmp)
+        .and_then(|()| {
+            // Make the content durable before the rename makes it visible.
+            File::open(&tmp)
+                .and_then(|f| f.sync_all())
+                .map_err(Into::into)
+        })
+        .and_then(|()| fs::rename(&tmp, path).map_err(Into::into));
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result.with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// Write `bytes` to `path` atomically.
+pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<()> {
+    write_atomic(path, |tmp| {
+        let mut f = File::create(tmp)?;
+        f.write_all(bytes)?;
+        Ok(())
+    })
+}
+
+/// Serialize `rows` as CSV (header from the field names) and write it atomically to `path`.
+pub fn write_csv<R: serde::Serialize>(
+    path: &Path,
+    rows: impl IntoIterator<Item = R>,
+) -> Result<()> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    for row in rows {
+        w.serialize(row)?;
+    }
+    let bytes = w.into_inner().map_err(|e| anyhow!("{}", e.error()))?;
+    write_bytes(path, &bytes)
+}
+
+/// Create the output directory (and its parents).
+pub fn create_dir(dir: &Path) -> Result<()> {
+    fs::create_dir_all(dir)
+        .with_context(|| format!("cannot create the output directory {}", dir.display()))
+}
+
+/// `v` with `digits` significant digits, without exponent for ordinary magnitudes.
+pub fn significant(v: f64, digits: usize) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let magnitude = v.abs().log10().floor() as i32;
+    if !(-4..=6).contains(&magnitude) {
+        return format!("{:.*e}", digits.saturating_sub(1), v);
+    }
+    let decimals = (digits as i32 - 1 - magnitude).max(0) as usize;
+    format!("{v:.decimals$}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn significant_digits() {
+        assert_eq!(significant(0.35221, 4), "0.3522");
+        assert_eq!(significant(55.596, 4), "55.60");
+        assert_eq!(significant(12345.6, 4), "12346");
+        assert_eq!(significant(1.5e-7, 3), "1.50e-7");
+    }
+
+    #[test]
+    fn atomic_write_replaces_and_leaves_no_temporary() {
+        let dir = std::env::temp_dir().join(format!("flexwing-output-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("a.csv");
+        write_bytes(&path, b"old").unwrap();
+        write_bytes(&path, b"new").unwrap();
+        assert_eq!(fs::read(&path).unwrap(), b"new");
+        let failed = write_atomic(&path, |tmp| {
+            fs::write(tmp, b"half")?;
+            Err(anyhow!("interrupted"))
+        });
+        assert!(failed.is_err());
+        assert_eq!(fs::read(&path).unwrap(), b"new");
+        let names: Vec<_> = fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names.len(), 1, "{names:?}");
+        fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -1,0 +1,236 @@
+//! Bad input gives exit status 2 and one line on stderr, `error: …`, that names the field;
+//! never a panic.
+
+mod common;
+
+use common::{example, flexwing_in, stderr, TempDir};
+
+/// A valid bending-only case to break one key at a time.
+const BENDING: &str = r#"
+[beam]
+length = 1.0
+elements = 4
+
+[beam.section]
+EI = 50.0
+mass_per_length = 0.2
+"#;
+
+/// A valid coupled case.
+const COUPLED: &str = r#"
+[beam]
+length = 16.0
+elements = 8
+
+[beam.section]
+EI = 2.0e4
+mass_per_length = 0.75
+GJ = 1.0e3
+polar_inertia = 0.1
+polar_inertia_about = "mass-centre"
+d0 = 0.267
+"#;
+
+fn edit(base: &str, from: &str, to: &str) -> String {
+    assert!(base.contains(from), "{from:?} not in the base case");
+    base.replacen(from, to, 1)
+}
+
+/// Run `modes` on `case`; check the failure and that stderr names every string of `names`.
+fn assert_rejected(case: &str, status: i32, names: &[&str]) {
+    let dir = TempDir::new("bad");
+    let path = dir.write("case.toml", case);
+    let out = dir.path().join("out");
+    let o = flexwing_in(
+        dir.path(),
+        &[
+            "modes",
+            path.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    check_failure(&o, status, names);
+    assert!(!out.exists(), "output written for a bad case");
+}
+
+fn check_failure(o: &std::process::Output, status: i32, names: &[&str]) {
+    let err = stderr(o);
+    assert!(!err.contains("panicked"), "panic: {err}");
+    assert_eq!(o.status.code(), Some(status), "stderr: {err}");
+    assert!(err.starts_with("error: "), "{err:?}");
+    assert_eq!(err.lines().count(), 1, "not one line: {err:?}");
+    for name in names {
+        assert!(err.contains(name), "{name:?} not named in {err:?}");
+    }
+    assert!(
+        o.stdout.is_empty(),
+        "stdout: {}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+}
+
+#[test]
+fn zero_elements() {
+    assert_rejected(
+        &edit(BENDING, "elements = 4", "elements = 0"),
+        2,
+        &["beam.elements"],
+    );
+}
+
+#[test]
+fn negative_stiffness() {
+    assert_rejected(
+        &edit(BENDING, "EI = 50.0", "EI = -1"),
+        2,
+        &["beam.section.EI", "-1"],
+    );
+}
+
+#[test]
+fn nan_stiffness() {
+    assert_rejected(
+        &edit(BENDING, "EI = 50.0", "EI = nan"),
+        2,
+        &["beam.section.EI", "NaN"],
+    );
+}
+
+#[test]
+fn negative_inertia() {
+    assert_rejected(
+        &edit(COUPLED, "polar_inertia = 0.1", "polar_inertia = -0.1"),
+        2,
+        &["beam.section.polar_inertia"],
+    );
+}
+
+#[test]
+fn decreasing_stations() {
+    assert_rejected(
+        &edit(BENDING, "elements = 4", "stations = [0.0, 0.5, 0.25, 1.0]"),
+        2,
+        &["beam.stations"],
+    );
+}
+
+#[test]
+fn both_elements_and_stations() {
+    assert_rejected(
+        &edit(
+            BENDING,
+            "elements = 4",
+            "elements = 4\nstations = [0.0, 1.0]",
+        ),
+        2,
+        &["beam.elements", "stations"],
+    );
+}
+
+#[test]
+fn table_not_covering_the_span() {
+    assert_rejected(
+        &edit(
+            BENDING,
+            "EI = 50.0",
+            "EI = { x = [0.0, 0.5], value = [50.0, 40.0] }",
+        ),
+        2,
+        &["beam.section.EI", "span"],
+    );
+}
+
+#[test]
+fn malformed_table() {
+    assert_rejected(
+        &edit(BENDING, "EI = 50.0", "EI = { x = [0.0, 1.0] }"),
+        2,
+        &["beam.section.EI", "value"],
+    );
+}
+
+#[test]
+fn unknown_key() {
+    assert_rejected(
+        &format!("{BENDING}foo = 1\n"),
+        2,
+        &["unknown field `foo`", "line 9, column 1"],
+    );
+}
+
+#[test]
+fn polar_inertia_without_its_axis() {
+    assert_rejected(
+        &edit(COUPLED, "polar_inertia_about = \"mass-centre\"\n", ""),
+        2,
+        &["beam.section.polar_inertia_about"],
+    );
+}
+
+#[test]
+fn torsion_key_without_gj() {
+    assert_rejected(
+        &format!("{BENDING}d0 = 0.2\n"),
+        2,
+        &["beam.section.d0", "GJ"],
+    );
+}
+
+#[test]
+fn count_out_of_range() {
+    assert_rejected(
+        &format!("{BENDING}\n[modes]\ncount = 5\n"),
+        2,
+        &["modes.count"],
+    );
+}
+
+#[test]
+fn toml_syntax_error() {
+    assert_rejected("[beam\nlength = 1.0\n", 2, &["line 1, column"]);
+}
+
+#[test]
+fn missing_case_file() {
+    let dir = TempDir::new("missing");
+    let o = flexwing_in(dir.path(), &["modes", "no_such_case.toml"]);
+    check_failure(&o, 2, &["no_such_case.toml"]);
+}
+
+#[test]
+fn directory_as_case_file() {
+    let dir = TempDir::new("dir-case");
+    let o = flexwing_in(dir.path(), &["modes", "."]);
+    check_failure(&o, 2, &["cannot read the case file"]);
+}
+
+#[test]
+fn output_directory_that_is_a_file() {
+    let dir = TempDir::new("out-file");
+    let blocker = dir.write("blocker", "not a directory");
+    let o = flexwing_in(
+        dir.path(),
+        &[
+            "modes",
+            example("table4.toml").to_str().unwrap(),
+            "--out",
+            blocker.join("sub").to_str().unwrap(),
+        ],
+    );
+    check_failure(&o, 1, &["output directory"]);
+}
+
+#[test]
+fn usage_errors_are_one_line_with_status_2() {
+    let dir = TempDir::new("usage");
+    for args in [
+        &["modes"][..],
+        &["modes", "a.toml", "--bogus"],
+        &["modes", "a.toml", "--count", "x"],
+        &["nonsense"],
+    ] {
+        let o = flexwing_in(dir.path(), args);
+        check_failure(&o, 2, &[]);
+    }
+}

@@ -1,0 +1,109 @@
+//! Benchmark of the paper's static cases (section 5.2.1), full model against reduced models.
+//! Prints a Markdown table for docs/performance.md.
+//!
+//! Run: `cargo bench -p flexwing --bench statics` (add `-- --quick` for a short run).
+//!
+//! Cases, on the Table 4 beam (L = 1 m, EI = 50 N·m², m = 0.2 kg/m):
+//! * `tip`: dead vertical tip force 150 N, solved from rest in one call;
+//! * `two-load sweep`: dead tip force F1 = 0, 10, …, 150 N with F2 = −150 N at mid-span, each
+//!   point continued from the previous one (the paper's Figure 4).
+//!
+//! The reduced models include their own cost of building (modal analysis and projection) in a
+//! separate column, since a user pays it once per model.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+mod common;
+use common::{fmt_time, measure};
+
+use flexwing::beam::{Beam, Calibration, Discretization, Profile, SectionProperties};
+use flexwing::model::{AppliedLoads, Force, FullModel, Load, ReducedModel, StructuralModel};
+use flexwing::solve::{solve_static, sweep_static, Modes, StaticOptions};
+
+fn table4(n: usize) -> FullModel {
+    let section = SectionProperties {
+        ei: Profile::Uniform(50.0),
+        mass_per_length: Profile::Uniform(0.2),
+        torsion: None,
+    };
+    FullModel::new(
+        Beam::new(
+            1.0,
+            &section,
+            &Discretization::Uniform(n),
+            Calibration::TipLoad,
+        )
+        .expect("valid beam"),
+    )
+}
+
+fn run<M: StructuralModel>(model: &M, loads: &AppliedLoads, sweep: bool) {
+    let opts = StaticOptions::default();
+    if sweep {
+        let points: Vec<Vec<f64>> = (0..=15).map(|k| vec![10.0 * k as f64, 1.0]).collect();
+        black_box(sweep_static(model, loads, &points, &opts).expect("sweep"));
+    } else {
+        black_box(solve_static(model, loads, &[1.0], &opts).expect("solve"));
+    }
+}
+
+fn main() {
+    let quick = std::env::args().any(|a| a == "--quick");
+    let (budget, batches) = if quick {
+        (Duration::from_millis(30), 3)
+    } else {
+        (Duration::from_millis(300), 7)
+    };
+    println!("| case | n | model | dofs | wall time | spread | ratio to full | build (modes + projection) |");
+    println!("|---|---|---|---|---|---|---|---|");
+    for (name, sweep) in [("tip 150 N", false), ("two-load sweep", true)] {
+        for n in [10, 20, 40] {
+            let full = table4(n);
+            let loads = if sweep {
+                vec![
+                    Load::PointForce {
+                        span: 1.0,
+                        force: Force::Dead { fx: 0.0, fy: 1.0 },
+                    },
+                    Load::PointForce {
+                        span: 0.5,
+                        force: Force::Dead {
+                            fx: 0.0,
+                            fy: -150.0,
+                        },
+                    },
+                ]
+            } else {
+                vec![Load::PointForce {
+                    span: 1.0,
+                    force: Force::Dead { fx: 0.0, fy: 150.0 },
+                }]
+            };
+            let applied = full.apply(&loads, "loads").expect("valid loads");
+            let (t_full, s_full) = measure(budget, batches, || run(&full, &applied, sweep));
+            println!(
+                "| {name} | {n} | full | {} | {} | {:.0} % | 1 | – |",
+                full.n_dofs(),
+                fmt_time(t_full),
+                100.0 * s_full
+            );
+            for r in [2, 3] {
+                let (t_build, _) = measure(budget / 4, batches, || {
+                    let modes = Modes::undeformed(&full).expect("modes");
+                    black_box(ReducedModel::first(&full, modes.shapes(), r).expect("rom"));
+                });
+                let modes = Modes::undeformed(&full).expect("modes");
+                let rom = ReducedModel::first(&full, modes.shapes(), r).expect("rom");
+                let (t, s) = measure(budget, batches, || run(&rom, &applied, sweep));
+                println!(
+                    "| {name} | {n} | reduced r = {r} | {r} | {} | {:.0} % | {:.3} | {} |",
+                    fmt_time(t),
+                    100.0 * s,
+                    t / t_full,
+                    fmt_time(t_build)
+                );
+            }
+        }
+    }
+}
