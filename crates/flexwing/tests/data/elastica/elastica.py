@@ -15,15 +15,19 @@ a(s) = -N_y(s)/EI and b(s) = N_x(s)/EI (both piecewise linear in s) every case i
     theta'' = a(s) cos(theta) + b(s) sin(theta),  theta(0) = 0,  theta'(L) = 0.
 
 Method A (written to the CSVs): Taylor-series integration with exact recursive Taylor
-coefficients (order P, fixed step h, dense output at the nodes s_k = k L/80) at 30
-significant digits; shooting on kappa0 = theta'(0) by Newton's method using the
-variational equation z'' = (-a sin(theta) + b cos(theta)) z.  Breakpoints (s = L/2 in
-case 3) are step boundaries.  The follower case is solved as an initial-value problem
-from the tip (no shooting).
-Checks: (A') the same with a finer step and higher order; (B) elliptic-integral closed
-form for the dead tip load and tanh-sinh quadrature of the first integral for the
-follower load; (C) mpmath.odefun (a different Taylor integrator) re-integrating every
-shape solution; (D) global moment balance at the clamp; (E) small-load linear limits.
+coefficients (order 24, 40 fixed steps, dense output at the nodes s_k = k L/80).  The
+coefficient recurrences run in fixed-point integer arithmetic with 124 fraction bits
+(~37 digits, for speed); cos/sin and everything else use mpmath at 30 digits.  Shooting
+on kappa0 = theta'(0) by Newton's method with the variational equation
+z'' = (-a sin(theta) + b cos(theta)) z, continued in the load from the linear solution.
+Breakpoints (s = L/2 in case 3) are step boundaries.  The follower case is solved as an
+initial-value problem from the tip (no shooting).
+Checks: (A') the same with 80 steps and order 34; (B) elliptic-integral closed form
+(Bisshopp-Drucker) for the dead tip load and tanh-sinh quadrature of the first integral
+for the follower load; (C) mpmath.odefun (a different Taylor integrator, 20 digits)
+re-integrating every shape solution; (D) moment balance at the clamp and EI theta'(s_k)
+= M(s_k) from the definition of M at every shape node; (E) small-load linear limit;
+(F) scan of the shooting residual for other roots; a convergence table.
 """
 import sys
 import os
@@ -123,7 +127,8 @@ def integrate(kappa0, segs, cfg, var=True, nodes=False, theta0=0):
     segs: list of (s_start, s_end, a0, a1, b0, b1) with a(s) = a0 + a1 s, b(s) = b0 + b1 s
     (global s).  Segment ends must be multiples of L/NNODE.
     Returns a dict with the end values (mpf), optionally the node values
-    [(s, x, y, theta)] at s_k = k L/NNODE (dense output of the Taylor polynomials),
+    [(s, x, y, theta, theta', int_0^s x)] at s_k = k L/NNODE (dense output of the
+    Taylor polynomials),
     and the values at s = L/2."""
     nsteps, P = cfg
     h = L / nsteps
@@ -131,7 +136,7 @@ def integrate(kappa0, segs, cfg, var=True, nodes=False, theta0=0):
     th, dth = tofix(theta0), tofix(kappa0)
     x = y = W = 0                   # W = int_0^s x ds (used for the moment check)
     z, dz = 0, ONE
-    out_nodes = [(mp.mpf(0), mp.mpf(0), mp.mpf(0), tompf(th))] if nodes else None
+    out_nodes = [(mp.mpf(0), mp.mpf(0), mp.mpf(0), tompf(th), tompf(dth), mp.mpf(0))] if nodes else None
     mid = None
     ds_node = L / NNODE
     for (sa, sb, a0, a1, b0, b1) in segs:
@@ -153,7 +158,8 @@ def integrate(kappa0, segs, cfg, var=True, nodes=False, theta0=0):
                 for kk in range(kfirst, klast + 1):
                     tau = tofix(kk * ds_node - s0)
                     out_nodes.append((kk * ds_node, tompf(horner(xc, tau)),
-                                      tompf(horner(yc, tau)), tompf(horner(tc, tau))))
+                                      tompf(horner(yc, tau)), tompf(horner(tc, tau)),
+                                      tompf(dhorner(tc, tau)), tompf(horner(Wc, tau))))
             th, dth = horner(tc, hf), dhorner(tc, hf)
             x, y, W = horner(xc, hf), horner(yc, hf), horner(Wc, hf)
             if var:
@@ -215,8 +221,8 @@ def solve_follower(P, cfg, nodes=False):
     res = dict(thL=thL, x=xt, y=yt, kappa0=r['dtheta'])
     if nodes:
         nd = []
-        for (rr, u, v, psi) in reversed(r['nodes']):
-            nd.append((L - rr, xt - (cL * u + sL * v), yt - (sL * u - cL * v), thL - psi))
+        for (rr, u, v, psi, dpsi, _) in reversed(r['nodes']):
+            nd.append((L - rr, xt - (cL * u + sL * v), yt - (sL * u - cL * v), thL - psi, dpsi))
         res['nodes'] = nd
     return res
 
@@ -310,7 +316,7 @@ def odefun_check(kappa0, segs, theta0=0, dps=20):
 # ---------------------------------------------------------------------------
 def _fmt(v):
     v = mp.mpf(v)
-    if v == 0:
+    if abs(v) < mp.mpf(10) ** (-25):   # exact zeros (clamp node) carry ~1e-31 round-off
         return '0'
     s = mp.nstr(v, 16, strip_zeros=False)
     return s
@@ -333,14 +339,63 @@ def plain(v):
 
 def compare_nodes(name, n1, n2):
     for a, b in zip(n1, n2):
-        assert abs(a[0] - b[0]) < mp.mpf(10) ** (-25)
+        assert abs(a[0] - b[0]) < mp.mpf(10) ** (-15)
         for i in (1, 2, 3):
             note(name, a[i] - b[i])
+
+
+def moment_check(name, nodes, Mfun):
+    """EI theta'(s_k) (from the integrated ODE) against the bending moment M(s_k) computed
+    directly from its definition with the computed node positions."""
+    for nd in nodes:
+        note(name, EI * nd[4] - Mfun(nd))
+
+
+def root_scan(segs, lo=-30, hi=30, n=240, cfg=(40, 20)):
+    """Sign changes of theta'(L) over kappa0 in [lo, hi]: number of shooting roots
+    (branches) visible at this resolution; returns the list of roots."""
+    roots, prev = [], None
+    for i in range(n + 1):
+        k = lo + (hi - lo) * mp.mpf(i) / n
+        f = integrate(k, segs, cfg, var=False)['dtheta']
+        if prev is not None and mp.sign(f) != mp.sign(prev[1]):
+            roots.append(shoot(segs, (k + prev[0]) / 2, CFG_A))
+        prev = (k, f)
+    return roots
+
+
+def dead_tip_fold():
+    """Dead vertical tip load: from the first integral theta'^2 = 2 alpha (c - sin theta),
+    c = sin(theta_tip) >= 0, every solution oscillates in [-pi - asin c, asin c].  All
+    solutions other than the tabulated one (0 <= theta <= theta_tip) reach -pi - asin c,
+    which takes the length l2(c)/sqrt(alpha),
+        l2(c) = int_{-pi-p}^{0} dtheta / sqrt(2 (c - sin theta)),  p = asin c.
+    They exist iff sqrt(alpha) >= min_c l2(c).  Returns (c*, min l2, alpha_fold)."""
+    def l2(c):
+        p = mp.asin(c)
+        # theta = -pi - p + u^2;  c - sin(theta) = 2 sin(u^2/2) cos(p - u^2/2)
+        f = lambda u: 2 * u / mp.sqrt(4 * mp.sin(u * u / 2) * mp.cos(p - u * u / 2))
+        return mp.quad(f, [0, mp.sqrt(mp.pi / 2 - p), mp.sqrt(mp.pi + p)])
+    c0 = min((l2(mp.mpf(i) / 50), mp.mpf(i) / 50) for i in range(5, 45))[1]
+    c = mp.findroot(lambda c_: mp.diff(l2, c_), c0)
+    return c, l2(c), l2(c) ** 2
+
+
+def convergence_table(say):
+    """Error of the tip deflection vs (steps, order) for the hardest dead-load case."""
+    segs = segs_dead_tip(10 * EI / L ** 2)
+    thE, xE, yE = dead_tip_elliptic(mp.mpf(10))
+    say('  convergence of case 1, alpha = 10 (|tip_y - elliptic|):')
+    for cfg in [(10, 8), (20, 8), (40, 8), (20, 16), (40, 16), CFG_A, CFG_B]:
+        k = shoot(segs, mp.mpf('4.45'), cfg)
+        r = integrate(k, segs, cfg, var=False)
+        say('    steps %3d, order %2d: %.2e' % (cfg[0], cfg[1], float(abs(r['y'] - yE))))
 
 
 # ---------------------------------------------------------------------------
 def main():
     quick = '--quick' in sys.argv
+    scan_list = []
     t_start = time.time()
     log = []
 
@@ -362,8 +417,6 @@ def main():
         P = al * EI / L ** 2
         if al == 0:
             rows.append([plain(al), plain(P), L, 0, 0])
-            if al in shape_alphas:
-                pass
             continue
         # continuation: linear extrapolation of kappa0 in alpha
         if len(prev) >= 2:
@@ -387,12 +440,15 @@ def main():
         note('case1 moment balance |EI k0 - P x_tip| / (P L)', (EI * k - P * r['x']) / (P * L))
         rows.append([plain(al), plain(P), r['x'], r['y'], r['theta']])
         if isshape:
+            scan_list.append(('case1 alpha=%s' % plain(al), segs, k))
+            moment_check('case1 shapes |EI theta\' - M(s)| [N m]', r['nodes'],
+                         lambda nd: P * (r['x'] - nd[1]))
             compare_nodes('case1 shapes A vs B', r['nodes'], rB['nodes'])
             if not quick:
                 nC, dthC = odefun_check(k, segs)
                 compare_nodes('case1 shapes A vs mpmath.odefun', r['nodes'], nC)
                 note("case1 mpmath.odefun residual theta'(L) [1/m]", dthC)
-            for kk, (s, x, y, th) in enumerate(r['nodes']):
+            for kk, (s, x, y, th) in enumerate(nd_[:4] for nd_ in r["nodes"]):
                 shapes.append([plain(al), str(kk), s, x, y, th])
     write_csv('dead_tip.csv', ['alpha', 'P_N', 'tip_x_m', 'tip_y_m', 'tip_angle_rad'], rows)
     write_csv('dead_tip_shapes.csv', ['alpha', 'k', 's_m', 'x_m', 'y_m', 'theta_rad'], shapes)
@@ -428,6 +484,9 @@ def main():
         rows.append([plain(al), plain(P), r['x'], r['y'], r['thL']])
         if isshape:
             compare_nodes('case2 shapes A vs B', r['nodes'], rB['nodes'])
+            cT, sT = mp.cos(r['thL']), mp.sin(r['thL'])
+            moment_check('case2 shapes |EI theta\' - M(s)| [N m]', r['nodes'],
+                         lambda nd: P * ((r['x'] - nd[1]) * cT + (r['y'] - nd[2]) * sT))
             if not quick:
                 # forward re-integration from the clamp as an equivalent dead load
                 # N = P(-sin thL, cos thL): a = -P cos(thL)/EI, b = -P sin(thL)/EI
@@ -436,13 +495,14 @@ def main():
                 nC, dthC = odefun_check(r['kappa0'], segs)
                 compare_nodes('case2 shapes A vs mpmath.odefun (forward)', r['nodes'], nC)
                 note("case2 mpmath.odefun residual theta'(L) [1/m]", dthC)
-            for kk, (s, x, y, th) in enumerate(r['nodes']):
+            for kk, (s, x, y, th) in enumerate(nd_[:4] for nd_ in r["nodes"]):
                 shapes.append([plain(al), str(kk), s, x, y, th])
     write_csv('follower_tip.csv', ['alpha', 'P_N', 'tip_x_m', 'tip_y_m', 'tip_angle_rad'], rows)
     write_csv('follower_tip_shapes.csv', ['alpha', 'k', 's_m', 'x_m', 'y_m', 'theta_rad'], shapes)
-    say('  follower tip angle at alpha = 10: %s rad (> pi/2 from alpha ~ %s)' % (
-        mp.nstr(rows[-1][4], 12),
-        [r_[0] for r_ in rows if r_[4] > mp.pi / 2][0]))
+    say('  follower tip angle at alpha = 10: %s rad; first tabulated alpha with tip angle > pi/2: %s'
+        % (mp.nstr(rows[-1][4], 12), [r_[0] for r_ in rows if r_[4] > mp.pi / 2][0]))
+    say('  (tip angle -> pi as alpha -> Gamma(1/4)^4/(4 pi) = %s; the tip-IVP solution is unique)'
+        % mp.nstr(mp.gamma(mp.mpf(1) / 4) ** 4 / (4 * mp.pi), 10))
     say('  case 2 done, %.1f s' % (time.time() - t_start))
 
     # ---------------- case 3: tip F1 (+y) and F2 = -150 N at mid-span ----------------
@@ -470,12 +530,16 @@ def main():
              EI * k - F1 * r['x'] - F2 * r['mid'][0])
         rows.append([plain(F1), r['x'], r['y'], r['mid'][0], r['mid'][1]])
         if isshape:
+            scan_list.append(('case3 F1=%s N' % plain(F1), segs, k))
+            moment_check('case3 shapes |EI theta\' - M(s)| [N m]', r['nodes'],
+                         lambda nd: F1 * (r['x'] - nd[1])
+                         + (F2 * (r['mid'][0] - nd[1]) if nd[0] < MID else 0))
             compare_nodes('case3 shapes A vs B', r['nodes'], rB['nodes'])
             if not quick:
                 nC, dthC = odefun_check(k, segs)
                 compare_nodes('case3 shapes A vs mpmath.odefun', r['nodes'], nC)
                 note("case3 mpmath.odefun residual theta'(L) [1/m]", dthC)
-            for kk, (s, x, y, th) in enumerate(r['nodes']):
+            for kk, (s, x, y, th) in enumerate(nd_[:4] for nd_ in r["nodes"]):
                 shapes.append([plain(F1), str(kk), s, x, y, th])
     write_csv('paper_two_loads.csv', ['F1_N', 'tip_x_m', 'tip_y_m', 'mid_x_m', 'mid_y_m'], rows)
     write_csv('paper_two_loads_shapes.csv', ['F1_N', 'k', 's_m', 'x_m', 'y_m', 'theta_rad'], shapes)
@@ -511,16 +575,30 @@ def main():
         note('case4 moment balance |EI k0 + w0 int x ds| [N m]', EI * k + w0 * r['W'])
         rows.append([plain(beta), plain(w0), r['x'], r['y'], r['theta']])
         if isshape:
+            scan_list.append(('case4 beta=%s' % plain(beta), segs, k))
+            moment_check('case4 shapes |EI theta\' - M(s)| [N m]', r['nodes'],
+                         lambda nd: -w0 * ((r['W'] - nd[5]) - nd[1] * (L - nd[0])))
             compare_nodes('case4 shapes A vs B', r['nodes'], rB['nodes'])
             if not quick:
                 nC, dthC = odefun_check(k, segs)
                 compare_nodes('case4 shapes A vs mpmath.odefun', r['nodes'], nC)
                 note("case4 mpmath.odefun residual theta'(L) [1/m]", dthC)
-            for kk, (s, x, y, th) in enumerate(r['nodes']):
+            for kk, (s, x, y, th) in enumerate(nd_[:4] for nd_ in r["nodes"]):
                 shapes.append([plain(beta), str(kk), s, x, y, th])
     write_csv('distributed.csv', ['beta', 'w0_N_per_m', 'tip_x_m', 'tip_y_m', 'tip_angle_rad'], rows)
     write_csv('distributed_shapes.csv', ['beta', 'k', 's_m', 'x_m', 'y_m', 'theta_rad'], shapes)
     say('  case 4 done, %.1f s' % (time.time() - t_start))
+
+    say('\nUniqueness scan (sign changes of theta\'(L) for kappa0 in [-30, 30] 1/m, 240 intervals):')
+    for name, segs, kref in scan_list:
+        roots = root_scan(segs)
+        say('  %-28s roots kappa0 = %s   (tabulated branch: %s)' % (
+            name, [mp.nstr(x_, 12) for x_ in roots], mp.nstr(kref, 12)))
+    cf, lmin, afold = dead_tip_fold()
+    say('  case 1, other (looped) equilibria exist only for alpha >= min_c l2(c)^2 = %s'
+        ' (c* = sin(theta_tip) = %s): none in the tabulated range alpha <= 10'
+        % (mp.nstr(afold, 10), mp.nstr(cf, 8)))
+    convergence_table(say)
 
     say('\nAccuracy evidence (max |difference|, metres / radians unless noted):')
     worst = mp.mpf(0)
