@@ -20,6 +20,15 @@ fn beam_errors_name_the_field() {
         "beam.elements"
     );
     assert_eq!(field_of(Beam::new(-1.0, &good, &d, cal)), "beam.length");
+    assert_eq!(
+        field_of(Beam::new(
+            16.0,
+            &good,
+            &Discretization::Uniform(1_000_000),
+            cal
+        )),
+        "beam.elements"
+    );
     assert_eq!(field_of(Beam::new(f64::NAN, &good, &d, cal)), "beam.length");
     let stations = |x: Vec<f64>| Discretization::Stations(x);
     assert_eq!(

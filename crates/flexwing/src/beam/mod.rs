@@ -218,7 +218,26 @@ impl Beam {
     }
 }
 
+/// Largest number of elements accepted: the model keeps dense `2n × 2n` matrices (3.2 GB at this
+/// size) and the modal analysis is O(n³), so a larger `n` would exhaust memory or time rather
+/// than give an answer.
+pub const MAX_ELEMENTS: usize = 10_000;
+
 fn stations(length: f64, d: &Discretization) -> Result<Vec<f64>, InputError> {
+    let count = match d {
+        Discretization::Uniform(n) => *n,
+        Discretization::Stations(x) => x.len().saturating_sub(1),
+    };
+    if count > MAX_ELEMENTS {
+        let field = match d {
+            Discretization::Uniform(_) => "beam.elements",
+            Discretization::Stations(_) => "beam.stations",
+        };
+        return Err(InputError::new(
+            field,
+            format!("at most {MAX_ELEMENTS} elements are supported, got {count}"),
+        ));
+    }
     match d {
         Discretization::Uniform(n) => {
             if *n == 0 {
