@@ -314,3 +314,43 @@ fn bending_only_model_equals_coupled_model_without_offset() {
         assert!((a - b).abs() < 1e-10 * a, "{a} vs {b}");
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn momentum_and_gyroscopic_term_agree_with_the_mass_matrix(
+        q in q_strategy(14), qd in q_strategy(14), torsion in any::<bool>()
+    ) {
+        let m = model(7, torsion);
+        let nd = m.n_dofs();
+        let (q, qd) = (&q[..nd], &qd[..nd]);
+        // p = M(q) q̇ with the O(n) recursion against the O(n²) closed-form matrix.
+        let mut mm = DMatrix::zeros(nd, nd);
+        m.mass_matrix_into(q, &mut m.workspace(), &mut mm);
+        let expected = &mm * DVector::from_column_slice(qd);
+        let mut p = vec![0.0; nd];
+        m.momentum_into(q, qd, &mut p);
+        for i in 0..nd {
+            prop_assert!((p[i] - expected[i]).abs() <= 1e-12 * (1.0 + expected.amax()));
+        }
+        // γ = ∂T/∂q at fixed q̇, T = ½ q̇ᵀ M(q) q̇, by central differences of the closed-form M.
+        let mut gamma = vec![0.0; nd];
+        m.gyroscopic_into(q, qd, &mut gamma);
+        let t = |q: &[f64]| {
+            let mut mm = DMatrix::zeros(nd, nd);
+            m.mass_matrix_into(q, &mut m.workspace(), &mut mm);
+            let v = DVector::from_column_slice(qd);
+            0.5 * v.dot(&(&mm * &v))
+        };
+        let h = 1e-6;
+        for d in 0..nd {
+            let (mut qp, mut qm) = (q.to_vec(), q.to_vec());
+            qp[d] += h;
+            qm[d] -= h;
+            let fd = (t(&qp) - t(&qm)) / (2.0 * h);
+            // T is O(1) J here: truncation h² ≈ 1e-12, round-off 1e-16 / 1e-6 = 1e-10.
+            prop_assert!((fd - gamma[d]).abs() < 1e-7 * (1.0 + fd.abs()), "dof {d}: {fd} vs {}", gamma[d]);
+        }
+    }
+}

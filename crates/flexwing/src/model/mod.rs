@@ -6,6 +6,7 @@
 
 mod full;
 mod kinematics;
+mod kinetic;
 mod loads;
 mod mass;
 mod reduced;

@@ -1,0 +1,314 @@
+//! Momentum `p = M(q) q̇` and the gyroscopic term `γ = ∂T/∂q|_q̇` in O(n), generic over the scalar
+//! so that their derivatives come from forward-mode dual numbers.
+//!
+//! With the mass-centre velocities (model.md, "Kinematics")
+//!
+//! ```text
+//! ġ_i = V_{i−1} + (ℓ_i/2) n_i θ̇_i + d0_i (−sin ψ_i e_i θ̇_i + cos ψ_i n_i ψ̇_i − sin ψ_i ẑ ψ̇_i),
+//! V_k = Σ_{j ≤ k} ℓ_j n_j θ̇_j,    S_j = Σ_{i > j} m_i ġ_i,
+//! ```
+//!
+//! the kinetic energy `T = ½ Σ m_i |ġ_i|² + ½ Σ J_i ψ̇_i²` has, in absolute angles,
+//!
+//! ```text
+//! ∂T/∂θ̇_j = ℓ_j n_j·S_j + m_j ġ_j·((ℓ_j/2) n_j − d0_j sin ψ_j e_j)
+//! ∂T/∂ψ̇_j = m_j d0_j ġ_j·(cos ψ_j n_j − sin ψ_j ẑ) + J_j ψ̇_j
+//! ∂T/∂θ_j = −ℓ_j θ̇_j e_j·S_j − m_j ġ_j·((ℓ_j/2) θ̇_j e_j + d0_j sin ψ_j θ̇_j n_j + d0_j cos ψ_j ψ̇_j e_j)
+//! ∂T/∂ψ_j = −m_j d0_j ġ_j·(cos ψ_j θ̇_j e_j + sin ψ_j ψ̇_j n_j + cos ψ_j ψ̇_j ẑ)
+//! ```
+//!
+//! and in joint coordinates `p = Tᵀ ∂T/∂(θ̇, ψ̇)`, `γ = Tᵀ ∂T/∂(θ, ψ)` (suffix sums), with
+//! `θ̇ = T q̇_b`, `ψ̇ = T q̇_t` (prefix sums). Everything is O(n), so the exact gyroscopic term costs
+//! less than one mass-matrix assembly.
+
+use nalgebra::DMatrix;
+use num_dual::{Dual64, DualNum};
+
+use super::FullModel;
+
+/// Scratch of the kinetic recursions for scalar `D`.
+#[derive(Debug, Clone)]
+pub(crate) struct KineticScratch<D> {
+    cos_theta: Vec<D>,
+    sin_theta: Vec<D>,
+    cos_psi: Vec<D>,
+    sin_psi: Vec<D>,
+    theta_dot: Vec<D>,
+    psi_dot: Vec<D>,
+    g_dot: Vec<[D; 3]>,
+}
+
+impl<D: DualNum<Primitive = f64> + Copy> KineticScratch<D> {
+    pub(crate) fn new(n: usize) -> Self {
+        let z = D::from(0.0);
+        Self {
+            cos_theta: vec![z; n],
+            sin_theta: vec![z; n],
+            cos_psi: vec![z; n],
+            sin_psi: vec![z; n],
+            theta_dot: vec![z; n],
+            psi_dot: vec![z; n],
+            g_dot: vec![[z; 3]; n],
+        }
+    }
+}
+
+fn dot<D: DualNum<Primitive = f64> + Copy>(a: &[D; 3], b: &[D; 3]) -> D {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Suffix sums within each block of `n`: `x ← Tᵀ x`.
+fn suffix_blocks<D: DualNum<Primitive = f64> + Copy>(x: &mut [D], n: usize) {
+    for block in x.chunks_mut(n) {
+        for i in (0..n.saturating_sub(1)).rev() {
+            let next = block[i + 1];
+            block[i] += next;
+        }
+    }
+}
+
+impl FullModel {
+    /// Momentum `p = M(q) q̇` (into `p`) and/or gyroscopic term `γ = ∂T/∂q|_q̇` (into `gamma`),
+    /// in O(n), for scalar `D` (f64, or dual numbers for derivatives).
+    pub(crate) fn kinetic_terms<D: DualNum<Primitive = f64> + Copy>(
+        &self,
+        q: &[D],
+        qdot: &[D],
+        sc: &mut KineticScratch<D>,
+        p: Option<&mut [D]>,
+        gamma: Option<&mut [D]>,
+    ) {
+        let n = self.n;
+        let zero = D::from(0.0);
+        let (mut th, mut ps, mut thd, mut psd) = (zero, zero, zero, zero);
+        for i in 0..n {
+            th += q[i];
+            thd += qdot[i];
+            if self.torsion {
+                ps += q[n + i];
+                psd += qdot[n + i];
+            }
+            let (s, c) = th.sin_cos();
+            let (sp, cp) = ps.sin_cos();
+            sc.sin_theta[i] = s;
+            sc.cos_theta[i] = c;
+            sc.sin_psi[i] = sp;
+            sc.cos_psi[i] = cp;
+            sc.theta_dot[i] = thd;
+            sc.psi_dot[i] = psd;
+        }
+        // Mass-centre velocities.
+        let mut v = [zero; 2]; // V_{i−1}
+        for i in 0..n {
+            let (c, s, cp, sp) = (
+                sc.cos_theta[i],
+                sc.sin_theta[i],
+                sc.cos_psi[i],
+                sc.sin_psi[i],
+            );
+            let (td, pd) = (sc.theta_dot[i], sc.psi_dot[i]);
+            let (h, d) = (0.5 * self.ell[i], self.d0[i]);
+            // (ℓ/2) n θ̇ − d0 sψ e θ̇ + d0 cψ n ψ̇ − d0 sψ ẑ ψ̇, with e = (c, s), n = (−s, c).
+            let a_n = td * h + cp * pd * d; // coefficient of n
+            let a_e = -(sp * td * d); // coefficient of e
+            sc.g_dot[i] = [
+                v[0] + a_e * c - a_n * s,
+                v[1] + a_e * s + a_n * c,
+                -(sp * pd * d),
+            ];
+            v[0] -= s * td * self.ell[i];
+            v[1] += c * td * self.ell[i];
+        }
+        let mut outboard = [zero; 3]; // S_j = Σ_{i>j} m_i ġ_i
+        let mut p = p;
+        let mut gamma = gamma;
+        for j in (0..n).rev() {
+            let (c, s, cp, sp) = (
+                sc.cos_theta[j],
+                sc.sin_theta[j],
+                sc.cos_psi[j],
+                sc.sin_psi[j],
+            );
+            let (td, pd) = (sc.theta_dot[j], sc.psi_dot[j]);
+            let (l, h, d, m) = (self.ell[j], 0.5 * self.ell[j], self.d0[j], self.mass[j]);
+            let e = [c, s, zero];
+            let nv = [-s, c, zero];
+            let zhat = [zero, zero, D::from(1.0)];
+            let g = sc.g_dot[j];
+            if let Some(p) = p.as_deref_mut() {
+                let dgdthd = [nv[0] * h - e[0] * sp * d, nv[1] * h - e[1] * sp * d, zero];
+                p[j] = dot(&nv, &outboard) * l + dot(&g, &dgdthd) * m;
+                if self.torsion {
+                    let dgdpsd = [nv[0] * cp * d, nv[1] * cp * d, -(sp * d)];
+                    p[n + j] = dot(&g, &dgdpsd) * m + pd * self.inertia[j];
+                }
+            }
+            if let Some(gm) = gamma.as_deref_mut() {
+                // −(ℓ/2) θ̇ e − d0 sψ θ̇ n − d0 cψ ψ̇ e
+                let w = [
+                    -(e[0] * (td * h + cp * pd * d) + nv[0] * sp * td * d),
+                    -(e[1] * (td * h + cp * pd * d) + nv[1] * sp * td * d),
+                    zero,
+                ];
+                gm[j] = -(dot(&e, &outboard) * td * l) + dot(&g, &w) * m;
+                if self.torsion {
+                    let wp = [
+                        -(e[0] * cp * td * d + nv[0] * sp * pd * d),
+                        -(e[1] * cp * td * d + nv[1] * sp * pd * d),
+                        -(zhat[2] * cp * pd * d),
+                    ];
+                    gm[n + j] = dot(&g, &wp) * m;
+                }
+            }
+            for a in 0..3 {
+                outboard[a] += g[a] * m;
+            }
+        }
+        if let Some(p) = p {
+            suffix_blocks(p, n);
+        }
+        if let Some(gm) = gamma {
+            suffix_blocks(gm, n);
+        }
+    }
+
+    /// Momentum `p = M(q) q̇` in O(n), into `out`.
+    ///
+    /// # Panics
+    /// If a slice length differs from `n_dofs()`.
+    pub fn momentum_into(&self, q: &[f64], qdot: &[f64], out: &mut [f64]) {
+        let mut sc = KineticScratch::new(self.n);
+        self.kinetic_terms(q, qdot, &mut sc, Some(out), None);
+    }
+
+    /// Gyroscopic term `γ(q, q̇) = ∂T/∂q|_q̇ = ½ q̇ᵀ (∂M/∂q) q̇` in O(n), into `out`.
+    ///
+    /// # Panics
+    /// If a slice length differs from `n_dofs()`.
+    pub fn gyroscopic_into(&self, q: &[f64], qdot: &[f64], out: &mut [f64]) {
+        let mut sc = KineticScratch::new(self.n);
+        self.kinetic_terms(q, qdot, &mut sc, None, Some(out));
+    }
+
+    /// Kinetic energy `T = ½ q̇ᵀ M(q) q̇` (J).
+    pub fn kinetic_energy(&self, q: &[f64], qdot: &[f64]) -> f64 {
+        let mut p = vec![0.0; self.n_dofs()];
+        self.momentum_into(q, qdot, &mut p);
+        0.5 * p.iter().zip(qdot).map(|(a, b)| a * b).sum::<f64>()
+    }
+
+    /// Directional derivatives with respect to `q` (at fixed `q̇`) of the momentum and of the
+    /// gyroscopic term along the columns of `dirs` (`n_dofs × r`): `dp = (∂(M q̇)/∂q) dirs`,
+    /// `dgamma = (∂γ/∂q) dirs`. Exact (forward-mode dual numbers), O(n r).
+    pub(crate) fn kinetic_directional(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        dirs: &DMatrix<f64>,
+        sc: &mut KineticBuffers,
+        dp: &mut DMatrix<f64>,
+        dgamma: &mut DMatrix<f64>,
+    ) {
+        let nd = self.n_dofs();
+        for (i, v) in qdot.iter().enumerate() {
+            sc.qdot[i] = Dual64::from(*v);
+        }
+        for col in 0..dirs.ncols() {
+            for i in 0..nd {
+                sc.q[i] = Dual64::new(q[i], dirs[(i, col)]);
+            }
+            self.kinetic_terms(
+                &sc.q,
+                &sc.qdot,
+                &mut sc.scratch,
+                Some(&mut sc.p),
+                Some(&mut sc.gamma),
+            );
+            for i in 0..nd {
+                dp[(i, col)] = sc.p[i].eps;
+                dgamma[(i, col)] = sc.gamma[i].eps;
+            }
+        }
+    }
+}
+
+/// Dual-number buffers for [`FullModel::kinetic_directional`].
+#[derive(Debug, Clone)]
+pub(crate) struct KineticBuffers {
+    q: Vec<Dual64>,
+    qdot: Vec<Dual64>,
+    p: Vec<Dual64>,
+    gamma: Vec<Dual64>,
+    scratch: KineticScratch<Dual64>,
+}
+
+impl KineticBuffers {
+    pub(crate) fn new(model: &FullModel) -> Self {
+        let nd = model.n_dofs();
+        let z = Dual64::from(0.0);
+        Self {
+            q: vec![z; nd],
+            qdot: vec![z; nd],
+            p: vec![z; nd],
+            gamma: vec![z; nd],
+            scratch: KineticScratch::new(model.n_elements()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::beam::{
+        Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties,
+        TorsionProperties,
+    };
+
+    #[test]
+    fn dual_directional_derivatives_match_finite_differences() {
+        let section = SectionProperties {
+            ei: Profile::Uniform(10.0),
+            mass_per_length: Profile::Table {
+                x: vec![0.0, 2.0],
+                value: vec![0.6, 0.2],
+            },
+            torsion: Some(TorsionProperties {
+                gj: Profile::Uniform(3.0),
+                polar_inertia: Profile::Uniform(0.01),
+                inertia_axis: InertiaAxis::MassCentre,
+                offset: Profile::Uniform(0.1),
+            }),
+        };
+        let model = FullModel::new(
+            Beam::new(
+                2.0,
+                &section,
+                &Discretization::Uniform(5),
+                Calibration::TipLoad,
+            )
+            .unwrap(),
+        );
+        let nd = model.n_dofs();
+        let q: Vec<f64> = (0..nd).map(|i| 0.3 * (i as f64 + 1.0).sin()).collect();
+        let qd: Vec<f64> = (0..nd).map(|i| 0.7 * (2.0 * i as f64).cos()).collect();
+        let dirs = DMatrix::from_fn(nd, 3, |r, c| ((r + 2 * c) as f64).cos());
+        let (mut dp, mut dg) = (DMatrix::zeros(nd, 3), DMatrix::zeros(nd, 3));
+        let mut buf = KineticBuffers::new(&model);
+        model.kinetic_directional(&q, &qd, &dirs, &mut buf, &mut dp, &mut dg);
+        let h = 1e-6;
+        for c in 0..3 {
+            let qp: Vec<f64> = (0..nd).map(|i| q[i] + h * dirs[(i, c)]).collect();
+            let qm: Vec<f64> = (0..nd).map(|i| q[i] - h * dirs[(i, c)]).collect();
+            let (mut pp, mut pm, mut gp, mut gm) =
+                (vec![0.0; nd], vec![0.0; nd], vec![0.0; nd], vec![0.0; nd]);
+            model.momentum_into(&qp, &qd, &mut pp);
+            model.momentum_into(&qm, &qd, &mut pm);
+            model.gyroscopic_into(&qp, &qd, &mut gp);
+            model.gyroscopic_into(&qm, &qd, &mut gm);
+            for i in 0..nd {
+                assert!(((pp[i] - pm[i]) / (2.0 * h) - dp[(i, c)]).abs() < 1e-7);
+                assert!(((gp[i] - gm[i]) / (2.0 * h) - dg[(i, c)]).abs() < 1e-7);
+            }
+        }
+    }
+}
