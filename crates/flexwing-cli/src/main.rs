@@ -15,7 +15,7 @@ use std::process::ExitCode;
 use clap::error::ErrorKind;
 use clap::{Parser, Subcommand};
 
-use commands::{modes, Failure};
+use commands::{modes, statics, Failure};
 
 /// Non-linear dynamics of very flexible beams (lumped-mass model).
 #[derive(Debug, Parser)]
@@ -44,6 +44,20 @@ enum Command {
         replaces the table. See docs/cli.md."
     )]
     Modes(modes::ModesArgs),
+    /// Non-linear static equilibria of the full model and of reduced models, over a load sweep.
+    #[command(
+        long_about = "Non-linear static equilibria under the case's [[loads]], for the full model \
+        and the reduced models of [static], at one load level or over the load sweep of \
+        [static.sweep] (each point continued from the previous one).\n\n\
+        Prints the tip position (and twist) of every model side by side, with the difference of \
+        each reduced model from the full one, then a summary (dofs, wall time, ratio to full). \
+        Writes static_tip.csv, static_nodes.csv, static_summary.csv, loaded_frequencies.csv \
+        (with [static] modes) and status.txt into the output directory; with --plot also \
+        static_shapes.svg and static_shapes.png. If a model fails to converge, the other \
+        models still run, the files hold the points that converged, status.txt says \
+        \"incomplete\" and the exit status is 1. See docs/cli.md."
+    )]
+    Static(statics::StaticArgs),
 }
 
 fn main() -> ExitCode {
@@ -53,6 +67,7 @@ fn main() -> ExitCode {
     };
     let result = match &cli.command {
         Command::Modes(args) => modes::run(args),
+        Command::Static(args) => statics::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

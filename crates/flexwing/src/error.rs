@@ -53,6 +53,25 @@ pub enum SolveError {
         /// `‖K x − Q(x)‖∞` at the end of the last failed attempt (NaN if it blew up).
         residual_norm: f64,
     },
+    /// An input of the solver is invalid.
+    #[error(transparent)]
+    InvalidInput(InputError),
+    /// The adaptive step size fell below what floating point can resolve.
+    #[error("time integration stopped at t = {time} s: step size {step:.3e} s too small")]
+    StepSizeTooSmall {
+        /// Time reached (s).
+        time: f64,
+        /// Step size attempted (s).
+        step: f64,
+    },
+    /// The right-hand side produced a non-finite value (NaN or infinity).
+    #[error(
+        "time integration stopped at t = {time} s: the state became non-finite (NaN or infinity)"
+    )]
+    NonFinite {
+        /// Time reached (s).
+        time: f64,
+    },
     /// Modes were asked about a state whose tangent stiffness is not symmetric (follower loads).
     #[error(
         "modal analysis: the tangent stiffness is not symmetric (relative asymmetry {asymmetry:.2e}); \
@@ -73,6 +92,11 @@ pub enum SolveError {
 }
 
 impl SolveError {
+    /// An input error found by a solver (bad tolerances, output times…).
+    pub(crate) fn from_input(e: InputError) -> Self {
+        SolveError::InvalidInput(e)
+    }
+
     /// Whether the error is a failure to converge (as opposed to a singular problem).
     pub fn is_divergence(&self) -> bool {
         matches!(self, SolveError::StaticDiverged { .. })

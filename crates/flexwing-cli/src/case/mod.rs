@@ -3,12 +3,16 @@
 //! place in it and the problem.
 
 mod convert;
+mod loads;
 mod property;
 mod spec;
+mod statics;
 
 use std::path::Path;
 
+pub use loads::case_field;
 pub use spec::Case;
+pub use statics::{StaticPlan, Sweep};
 
 impl Case {
     /// Read and parse the case file at `path`.
@@ -35,7 +39,10 @@ impl Case {
 /// offending key in front when toml knows it.
 pub fn toml_error_line(name: &str, source: &str, error: &toml::de::Error) -> String {
     let message = one_line(error.message());
-    let keys = error_keys(error);
+    let keys = error_keys(error).map(|k| match error.span() {
+        Some(span) => with_table_index(&k, source, span.start),
+        None => k,
+    });
     let place = match error.span() {
         Some(span) => {
             let (line, column) = line_column(source, span.start);
@@ -58,6 +65,27 @@ fn error_keys(error: &toml::de::Error) -> Option<String> {
     let rest = text.strip_prefix(error.message())?.trim();
     let keys = rest.strip_prefix("in `")?.strip_suffix('`')?;
     (!keys.is_empty()).then(|| keys.to_string())
+}
+
+/// toml names a key inside an array of tables without its index (`loads.type`); count the
+/// `[[loads]]` headers before `offset` to put it back (`loads[1].type`). Arrays written inline
+/// keep toml's path.
+fn with_table_index(keys: &str, source: &str, offset: usize) -> String {
+    let (head, rest) = keys.split_once('.').unwrap_or((keys, ""));
+    let header = format!("[[{head}]]");
+    let mut end = offset.min(source.len());
+    while !source.is_char_boundary(end) {
+        end -= 1;
+    }
+    let count = source[..end]
+        .lines()
+        .filter(|l| l.replace([' ', '\t'], "").starts_with(&header))
+        .count();
+    match (count, rest) {
+        (0, _) => keys.to_string(),
+        (n, "") => format!("{head}[{}]", n - 1),
+        (n, rest) => format!("{head}[{}].{rest}", n - 1),
+    }
 }
 
 /// 1-based line and column (in characters) of the byte offset `offset` of `source`.
@@ -133,6 +161,25 @@ mod tests {
         let case = Case::parse(BEAM, "x.toml").unwrap();
         let beam = case.to_beam().unwrap();
         assert_eq!(beam.n_elements(), 4);
+    }
+
+    #[test]
+    fn keys_in_arrays_of_tables_get_their_index() {
+        let load = "\n[[loads]]\ntype = \"gravity\"\n";
+        let msg = error_of(&format!(
+            "{BEAM}{load}{load}{}",
+            load.replace("gravity", "gravitas")
+        ));
+        assert!(
+            msg.starts_with("x.toml line 16, column 8: loads[2].type: unknown variant"),
+            "{msg}"
+        );
+        let msg = error_of(&format!("{BEAM}{load}bogus = 1\n"));
+        assert!(msg.contains(": loads[0]: unknown field `bogus`"), "{msg}");
+        assert_eq!(
+            with_table_index("beam.section", "[beam]", 3),
+            "beam.section"
+        );
     }
 
     #[test]

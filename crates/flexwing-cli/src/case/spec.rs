@@ -17,6 +17,12 @@ pub struct Case {
     /// `[modes]`, optional.
     #[serde(default)]
     pub modes: ModesSpec,
+    /// `[[loads]]`: the loads of a static run, applied together.
+    #[serde(default)]
+    pub loads: Vec<LoadSpec>,
+    /// `[static]`, optional (defaults: the full model only).
+    #[serde(rename = "static", default)]
+    pub statics: StaticSpec,
 }
 
 /// `[beam]`: span, discretization, calibration and `[beam.section]`.
@@ -89,4 +95,143 @@ pub struct ModesSpec {
     /// Number of modes reported; default `min(10, n_dofs)`.
     #[serde(default)]
     pub count: Option<usize>,
+}
+
+/// One `[[loads]]` table. Which keys a load takes depends on its `type` (and `direction`); the
+/// conversion (`loads.rs`) rejects the keys that do not belong, naming them.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    /// Optional unique name, used by `[static.sweep]`.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// What kind of load.
+    #[serde(rename = "type")]
+    pub kind: LoadKindSpec,
+    /// Position along the undeformed span (m); exclusive with `node`.
+    #[serde(default)]
+    pub span: Option<f64>,
+    /// Node index `0 ..= n`; exclusive with `span`.
+    #[serde(default)]
+    pub node: Option<usize>,
+    /// Dead or follower (point forces and distributed forces).
+    #[serde(default)]
+    pub direction: Option<DirectionSpec>,
+    /// Global spanwise component: N (point force) or N/m (distributed).
+    #[serde(default)]
+    pub fx: Option<Property>,
+    /// Global vertical component: N (point force) or N/m (distributed).
+    #[serde(default)]
+    pub fy: Option<Property>,
+    /// Component along the element axis: N or N/m.
+    #[serde(default)]
+    pub tangential: Option<Property>,
+    /// Component along the element normal: N or N/m.
+    #[serde(default)]
+    pub normal: Option<Property>,
+    /// Moment or torque (N·m).
+    #[serde(default)]
+    pub value: Option<f64>,
+    /// Gravitational acceleration (m/s²).
+    #[serde(default)]
+    pub g: Option<f64>,
+}
+
+/// `loads[].type`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LoadKindSpec {
+    /// A point force.
+    PointForce,
+    /// A bending moment about z.
+    Moment,
+    /// A torque about the beam axis.
+    Torque,
+    /// A force per length over the whole span.
+    Distributed,
+    /// The weight of the beam.
+    Gravity,
+}
+
+/// `loads[].direction`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DirectionSpec {
+    /// Fixed global components `fx`, `fy`.
+    Dead,
+    /// Components `tangential`, `normal` in the frame of the loaded element.
+    Follower,
+}
+
+/// `[static]`: which models to solve, solver options, loaded modes and the sweep.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StaticSpec {
+    /// Solve the full model.
+    #[serde(default = "yes")]
+    pub full: bool,
+    /// Reduced models on the first `r` modes, one per entry.
+    #[serde(default)]
+    pub reduced: Vec<usize>,
+    /// Reduced models on explicit 1-based mode lists.
+    #[serde(default)]
+    pub reduced_modes: Vec<Vec<usize>>,
+    /// `StaticOptions::tolerance`.
+    #[serde(default)]
+    pub tolerance: Option<f64>,
+    /// `StaticOptions::max_iterations`.
+    #[serde(default)]
+    pub max_iterations: Option<usize>,
+    /// `StaticOptions::min_step`.
+    #[serde(default)]
+    pub min_step: Option<f64>,
+    /// `StaticOptions::line_search`.
+    #[serde(default)]
+    pub line_search: Option<bool>,
+    /// Number of loaded modes reported about the full model's final equilibrium.
+    #[serde(default)]
+    pub modes: Option<usize>,
+    /// `[static.sweep]`.
+    #[serde(default)]
+    pub sweep: Option<SweepSpec>,
+}
+
+fn yes() -> bool {
+    true
+}
+
+impl Default for StaticSpec {
+    fn default() -> Self {
+        Self {
+            full: true,
+            reduced: Vec::new(),
+            reduced_modes: Vec::new(),
+            tolerance: None,
+            max_iterations: None,
+            min_step: None,
+            line_search: None,
+            modes: None,
+            sweep: None,
+        }
+    }
+}
+
+/// `[static.sweep]`: the scale of one named load over a list of points.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepSpec {
+    /// Name of the swept load.
+    pub load: String,
+    /// Explicit scale factors; exclusive with `from`/`to`/`steps`.
+    #[serde(default)]
+    pub scales: Option<Vec<f64>>,
+    /// First scale of an evenly spaced sweep.
+    #[serde(default)]
+    pub from: Option<f64>,
+    /// Last scale of an evenly spaced sweep.
+    #[serde(default)]
+    pub to: Option<f64>,
+    /// Number of points of an evenly spaced sweep, both ends included (≥ 2).
+    #[serde(default)]
+    pub steps: Option<usize>,
 }

@@ -2,8 +2,13 @@
 //! was at fault, which decides the exit status.
 
 pub mod modes;
+pub mod statics;
 
 use std::fmt::Display;
+use std::path::{Path, PathBuf};
+
+use flexwing::beam::Calibration;
+use flexwing::model::FullModel;
 
 /// Why a command failed.
 #[derive(Debug)]
@@ -36,6 +41,45 @@ impl Failure {
             Self::Input(e) | Self::Run(e) => e,
         }
     }
+}
+
+/// `results/<case file stem>`, relative to the working directory.
+pub fn default_out_dir(case: &Path) -> PathBuf {
+    let stem = case
+        .file_stem()
+        .map_or_else(|| "case".into(), |s| s.to_string_lossy().into_owned());
+    Path::new("results").join(stem)
+}
+
+/// `-0.0` and `0.0` print differently; results never need the sign of a zero.
+pub fn clean(v: f64) -> f64 {
+    v + 0.0
+}
+
+/// The case-file spelling of a calibration.
+pub fn calibration_name(c: Calibration) -> &'static str {
+    match c {
+        Calibration::TipLoad => "tip-load",
+        Calibration::Uniform => "uniform",
+    }
+}
+
+/// One line describing the model: elements, dofs, calibration, torsion.
+pub fn model_line(model: &FullModel) -> String {
+    let beam = model.beam();
+    let kind = if !model.has_torsion() {
+        "bending only"
+    } else if beam.offsets().iter().any(|&d| d != 0.0) {
+        "bending and torsion coupled by the mass-centre offset d0"
+    } else {
+        "bending and torsion, uncoupled (d0 = 0)"
+    };
+    format!(
+        "model: {} elements, {} dofs, {} calibration, {kind}",
+        model.n_elements(),
+        model.n_dofs(),
+        calibration_name(beam.calibration()),
+    )
 }
 
 #[cfg(test)]

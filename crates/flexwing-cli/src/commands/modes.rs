@@ -5,12 +5,11 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use flexwing::beam::Calibration;
 use flexwing::model::FullModel;
 use flexwing::solve::{ModeShape, Modes};
 use serde::Serialize;
 
-use super::Failure;
+use super::{calibration_name, clean, default_out_dir, model_line, Failure};
 use crate::case::Case;
 use crate::output;
 use crate::plot::{self, ModePlot};
@@ -109,19 +108,6 @@ fn mode_count(cli: Option<usize>, case: Option<usize>, n_dofs: usize) -> Result<
     }
 }
 
-/// `results/<case file stem>`, relative to the working directory.
-fn default_out_dir(case: &Path) -> PathBuf {
-    let stem = case
-        .file_stem()
-        .map_or_else(|| "case".into(), |s| s.to_string_lossy().into_owned());
-    Path::new("results").join(stem)
-}
-
-/// `-0.0` and `0.0` print differently; results never need the sign of a zero.
-fn clean(v: f64) -> f64 {
-    v + 0.0
-}
-
 fn mode_result(model: &FullModel, modes: &Modes, k: usize) -> ModeResult {
     let mut shape = modes.shape(model, k);
     for v in [&mut shape.x, &mut shape.dx, &mut shape.dy, &mut shape.twist] {
@@ -211,13 +197,6 @@ fn write_files(
     Ok(files)
 }
 
-fn calibration_name(c: Calibration) -> &'static str {
-    match c {
-        Calibration::TipLoad => "tip-load",
-        Calibration::Uniform => "uniform",
-    }
-}
-
 /// `bending` (≥ 90 % of the strain energy in bending), `torsion` (≤ 10 %) or `coupled`.
 fn mode_type(bending_fraction: f64) -> &'static str {
     if bending_fraction >= 0.9 {
@@ -227,23 +206,6 @@ fn mode_type(bending_fraction: f64) -> &'static str {
     } else {
         "coupled"
     }
-}
-
-fn model_line(model: &FullModel) -> String {
-    let beam = model.beam();
-    let kind = if !model.has_torsion() {
-        "bending only"
-    } else if beam.offsets().iter().any(|&d| d != 0.0) {
-        "bending and torsion coupled by the mass-centre offset d0"
-    } else {
-        "bending and torsion, uncoupled (d0 = 0)"
-    };
-    format!(
-        "model: {} elements, {} dofs, {} calibration, {kind}",
-        model.n_elements(),
-        model.n_dofs(),
-        calibration_name(beam.calibration()),
-    )
 }
 
 fn table_report(

@@ -2,6 +2,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::kinetic::{KineticBuffers, KineticScratch};
 use super::loads::Resultants;
 use super::{AppliedLoads, Kinematics, StructuralModel};
 use crate::beam::Beam;
@@ -219,6 +220,9 @@ pub struct Workspace {
     pub(super) kin: Kinematics,
     pub(super) resultants: Resultants,
     pub(super) dir: Vec<f64>,
+    pub(super) kinetic: KineticScratch<f64>,
+    pub(super) duals: KineticBuffers,
+    pub(super) identity: DMatrix<f64>,
 }
 
 impl Workspace {
@@ -236,6 +240,9 @@ impl StructuralModel for FullModel {
             kin: Kinematics::new(self.n),
             resultants: Resultants::zeros(self.n),
             dir: vec![0.0; self.n_dofs()],
+            kinetic: KineticScratch::new(self.n),
+            duals: KineticBuffers::new(self),
+            identity: DMatrix::identity(self.n_dofs(), self.n_dofs()),
         }
     }
 
@@ -276,6 +283,25 @@ impl StructuralModel for FullModel {
         ws.kin.update(q);
         ws.resultants.update(self, &ws.kin, loads, scales);
         self.jacobian_from(&ws.kin, &ws.resultants, &mut ws.dir, out);
+    }
+
+    fn momentum_into(&self, q: &[f64], qdot: &[f64], ws: &mut Workspace, out: &mut [f64]) {
+        self.kinetic_terms(q, qdot, &mut ws.kinetic, Some(out), None);
+    }
+
+    fn gyroscopic_into(&self, q: &[f64], qdot: &[f64], ws: &mut Workspace, out: &mut [f64]) {
+        self.kinetic_terms(q, qdot, &mut ws.kinetic, None, Some(out));
+    }
+
+    fn kinetic_derivatives_into(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        ws: &mut Workspace,
+        dp: &mut DMatrix<f64>,
+        dgamma: &mut DMatrix<f64>,
+    ) {
+        self.kinetic_directional(q, qdot, &ws.identity, &mut ws.duals, dp, dgamma);
     }
 
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64> {

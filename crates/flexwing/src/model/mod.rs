@@ -54,6 +54,21 @@ pub trait StructuralModel {
         ws: &mut Self::Workspace,
         out: &mut DMatrix<f64>,
     );
+    /// Momentum `p = M(x) ẋ` into `out`.
+    fn momentum_into(&self, x: &[f64], xdot: &[f64], ws: &mut Self::Workspace, out: &mut [f64]);
+    /// Gyroscopic term `γ = ∂T/∂x|_ẋ` into `out`.
+    fn gyroscopic_into(&self, x: &[f64], xdot: &[f64], ws: &mut Self::Workspace, out: &mut [f64]);
+    /// Exact derivatives with respect to `x` at fixed `ẋ` of the momentum, `∂(M ẋ)/∂x`, and of
+    /// the gyroscopic term, `∂γ/∂x`, into `dp` and `dgamma` (`n_dofs × n_dofs`). The derivative
+    /// of `γ` with respect to `ẋ` is `(∂(M ẋ)/∂x)ᵀ`.
+    fn kinetic_derivatives_into(
+        &self,
+        x: &[f64],
+        xdot: &[f64],
+        ws: &mut Self::Workspace,
+        dp: &mut DMatrix<f64>,
+        dgamma: &mut DMatrix<f64>,
+    );
     /// Joint rotations `q` of the full model for the model's coordinates `x`.
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64>;
     /// The full model underneath (itself for the full model).

@@ -123,9 +123,18 @@ impl ReducedModel {
 pub struct ReducedWorkspace {
     full: Workspace,
     q: Vec<f64>,
+    qdot: Vec<f64>,
     f: DVector<f64>,
-    m: DMatrix<f64>,
     block: DMatrix<f64>,
+    block2: DMatrix<f64>,
+    column: Vec<f64>,
+}
+
+/// `out = Φᵀ v`.
+fn project(phi: &DMatrix<f64>, v: &[f64], out: &mut [f64]) {
+    for (c, o) in out.iter_mut().enumerate() {
+        *o = phi.column(c).iter().zip(v).map(|(a, b)| a * b).sum();
+    }
 }
 
 impl ReducedModel {
@@ -147,9 +156,11 @@ impl StructuralModel for ReducedModel {
         ReducedWorkspace {
             full: self.full.workspace(),
             q: vec![0.0; nd],
+            qdot: vec![0.0; nd],
             f: DVector::zeros(nd),
-            m: DMatrix::zeros(nd, nd),
             block: DMatrix::zeros(nd, self.phi.ncols()),
+            block2: DMatrix::zeros(nd, self.phi.ncols()),
+            column: vec![0.0; nd],
         }
     }
 
@@ -158,10 +169,80 @@ impl StructuralModel for ReducedModel {
     }
 
     fn mass_matrix_into(&self, eta: &[f64], ws: &mut ReducedWorkspace, out: &mut DMatrix<f64>) {
+        // Φᵀ M(q) Φ from the columns M(q) φ_c = p(q, φ_c): O(n r²), no full mass matrix.
         self.expand(eta, &mut ws.q);
-        self.full.mass_matrix_into(&ws.q, &mut ws.full, &mut ws.m);
-        ws.m.mul_to(&self.phi, &mut ws.block);
+        for c in 0..self.phi.ncols() {
+            self.full.kinetic_terms(
+                &ws.q,
+                self.phi.column(c).as_slice(),
+                &mut ws.full.kinetic,
+                Some(&mut ws.column),
+                None,
+            );
+            ws.block.column_mut(c).copy_from_slice(&ws.column);
+        }
         self.phi.tr_mul_to(&ws.block, out);
+    }
+
+    fn momentum_into(
+        &self,
+        eta: &[f64],
+        etadot: &[f64],
+        ws: &mut ReducedWorkspace,
+        out: &mut [f64],
+    ) {
+        self.expand(eta, &mut ws.q);
+        self.expand(etadot, &mut ws.qdot);
+        self.full.kinetic_terms(
+            &ws.q,
+            &ws.qdot,
+            &mut ws.full.kinetic,
+            Some(&mut ws.column),
+            None,
+        );
+        project(&self.phi, &ws.column, out);
+    }
+
+    fn gyroscopic_into(
+        &self,
+        eta: &[f64],
+        etadot: &[f64],
+        ws: &mut ReducedWorkspace,
+        out: &mut [f64],
+    ) {
+        self.expand(eta, &mut ws.q);
+        self.expand(etadot, &mut ws.qdot);
+        self.full.kinetic_terms(
+            &ws.q,
+            &ws.qdot,
+            &mut ws.full.kinetic,
+            None,
+            Some(&mut ws.column),
+        );
+        project(&self.phi, &ws.column, out);
+    }
+
+    fn kinetic_derivatives_into(
+        &self,
+        eta: &[f64],
+        etadot: &[f64],
+        ws: &mut ReducedWorkspace,
+        dp: &mut DMatrix<f64>,
+        dgamma: &mut DMatrix<f64>,
+    ) {
+        // Φᵀ (∂p/∂q) Φ and Φᵀ (∂γ/∂q) Φ, the inner products along the r columns of Φ: O(n r²).
+        self.expand(eta, &mut ws.q);
+        self.expand(etadot, &mut ws.qdot);
+        self.full.kinetic_directional(
+            &ws.q,
+            &ws.qdot,
+            &self.phi,
+            &mut ws.full.duals,
+            &mut ws.block,
+            &mut ws.block2,
+        );
+        self.phi.tr_mul_to(&ws.block, dp);
+        self.phi.tr_mul_to(&ws.block2, dgamma);
     }
 
     fn stiffness_matrix(&self) -> DMatrix<f64> {

@@ -1,9 +1,12 @@
-//! Solvers: modal analysis and non-linear statics.
+//! Solvers: modal analysis, non-linear statics, and time integration.
 
+mod dynamics;
 mod eigen;
+pub mod integrate;
 mod modes;
 mod statics;
 
+pub use dynamics::{Damping, EquationsOfMotion, Gyroscopic, TimeFunction};
 pub use eigen::generalized_symmetric_eigen;
 pub use modes::{ModeShape, Modes};
 pub use statics::{

@@ -1,0 +1,202 @@
+//! The result files of `flexwing static`, each written atomically; `status.txt` last.
+
+use std::path::{Path, PathBuf};
+
+use flexwing::model::FullModel;
+use serde::Serialize;
+
+use super::{ModelRun, Outcome};
+use crate::case::Case;
+use crate::output;
+use crate::plot::{self, ModelShapes, ShapePlot};
+
+#[derive(Serialize)]
+struct TipRow<'a> {
+    model: &'a str,
+    point: usize,
+    scale: f64,
+    tip_x_m: f64,
+    tip_y_m: f64,
+    tip_twist_rad: f64,
+    load_steps: usize,
+    iterations: usize,
+    residual_norm: f64,
+}
+
+#[derive(Serialize)]
+struct NodeRow<'a> {
+    model: &'a str,
+    point: usize,
+    scale: f64,
+    node: usize,
+    x_m: f64,
+    y_m: f64,
+    twist_rad: f64,
+}
+
+#[derive(Serialize)]
+struct SummaryRow<'a> {
+    model: &'a str,
+    dofs: usize,
+    wall_time_s: f64,
+    ratio_to_full: Option<f64>,
+    max_tip_difference_m: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct FrequencyRow {
+    mode: usize,
+    omega_rad_s: f64,
+    frequency_hz: f64,
+}
+
+/// Write every result file into `dir`; returns the paths in the order written.
+pub fn write_files(
+    dir: &Path,
+    outcome: &Outcome,
+    full: &FullModel,
+    case: &Case,
+    with_plot: bool,
+) -> anyhow::Result<Vec<PathBuf>> {
+    output::create_dir(dir)?;
+    let runs = &outcome.runs;
+    let mut files = Vec::new();
+
+    let tip = dir.join("static_tip.csv");
+    output::write_csv(
+        &tip,
+        runs.iter().flat_map(|r| {
+            r.points.iter().enumerate().map(move |(k, p)| {
+                let (x, y, twist) = p.tip();
+                TipRow {
+                    model: &r.label,
+                    point: k + 1,
+                    scale: p.scale,
+                    tip_x_m: x,
+                    tip_y_m: y,
+                    tip_twist_rad: twist,
+                    load_steps: p.stats.load_steps,
+                    iterations: p.stats.iterations,
+                    residual_norm: p.stats.residual_norm,
+                }
+            })
+        }),
+    )?;
+    files.push(tip);
+
+    let nodes = dir.join("static_nodes.csv");
+    output::write_csv(
+        &nodes,
+        runs.iter().flat_map(|r| {
+            r.points.iter().enumerate().flat_map(move |(k, p)| {
+                (0..p.x.len()).map(move |i| NodeRow {
+                    model: &r.label,
+                    point: k + 1,
+                    scale: p.scale,
+                    node: i,
+                    x_m: p.x[i],
+                    y_m: p.y[i],
+                    twist_rad: p.twist[i],
+                })
+            })
+        }),
+    )?;
+    files.push(nodes);
+
+    let summary = dir.join("static_summary.csv");
+    output::write_csv(
+        &summary,
+        runs.iter().map(|r| SummaryRow {
+            model: &r.label,
+            dofs: r.dofs,
+            wall_time_s: r.wall_time_s,
+            ratio_to_full: outcome.ratio_to_full(r),
+            max_tip_difference_m: Outcome::max_tip_difference(r),
+        }),
+    )?;
+    files.push(summary);
+
+    if let Some(modes) = &outcome.loaded_modes {
+        let path = dir.join("loaded_frequencies.csv");
+        output::write_csv(
+            &path,
+            modes.iter().map(|m| FrequencyRow {
+                mode: m.mode,
+                omega_rad_s: m.omega,
+                frequency_hz: m.frequency_hz,
+            }),
+        )?;
+        files.push(path);
+    }
+
+    if with_plot {
+        files.extend(plot::write_static_shapes(
+            dir,
+            &shape_plot(outcome, full, case),
+        )?);
+    }
+
+    let status = dir.join("status.txt");
+    output::write_bytes(&status, status_text(outcome).as_bytes())?;
+    files.push(status);
+    Ok(files)
+}
+
+/// `complete`, or one line `incomplete: WHAT: MESSAGE` per thing that did not complete.
+pub fn status_text(outcome: &Outcome) -> String {
+    if outcome.incomplete.is_empty() {
+        return "complete\n".into();
+    }
+    outcome
+        .incomplete
+        .iter()
+        .map(|i| format!("incomplete: {}: {}\n", i.what, i.message))
+        .collect()
+}
+
+fn shape_plot(outcome: &Outcome, full: &FullModel, case: &Case) -> ShapePlot {
+    let name = Path::new(&outcome.case_name)
+        .file_name()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+    let what = case.title.as_deref().unwrap_or(&name);
+    let points = match &outcome.sweep {
+        Some(s) => format!(
+            ", {} scale {} to {} ({} points)",
+            s.name,
+            super::report::short(s.scales[0]),
+            super::report::short(s.scales[s.scales.len() - 1]),
+            s.scales.len()
+        ),
+        None => String::new(),
+    };
+    ShapePlot {
+        title: format!("Static deformed shapes: {what}{points}"),
+        length: full.beam().length(),
+        models: outcome
+            .runs
+            .iter()
+            .map(|r| ModelShapes {
+                label: legend(r),
+                dashed: r.modes.is_some(),
+                shapes: r
+                    .points
+                    .iter()
+                    .map(|p| p.x.iter().copied().zip(p.y.iter().copied()).collect())
+                    .collect(),
+            })
+            .collect(),
+    }
+}
+
+fn legend(run: &ModelRun) -> String {
+    let kind = if run.modes.is_some() {
+        format!("{} (dashed, {} dofs)", run.label, run.dofs)
+    } else {
+        format!("{} ({} dofs)", run.label, run.dofs)
+    };
+    if run.error.is_some() {
+        format!("{kind}: stopped after {} points", run.points.len())
+    } else {
+        kind
+    }
+}

@@ -1,0 +1,225 @@
+//! The figure of `flexwing static`: deformed shapes `y(x)` of every sweep point, one colour per
+//! model (the full model solid, reduced models dashed), on axes of equal scale.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use plotters::coord::Shift;
+use plotters::element::DashedPathElement;
+use plotters::prelude::*;
+
+use super::{tick_format, titled, write_figure, DrawResult, Figure, COLOURS, FONT};
+
+/// Canvas width (px).
+const WIDTH: u32 = 1200;
+/// Space around the plotting area: chart margin, axis label areas and title (px).
+const MARGIN: u32 = 20;
+const X_LABEL_AREA: u32 = 55;
+const Y_LABEL_AREA: u32 = 90;
+const TITLE_AREA: u32 = 45;
+/// Height of one legend entry (px).
+const LEGEND_ROW: f64 = 28.0;
+
+/// What the figure shows.
+pub struct ShapePlot {
+    /// Figure title.
+    pub title: String,
+    /// Span (m): the undeformed beam is drawn from 0 to `length` on `y = 0`.
+    pub length: f64,
+    /// The models, the first drawn solid and the others dashed.
+    pub models: Vec<ModelShapes>,
+}
+
+/// The deformed shapes of one model.
+pub struct ModelShapes {
+    /// Legend text.
+    pub label: String,
+    /// Whether the curves are dashed.
+    pub dashed: bool,
+    /// One polyline of node positions `(x, y)` (m) per converged sweep point.
+    pub shapes: Vec<Vec<(f64, f64)>>,
+}
+
+/// Write `static_shapes.svg` and `static_shapes.png` into `dir`; returns the paths written.
+pub fn write_static_shapes(dir: &Path, plot: &ShapePlot) -> Result<Vec<PathBuf>> {
+    write_figure(dir, "static_shapes", plot)
+}
+
+/// Axis ranges of the chart (m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Frame {
+    x: (f64, f64),
+    y: (f64, f64),
+}
+
+impl ShapePlot {
+    /// Bounding box of the data and the undeformed beam, with a 4 % margin.
+    fn bounds(&self) -> Frame {
+        let mut x = (0.0_f64, self.length);
+        let mut y = (0.0_f64, 0.0_f64);
+        for (px, py) in self
+            .models
+            .iter()
+            .flat_map(|m| m.shapes.iter().flatten())
+            .filter(|(a, b)| a.is_finite() && b.is_finite())
+        {
+            x = (x.0.min(*px), x.1.max(*px));
+            y = (y.0.min(*py), y.1.max(*py));
+        }
+        let pad = 0.04 * (x.1 - x.0).max(y.1 - y.0).max(f64::MIN_POSITIVE);
+        Frame {
+            x: (x.0 - pad, x.1 + pad),
+            y: (y.0 - pad, y.1 + pad),
+        }
+    }
+
+    fn legend_px(&self) -> f64 {
+        20.0 + LEGEND_ROW * (self.models.len() + 1) as f64
+    }
+
+    /// Equal-scale ranges for a plotting area of `(width, height)` pixels.
+    fn frame(&self, (width, height): (u32, u32)) -> Frame {
+        let b = self.bounds();
+        let (w, h) = (f64::from(width.max(1)), f64::from(height.max(1)));
+        let free = (h - self.legend_px()).max(h / 3.0);
+        let (dx, dy) = (b.x.1 - b.x.0, b.y.1 - b.y.0);
+        let per_px = (dx / w).max(dy / free);
+        let x_slack = w * per_px - dx;
+        let y_slack = free * per_px - dy;
+        let y0 = b.y.0 - 0.5 * y_slack;
+        Frame {
+            x: (b.x.0 - 0.5 * x_slack, b.x.1 + 0.5 * x_slack),
+            y: (y0, y0 + h * per_px),
+        }
+    }
+}
+
+impl Figure for ShapePlot {
+    /// The height follows the aspect ratio of the data, within 500 to 1100 px.
+    fn size(&self) -> (u32, u32) {
+        let b = self.bounds();
+        let plot_w = f64::from(WIDTH - 2 * MARGIN - Y_LABEL_AREA);
+        let aspect = (b.y.1 - b.y.0) / (b.x.1 - b.x.0);
+        let plot_h = plot_w * aspect + self.legend_px();
+        let overhead = f64::from(2 * MARGIN + X_LABEL_AREA + TITLE_AREA);
+        let height = (plot_h + overhead).clamp(500.0, 1100.0);
+        (WIDTH, height.round() as u32)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
+        let body = titled(root, &self.title)?;
+        // A first chart only to learn the plotting area's size; nothing is drawn on it.
+        let probe = ChartBuilder::on(&body)
+            .margin(MARGIN)
+            .x_label_area_size(X_LABEL_AREA)
+            .y_label_area_size(Y_LABEL_AREA)
+            .build_cartesian_2d(0.0..1.0, 0.0..1.0)?;
+        let frame = self.frame(probe.plotting_area().dim_in_pixel());
+        drop(probe);
+
+        let mut chart = ChartBuilder::on(&body)
+            .margin(MARGIN)
+            .x_label_area_size(X_LABEL_AREA)
+            .y_label_area_size(Y_LABEL_AREA)
+            .build_cartesian_2d(frame.x.0..frame.x.1, frame.y.0..frame.y.1)?;
+        let x_format = tick_format(frame.x.1 - frame.x.0);
+        let y_format = tick_format(frame.y.1 - frame.y.0);
+        chart
+            .configure_mesh()
+            .x_desc("x (m)")
+            .y_desc("y (m)")
+            .x_label_formatter(&x_format)
+            .y_label_formatter(&y_format)
+            .label_style((FONT, 18))
+            .axis_desc_style((FONT, 20))
+            .light_line_style(RGBColor(240, 240, 240))
+            .bold_line_style(RGBColor(215, 215, 215))
+            .draw()?;
+
+        let grey = RGBColor(150, 150, 150);
+        chart
+            .draw_series(LineSeries::new(
+                [(0.0, 0.0), (self.length, 0.0)],
+                grey.stroke_width(4),
+            ))?
+            .label("undeformed")
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 30, y)], grey.stroke_width(4)));
+
+        for (k, model) in self.models.iter().enumerate() {
+            let colour = COLOURS[k % COLOURS.len()];
+            let style = colour.stroke_width(2);
+            let label = model.label.clone();
+            // The tips, so the end points can be told apart where curves overlap.
+            chart.draw_series(
+                model
+                    .shapes
+                    .iter()
+                    .filter_map(|s| s.last())
+                    .map(|&p| Circle::new(p, 3, colour.filled())),
+            )?;
+            let annotation = if model.dashed {
+                chart.draw_series(
+                    model
+                        .shapes
+                        .iter()
+                        .map(|s| DashedPathElement::new(s.clone(), 9, 6, style)),
+                )?
+            } else {
+                chart.draw_series(
+                    model
+                        .shapes
+                        .iter()
+                        .map(|s| PathElement::new(s.clone(), style)),
+                )?
+            };
+            if model.dashed {
+                annotation.label(label).legend(move |(x, y)| {
+                    DashedPathElement::new(vec![(x, y), (x + 30, y)], 9, 6, style)
+                });
+            } else {
+                annotation
+                    .label(label)
+                    .legend(move |(x, y)| PathElement::new([(x, y), (x + 30, y)], style));
+            }
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .legend_area_size(42)
+            .margin(12)
+            .label_font((FONT, 18))
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK.mix(0.6))
+            .draw()?;
+        root.present()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plot(shape: Vec<(f64, f64)>) -> ShapePlot {
+        ShapePlot {
+            title: String::new(),
+            length: 1.0,
+            models: vec![ModelShapes {
+                label: "full".into(),
+                dashed: false,
+                shapes: vec![shape],
+            }],
+        }
+    }
+
+    #[test]
+    fn frame_has_equal_scales_and_contains_the_data() {
+        let p = plot(vec![(0.0, 0.0), (0.5, -0.3), (0.8, -0.6)]);
+        let px = (900, 500);
+        let f = p.frame(px);
+        let sx = (f.x.1 - f.x.0) / 900.0;
+        let sy = (f.y.1 - f.y.0) / 500.0;
+        assert!((sx / sy - 1.0).abs() < 1e-12, "{sx} vs {sy}");
+        assert!(f.x.0 < 0.0 && f.x.1 > 1.0);
+        assert!(f.y.0 < -0.6 && f.y.1 > 0.0);
+    }
+}

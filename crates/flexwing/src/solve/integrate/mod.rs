@@ -1,0 +1,157 @@
+//! Time integrators for first-order systems `y' = f(t, y)`: an explicit adaptive Runge–Kutta
+//! (Dormand–Prince 5(4)), a variable-step variable-order BDF/NDF (the family of MATLAB's
+//! `ode15s`), and the implicit midpoint rule (symplectic, for structural dynamics).
+//!
+//! Each returns the solution at the requested output times (dense output, no extra steps) and its
+//! counters. A run that cannot continue returns the output produced so far with the error, so that
+//! callers can keep it and mark it incomplete.
+
+mod bdf;
+mod dopri5;
+mod midpoint;
+
+pub use bdf::{Bdf, BdfOptions};
+pub use dopri5::{Dopri5, Dopri5Options};
+pub use midpoint::{ImplicitMidpoint, MidpointOptions};
+
+use nalgebra::DMatrix;
+
+use crate::error::SolveError;
+
+/// A first-order system `y' = f(t, y)` with its Jacobian `∂f/∂y`. Implementations keep their
+/// scratch inside, hence `&mut self`.
+pub trait OdeSystem {
+    /// Dimension of `y`.
+    fn dim(&self) -> usize;
+    /// `dy = f(t, y)`.
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]);
+    /// `jac = ∂f/∂y (t, y)` (`dim × dim`).
+    fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut DMatrix<f64>);
+}
+
+/// Counters of an integration (what SciPy reports as nfev, njev, nlu).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct IntegratorStats {
+    /// Accepted steps.
+    pub steps: usize,
+    /// Rejected steps (error too large or Newton failure).
+    pub rejected_steps: usize,
+    /// Right-hand-side evaluations.
+    pub rhs_evaluations: usize,
+    /// Jacobian evaluations.
+    pub jacobian_evaluations: usize,
+    /// LU factorizations of iteration matrices.
+    pub factorizations: usize,
+    /// Newton iterations (implicit methods).
+    pub newton_iterations: usize,
+}
+
+/// States at the output times.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Trajectory {
+    /// Output times (s).
+    pub t: Vec<f64>,
+    /// State at each output time.
+    pub y: Vec<Vec<f64>>,
+}
+
+/// An integration that stopped before the end: what was computed, and why it stopped.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IntegrationFailure {
+    /// Output produced before the failure.
+    pub trajectory: Trajectory,
+    /// Counters up to the failure.
+    pub stats: IntegratorStats,
+    /// The reason, with the time reached.
+    pub error: SolveError,
+}
+
+impl std::fmt::Display for IntegrationFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.error.fmt(f)
+    }
+}
+
+impl std::error::Error for IntegrationFailure {}
+
+/// Result of an integration.
+pub type IntegrationResult = Result<(Trajectory, IntegratorStats), Box<IntegrationFailure>>;
+
+/// Check output times against the start time: finite, non-decreasing, none before `t0`.
+pub(crate) fn check_output_times(t0: f64, t_out: &[f64]) -> Result<(), crate::InputError> {
+    for (i, &t) in t_out.iter().enumerate() {
+        if !t.is_finite() || t < t0 || (i > 0 && t < t_out[i - 1]) {
+            return Err(crate::InputError::new(
+                format!("output_times[{i}]"),
+                format!(
+                    "must be finite, non-decreasing and not before the start time {t0} s, got {t}"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Weighted RMS norm of `err` with scale `atol_i + rtol max(|a_i|, |b_i|)`.
+pub(crate) fn error_norm(err: &[f64], a: &[f64], b: &[f64], atol: &[f64], rtol: f64) -> f64 {
+    let mut s = 0.0;
+    for i in 0..err.len() {
+        let sc = atol[i] + rtol * a[i].abs().max(b[i].abs());
+        s += (err[i] / sc).powi(2);
+    }
+    (s / err.len().max(1) as f64).sqrt()
+}
+
+/// Tolerances shared by the adaptive integrators.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tolerances {
+    /// Relative tolerance. Default `1e-6`.
+    pub rtol: f64,
+    /// Absolute tolerance per component (one value is broadcast). Default `[1e-8]`.
+    pub atol: Vec<f64>,
+}
+
+impl Default for Tolerances {
+    fn default() -> Self {
+        Self {
+            rtol: 1e-6,
+            atol: vec![1e-8],
+        }
+    }
+}
+
+impl Tolerances {
+    /// Absolute tolerances expanded to `dim` components.
+    pub(crate) fn atol(&self, dim: usize) -> Vec<f64> {
+        if self.atol.len() == dim {
+            self.atol.clone()
+        } else {
+            vec![self.atol.first().copied().unwrap_or(1e-8); dim]
+        }
+    }
+
+    /// Check that the tolerances are finite and positive (field prefix `field`).
+    pub fn validate(&self, field: &str, dim: usize) -> Result<(), crate::InputError> {
+        if !(self.rtol.is_finite() && self.rtol > 0.0) {
+            return Err(crate::InputError::new(
+                format!("{field}.rtol"),
+                format!("must be a finite positive number, got {}", self.rtol),
+            ));
+        }
+        if self.atol.len() != 1 && self.atol.len() != dim {
+            return Err(crate::InputError::new(
+                format!("{field}.atol"),
+                format!("needs 1 or {dim} values, got {}", self.atol.len()),
+            ));
+        }
+        for &a in &self.atol {
+            if !(a.is_finite() && a > 0.0) {
+                return Err(crate::InputError::new(
+                    format!("{field}.atol"),
+                    format!("must be a finite positive number, got {a}"),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
