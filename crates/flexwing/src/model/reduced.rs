@@ -104,6 +104,17 @@ impl ReducedModel {
         Self::new(full, shapes, &(0..r).collect::<Vec<_>>())
     }
 
+    /// Modal coordinates `η = Φᵀ M(0) q` of joint rotations `q`: the mass-orthogonal projection,
+    /// exact when `q` lies in the span of the basis.
+    pub fn reduce_coordinates(&self, q: &[f64]) -> Vec<f64> {
+        let nd = self.full.n_dofs();
+        let mut m0 = DMatrix::zeros(nd, nd);
+        let mut ws = self.full.workspace();
+        self.full.mass_matrix_into(&vec![0.0; nd], &mut ws, &mut m0);
+        let mq = m0 * DVector::from_column_slice(q);
+        (self.phi.transpose() * mq).as_slice().to_vec()
+    }
+
     /// Number of retained modes `r`.
     pub fn n_modes(&self) -> usize {
         self.indices.len()

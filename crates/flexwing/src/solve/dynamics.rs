@@ -285,6 +285,18 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         y
     }
 
+    /// Absolute tolerances for the state `(x, p)` from one tolerance `atol` on the coordinates
+    /// (rad): `atol` for `x`, and `atol · M_ii(0) / (1 s)` for the momenta, so that both halves
+    /// of the state are measured in consistent units.
+    pub fn state_atol(&mut self, atol: f64) -> Vec<f64> {
+        let x0 = vec![0.0; self.n];
+        self.model
+            .mass_matrix_into(&x0, &mut self.ws, &mut self.mass);
+        let mut v = vec![atol; self.n];
+        v.extend((0..self.n).map(|i| atol * self.mass[(i, i)]));
+        v
+    }
+
     /// Velocities `ẋ = M(x)⁻¹ p` of the state `y`.
     pub fn velocities(&mut self, y: &[f64]) -> Vec<f64> {
         self.factor_mass(&y[..self.n]);

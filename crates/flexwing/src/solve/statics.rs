@@ -35,6 +35,32 @@ impl Default for StaticOptions {
     }
 }
 
+impl StaticOptions {
+    /// Check the options: finite positive tolerance and steps, `min_step ≤ initial_step ≤ 1`,
+    /// at least one iteration (fields `static.*`).
+    pub fn validate(&self) -> Result<(), crate::InputError> {
+        let bad = |f: &str, v: f64, what: &str| {
+            Err(crate::InputError::new(
+                format!("static.{f}"),
+                format!("must be {what}, got {v}"),
+            ))
+        };
+        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
+            return bad("tolerance", self.tolerance, "a finite positive number");
+        }
+        if !(self.min_step > 0.0 && self.min_step <= 1.0) {
+            return bad("min_step", self.min_step, "in (0, 1]");
+        }
+        if !(self.initial_step >= self.min_step && self.initial_step <= 1.0) {
+            return bad("initial_step", self.initial_step, "in [min_step, 1]");
+        }
+        if self.max_iterations == 0 {
+            return bad("max_iterations", 0.0, "at least 1");
+        }
+        Ok(())
+    }
+}
+
 /// Counters of a static solve.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StaticStats {
@@ -95,6 +121,7 @@ pub fn continue_static<M: StructuralModel>(
     scales: &[f64],
     options: &StaticOptions,
 ) -> Result<StaticSolution, SolveError> {
+    options.validate().map_err(SolveError::from_input)?;
     let (x_start, s_start) = start;
     let nd = model.n_dofs();
     let mut ws = Newton::new(model, loads, options);
