@@ -64,6 +64,14 @@ pub enum SolveError {
         /// Step size attempted (s).
         step: f64,
     },
+    /// Newton's method of an implicit step did not converge even on small sub-steps.
+    #[error("time integration stopped at t = {time} s: Newton's method did not converge with step {step:.3e} s")]
+    NewtonFailed {
+        /// Time reached (s).
+        time: f64,
+        /// Smallest step tried (s).
+        step: f64,
+    },
     /// The right-hand side produced a non-finite value (NaN or infinity).
     #[error(
         "time integration stopped at t = {time} s: the state became non-finite (NaN or infinity)"

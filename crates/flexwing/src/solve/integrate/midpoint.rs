@@ -86,8 +86,6 @@ impl Stage {
                 self.lu = Some((h, m.lu()));
                 stats.factorizations += 1;
             }
-            // Predictor: explicit midpoint from the rate at y0 is not available cheaply; start
-            // from z = y0 + (h/2) f(t, y0) reusing the last rate.
             self.z.copy_from_slice(y0);
             let mut old: Option<f64> = None;
             let mut ok = false;
@@ -219,18 +217,33 @@ impl ImplicitMidpoint {
             let scale: Vec<f64> = (0..dim).map(|i| atol[i] + rtol * y[i].abs()).collect();
             let tol = opts.newton_tolerance;
             let accepted = if opts.step.is_some() {
-                if stage.step(system, t, &y, h_try, &scale, tol, &mut stats, &mut y_two) {
-                    Some(h)
-                } else {
-                    return fail(
-                        traj,
-                        stats,
-                        SolveError::StepSizeTooSmall {
-                            time: t,
-                            step: h_try,
-                        },
-                    );
+                // Fixed step: if Newton fails, cover the step with 2, 4, … equal sub-steps.
+                let mut parts = 1usize;
+                loop {
+                    let sub = h_try / parts as f64;
+                    let mut ok = true;
+                    y_half.copy_from_slice(&y);
+                    for k in 0..parts {
+                        let t_k = t + k as f64 * sub;
+                        ok = stage.step(
+                            system, t_k, &y_half, sub, &scale, tol, &mut stats, &mut y_two,
+                        );
+                        if !ok {
+                            break;
+                        }
+                        y_half.copy_from_slice(&y_two);
+                    }
+                    if ok {
+                        break;
+                    }
+                    stats.rejected_steps += 1;
+                    stage.lu = None;
+                    parts *= 2;
+                    if parts > 1024 {
+                        return fail(traj, stats, SolveError::NewtonFailed { time: t, step: sub });
+                    }
                 }
+                Some(h)
             } else {
                 // Step doubling: one step of h and two of h/2; the difference over 2² − 1
                 // estimates the error of the two half steps, which are kept.

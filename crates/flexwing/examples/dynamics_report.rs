@@ -1,0 +1,307 @@
+//! Prints the dynamics figures of `docs/validation.md`: energy drift per integrator, exact
+//! against finite-difference gyroscopic term (the paper's Table 6), full against simplified free
+//! vibration (Figure 5 / Table 7) and full against reduced models under a sinusoidal tip load
+//! (Figure 6 / Table 8).
+//!
+//! Run: `cargo run --release -p flexwing --example dynamics_report`
+
+use std::time::Instant;
+
+use flexwing::beam::{Beam, Calibration, Discretization, Profile, SectionProperties};
+use flexwing::model::{Force, FullModel, Load, ReducedModel, StructuralModel};
+use flexwing::solve::integrate::{
+    Bdf, BdfOptions, Dopri5, Dopri5Options, ImplicitMidpoint, MidpointOptions, OdeSystem,
+    Tolerances, Trajectory,
+};
+use flexwing::solve::{
+    solve_static, Damping, EquationsOfMotion, Gyroscopic, Modes, StaticOptions, TimeFunction,
+};
+
+fn table4(n: usize) -> FullModel {
+    let section = SectionProperties {
+        ei: Profile::Uniform(50.0),
+        mass_per_length: Profile::Uniform(0.2),
+        torsion: None,
+    };
+    FullModel::new(
+        Beam::new(
+            1.0,
+            &section,
+            &Discretization::Uniform(n),
+            Calibration::TipLoad,
+        )
+        .unwrap(),
+    )
+}
+
+fn tip(full: &FullModel, q: &[f64]) -> [f64; 2] {
+    let p = full.node_positions(&full.kinematics(q))[full.n_elements()];
+    [p[0], p[1]]
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Method {
+    Bdf,
+    Midpoint,
+    Dopri5,
+}
+
+fn run<M: StructuralModel>(
+    eom: &mut EquationsOfMotion<'_, M>,
+    y0: &[f64],
+    t_out: &[f64],
+    method: Method,
+    rtol: f64,
+) -> (Trajectory, String, f64) {
+    let atol = eom.state_atol(rtol * 1e-2);
+    let tol = Tolerances { rtol, atol };
+    let start = Instant::now();
+    let r = match method {
+        Method::Bdf => Bdf {
+            options: BdfOptions {
+                tolerances: tol,
+                ..Default::default()
+            },
+        }
+        .integrate(eom, 0.0, y0, t_out, &mut |_| {}),
+        Method::Midpoint => ImplicitMidpoint {
+            options: MidpointOptions {
+                tolerances: tol,
+                ..Default::default()
+            },
+        }
+        .integrate(eom, 0.0, y0, t_out, &mut |_| {}),
+        Method::Dopri5 => Dopri5 {
+            options: Dopri5Options {
+                tolerances: tol,
+                ..Default::default()
+            },
+        }
+        .integrate(eom, 0.0, y0, t_out, &mut |_| {}),
+    };
+    let wall = start.elapsed().as_secs_f64();
+    let (traj, stats) = r.expect("integration");
+    (
+        traj,
+        format!("{} steps, {} rhs", stats.steps, stats.rhs_evaluations),
+        wall,
+    )
+}
+
+fn main() {
+    // (a) Free vibration from the static deflection under a 150 N dead tip force, n = 10.
+    let full = table4(10);
+    let loads = full
+        .apply(
+            &[Load::PointForce {
+                span: 1.0,
+                force: Force::Dead { fx: 0.0, fy: 150.0 },
+            }],
+            "loads",
+        )
+        .unwrap();
+    let q0 = solve_static(&full, &loads, &[1.0], &StaticOptions::default())
+        .unwrap()
+        .q;
+    let none = full.apply(&[], "loads").unwrap();
+    println!("\nEnergy drift in free vibration (Table 4 beam, n = 10, released from the 150 N static deflection)\n");
+    println!("| model | integrator | rtol | span | max |H(t) − H(0)| / H(0) | work | wall time |");
+    println!("|---|---|---|---|---|---|---|");
+    let horizon = 30.0;
+    let t_out: Vec<f64> = (0..=600).map(|k| k as f64 * horizon / 600.0).collect();
+    for (label, g) in [
+        ("full (exact γ)", Gyroscopic::Exact),
+        ("simplified (γ = 0)", Gyroscopic::Neglected),
+    ] {
+        for (method, rtol) in [
+            (Method::Bdf, 1e-6),
+            (Method::Bdf, 1e-7),
+            (Method::Midpoint, 1e-5),
+            (Method::Midpoint, 1e-6),
+        ] {
+            let mut eom = EquationsOfMotion::new(&full, &none, vec![], g, &Damping::None).unwrap();
+            let y0 = eom.state(&q0, &vec![0.0; 10]);
+            let (traj, work, wall) = run(&mut eom, &y0, &t_out, method, rtol);
+            let e = |y: &[f64], eom: &mut EquationsOfMotion<'_, FullModel>| {
+                let (k, s) = eom.energies(y);
+                k + s
+            };
+            let h0 = e(&traj.y[0], &mut eom);
+            let drift = traj
+                .y
+                .iter()
+                .map(|y| (e(y, &mut eom) - h0).abs() / h0)
+                .fold(0.0, f64::max);
+            println!("| {label} | {method:?} | {rtol:.0e} | {horizon} s | {drift:.2e} | {work} | {:.1} ms |", wall * 1e3);
+        }
+    }
+    // Full against simplified, 1 s and 30 s: relative error of tip x and y (Figure 5).
+    println!("\nFull against simplified model (Figure 5, Table 7): max relative difference of the tip position\n");
+    println!("| span | max |Δx| / max|x| | max |Δy| / max|y| | wall time full | wall time simplified | ratio |");
+    println!("|---|---|---|---|---|---|");
+    for horizon in [1.0, 30.0] {
+        let t_out: Vec<f64> = (0..=(horizon / 0.005) as usize)
+            .map(|k| k as f64 * 0.005)
+            .collect();
+        let mut tips = vec![];
+        let mut walls = vec![];
+        for g in [Gyroscopic::Exact, Gyroscopic::Neglected] {
+            let mut eom = EquationsOfMotion::new(&full, &none, vec![], g, &Damping::None).unwrap();
+            let y0 = eom.state(&q0, &vec![0.0; 10]);
+            let (traj, _, wall) = run(&mut eom, &y0, &t_out, Method::Bdf, 1e-7);
+            tips.push(
+                traj.y
+                    .iter()
+                    .map(|y| tip(&full, &y[..10]))
+                    .collect::<Vec<_>>(),
+            );
+            walls.push(wall);
+        }
+        let rel = |c: usize| {
+            let scale = tips[0].iter().map(|p| p[c].abs()).fold(0.0, f64::max);
+            tips[0]
+                .iter()
+                .zip(&tips[1])
+                .map(|(a, b)| (a[c] - b[c]).abs())
+                .fold(0.0, f64::max)
+                / scale
+        };
+        println!(
+            "| {horizon} s | {:.2} % | {:.2} % | {:.1} ms | {:.1} ms | {:.3} |",
+            100.0 * rel(0),
+            100.0 * rel(1),
+            walls[0] * 1e3,
+            walls[1] * 1e3,
+            walls[1] / walls[0]
+        );
+    }
+
+    // Table 6: exact against finite-difference γ at the state of the sine case at t = 1 s.
+    let full20 = table4(20);
+    let sine = full20
+        .apply(
+            &[Load::PointForce {
+                span: 1.0,
+                force: Force::Dead { fx: 0.0, fy: 10.0 },
+            }],
+            "loads",
+        )
+        .unwrap();
+    let tf = vec![TimeFunction::Sine {
+        omega: 20.0,
+        phase: 0.0,
+    }];
+    let t_out: Vec<f64> = (0..=200).map(|k| k as f64 * 0.005).collect();
+    let mut eom = EquationsOfMotion::new(
+        &full20,
+        &sine,
+        tf.clone(),
+        Gyroscopic::Exact,
+        &Damping::None,
+    )
+    .unwrap();
+    let (traj_full, _, _) = run(&mut eom, &vec![0.0; 40], &t_out, Method::Bdf, 1e-8);
+    let y1 = traj_full.y[200].clone();
+    let mut d_exact = vec![0.0; 40];
+    let mut d_fd = vec![0.0; 40];
+    let t = Instant::now();
+    for _ in 0..100 {
+        eom.rhs(1.0, &y1, &mut d_exact);
+    }
+    let t_exact = t.elapsed().as_secs_f64() / 100.0;
+    let mut eom_fd = EquationsOfMotion::new(
+        &full20,
+        &sine,
+        tf.clone(),
+        Gyroscopic::FiniteDifference { step: 1e-6 },
+        &Damping::None,
+    )
+    .unwrap();
+    let t = Instant::now();
+    for _ in 0..100 {
+        eom_fd.rhs(1.0, &y1, &mut d_fd);
+    }
+    let t_fd = t.elapsed().as_secs_f64() / 100.0;
+    let mut d_none = vec![0.0; 40];
+    let mut eom_none = EquationsOfMotion::new(
+        &full20,
+        &sine,
+        tf.clone(),
+        Gyroscopic::Neglected,
+        &Damping::None,
+    )
+    .unwrap();
+    eom_none.rhs(1.0, &y1, &mut d_none);
+    let gamma_exact: Vec<f64> = (20..40).map(|i| d_exact[i] - d_none[i]).collect();
+    let gamma_fd: Vec<f64> = (20..40).map(|i| d_fd[i] - d_none[i]).collect();
+    let mae = gamma_exact
+        .iter()
+        .zip(&gamma_fd)
+        .map(|(a, b)| (a - b).abs())
+        .sum::<f64>()
+        / 20.0;
+    let mre = gamma_exact
+        .iter()
+        .zip(&gamma_fd)
+        .map(|(a, b)| (a - b).abs() / a.abs().max(1e-300))
+        .sum::<f64>()
+        / 20.0;
+    let gmax = gamma_exact.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    println!("\nGyroscopic term, exact against central differences (h = 1e-6), state of the sine case at t = 1 s, n = 20 (Table 6)\n");
+    println!(
+        "| method | mean absolute error | mean relative error | max |γ| | time per RHS | ratio |"
+    );
+    println!("|---|---|---|---|---|---|");
+    println!(
+        "| exact (O(n)) | 0 | 0 | {gmax:.3e} | {:.2} µs | 1 |",
+        t_exact * 1e6
+    );
+    println!(
+        "| finite differences | {mae:.2e} | {mre:.2e} | | {:.2} µs | {:.1} |",
+        t_fd * 1e6,
+        t_fd / t_exact
+    );
+
+    // Table 8 / Figure 6: full n = 20 against reduced r = 1…4.
+    println!("\nSinusoidal tip load F = 10 sin(20 t) N, 1 s (Figure 6, Table 8): full n = 20 (BDF) against reduced (DOPRI5)\n");
+    println!("| model | max |Δ tip| (m) | max |Δ tip| / max |tip y| | wall time | ratio |");
+    println!("|---|---|---|---|---|");
+    let tip_full: Vec<[f64; 2]> = traj_full.y.iter().map(|y| tip(&full20, &y[..20])).collect();
+    let amp = tip_full.iter().map(|p| p[1].abs()).fold(0.0, f64::max);
+    let mut eom = EquationsOfMotion::new(
+        &full20,
+        &sine,
+        tf.clone(),
+        Gyroscopic::Exact,
+        &Damping::None,
+    )
+    .unwrap();
+    let (_, _, wall_full) = run(&mut eom, &vec![0.0; 40], &t_out, Method::Bdf, 1e-6);
+    println!(
+        "| full, rtol 1e-6 | – | – | {:.1} ms | 1 |",
+        wall_full * 1e3
+    );
+    let modes = Modes::undeformed(&full20).unwrap();
+    for r in [1, 2, 3, 4, 6] {
+        let rom = ReducedModel::first(&full20, modes.shapes(), r).unwrap();
+        let mut eom =
+            EquationsOfMotion::new(&rom, &sine, tf.clone(), Gyroscopic::Exact, &Damping::None)
+                .unwrap();
+        let (traj, _, wall) = run(&mut eom, &vec![0.0; 2 * r], &t_out, Method::Dopri5, 1e-6);
+        let err = traj
+            .y
+            .iter()
+            .zip(&tip_full)
+            .map(|(y, p)| {
+                let t = tip(&full20, &rom.full_coordinates(&y[..r]));
+                (t[0] - p[0]).hypot(t[1] - p[1])
+            })
+            .fold(0.0, f64::max);
+        println!(
+            "| reduced r = {r} | {err:.2e} | {:.2} % | {:.2} ms | {:.3} |",
+            100.0 * err / amp,
+            wall * 1e3,
+            wall / wall_full
+        );
+    }
+}
