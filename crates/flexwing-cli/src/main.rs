@@ -15,7 +15,7 @@ use std::process::ExitCode;
 use clap::error::ErrorKind;
 use clap::{Parser, Subcommand};
 
-use commands::{modes, statics, Failure};
+use commands::{dynamic, modes, statics, Failure};
 
 /// Non-linear dynamics of very flexible beams (lumped-mass model).
 #[derive(Debug, Parser)]
@@ -58,6 +58,21 @@ enum Command {
         \"incomplete\" and the exit status is 1. See docs/cli.md."
     )]
     Static(statics::StaticArgs),
+    /// Time histories of the full, simplified and reduced models under time-varying loads.
+    #[command(
+        long_about = "Non-linear dynamics: time histories of the full model, the simplified model \
+        (gyroscopic term neglected) and the reduced models of [dynamic], from rest, from a static \
+        deflection or from a given state, under the case's [[loads]] with their time histories.\n\n\
+        Prints, side by side per model, the integrator's work (steps, rejected steps, RHS and \
+        Jacobian evaluations, factorizations), the wall time and its ratio to the first model, \
+        and the largest tip difference from the first model. Writes dynamic_tip.csv, \
+        dynamic_nodes.csv, dynamic_summary.csv and status.txt into the output directory; with \
+        --plot also dynamic_tip.svg/.png and dynamic_snapshots.svg/.png. A progress bar appears \
+        on stderr when it is a terminal and the run takes more than a second. If an integration \
+        stops, the other models still run, the files hold the output times reached, status.txt \
+        says \"incomplete\" and the exit status is 1. See docs/cli.md."
+    )]
+    Dynamic(dynamic::DynamicArgs),
 }
 
 fn main() -> ExitCode {
@@ -68,6 +83,7 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Modes(args) => modes::run(args),
         Command::Static(args) => statics::run(args),
+        Command::Dynamic(args) => dynamic::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -80,6 +80,19 @@ pub fn significant(v: f64, digits: usize) -> String {
     format!("{v:.decimals$}")
 }
 
+/// `v` with up to 6 significant digits and no trailing zeros: `150`, `0.0666667`, `1.5e-7`.
+pub fn short(v: f64) -> String {
+    let s = significant(v + 0.0, 6);
+    let (mantissa, exponent) = s.split_at(s.find('e').unwrap_or(s.len()));
+    if !mantissa.contains('.') {
+        return s;
+    }
+    format!(
+        "{}{exponent}",
+        mantissa.trim_end_matches('0').trim_end_matches('.')
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

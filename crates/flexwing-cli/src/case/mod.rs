@@ -3,6 +3,7 @@
 //! place in it and the problem.
 
 mod convert;
+mod dynamic;
 mod loads;
 mod property;
 mod spec;
@@ -10,6 +11,7 @@ mod statics;
 
 use std::path::Path;
 
+pub use dynamic::{DynamicPlan, InitialPlan, Integrator, IntegratorSettings, ModelKind, ModelPlan};
 pub use loads::case_field;
 pub use spec::Case;
 pub use statics::{StaticPlan, Sweep};

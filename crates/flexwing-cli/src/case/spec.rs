@@ -23,6 +23,9 @@ pub struct Case {
     /// `[static]`, optional (defaults: the full model only).
     #[serde(rename = "static", default)]
     pub statics: StaticSpec,
+    /// `[dynamic]`, required by `flexwing dynamic` only.
+    #[serde(default)]
+    pub dynamic: Option<DynamicSpec>,
 }
 
 /// `[beam]`: span, discretization, calibration and `[beam.section]`.
@@ -135,6 +138,13 @@ pub struct LoadSpec {
     /// Gravitational acceleration (m/s²).
     #[serde(default)]
     pub g: Option<f64>,
+    /// Time history of the load in a dynamic run (default constant).
+    #[serde(default)]
+    pub time: Option<TimeSpec>,
+    /// Whether the load acts during a dynamic run (default true); an inactive load stays
+    /// available for `[dynamic.initial] loads`.
+    #[serde(default)]
+    pub active: Option<bool>,
 }
 
 /// `loads[].type`.
@@ -234,4 +244,192 @@ pub struct SweepSpec {
     /// Number of points of an evenly spaced sweep, both ends included (≥ 2).
     #[serde(default)]
     pub steps: Option<usize>,
+}
+
+/// `loads[].time`: the time history `f(t)` that scales a load, `Q(t) = f(t) Q₀`. Which keys it
+/// takes depends on `type`; the conversion (`dynamic.rs`) rejects the others, naming them.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimeSpec {
+    /// Which function.
+    #[serde(rename = "type")]
+    pub kind: TimeKindSpec,
+    /// Circular frequency of a sine (rad/s).
+    #[serde(default)]
+    pub omega: Option<f64>,
+    /// Phase of a sine (rad).
+    #[serde(default)]
+    pub phase: Option<f64>,
+    /// Switch time of a step (s).
+    #[serde(default)]
+    pub time: Option<f64>,
+    /// Start of a ramp (s).
+    #[serde(default)]
+    pub start: Option<f64>,
+    /// End of a ramp (s).
+    #[serde(default)]
+    pub end: Option<f64>,
+    /// Times of a table (s).
+    #[serde(default)]
+    pub t: Option<Vec<f64>>,
+    /// Values of a table (dimensionless factors).
+    #[serde(default)]
+    pub value: Option<Vec<f64>>,
+}
+
+/// `loads[].time.type`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TimeKindSpec {
+    /// `f = 1`.
+    Constant,
+    /// `f = sin(ω t + φ)`.
+    Sine,
+    /// `f = 0` before `time`, 1 after.
+    Step,
+    /// `f` rises linearly from 0 at `start` to 1 at `end`.
+    Ramp,
+    /// Piecewise linear through `(t, value)`.
+    Table,
+}
+
+/// `[dynamic]`: time span, output times, models, integrator, damping and `[dynamic.initial]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicSpec {
+    /// Simulated time (s), from 0.
+    pub end_time: f64,
+    /// Evenly spaced output times (s); exclusive with `output_times`.
+    #[serde(default)]
+    pub output_step: Option<f64>,
+    /// Explicit output times (s); exclusive with `output_step`.
+    #[serde(default)]
+    pub output_times: Option<Vec<f64>>,
+    /// Simulate the full model.
+    #[serde(default = "yes")]
+    pub full: bool,
+    /// Also the full model with the gyroscopic term neglected.
+    #[serde(default)]
+    pub simplified: bool,
+    /// Reduced models on the first `r` modes, one per entry.
+    #[serde(default)]
+    pub reduced: Vec<usize>,
+    /// Reduced models on explicit 1-based mode lists.
+    #[serde(default)]
+    pub reduced_modes: Vec<Vec<usize>>,
+    /// How the gyroscopic term of the full and reduced models is obtained.
+    #[serde(default)]
+    pub gyroscopic: GyroscopicSpec,
+    /// Step `h` of the finite-difference gyroscopic term (rad).
+    #[serde(default)]
+    pub gyroscopic_step: Option<f64>,
+    /// The time integrator.
+    #[serde(default)]
+    pub integrator: IntegratorSpec,
+    /// Relative tolerance.
+    #[serde(default)]
+    pub rtol: Option<f64>,
+    /// Absolute tolerance on the coordinates (rad).
+    #[serde(default)]
+    pub atol: Option<f64>,
+    /// Largest BDF order.
+    #[serde(default)]
+    pub max_order: Option<usize>,
+    /// Fixed step of the implicit midpoint rule (s).
+    #[serde(default)]
+    pub step: Option<f64>,
+    /// Structural damping; none without it.
+    #[serde(default)]
+    pub damping: Option<DampingSpec>,
+    /// `[dynamic.initial]`; at rest without it.
+    #[serde(default)]
+    pub initial: Option<InitialSpec>,
+}
+
+/// `dynamic.gyroscopic`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum GyroscopicSpec {
+    /// Exact.
+    #[default]
+    Exact,
+    /// Central finite differences with step `gyroscopic_step`.
+    FiniteDifference,
+    /// Neglected.
+    Neglected,
+}
+
+/// `dynamic.integrator`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum IntegratorSpec {
+    /// BDF for the full models, Dormand–Prince for reduced models.
+    #[default]
+    Auto,
+    /// Variable-order BDF/NDF.
+    Bdf,
+    /// Implicit midpoint rule.
+    Midpoint,
+    /// Dormand–Prince 5(4).
+    Dopri5,
+}
+
+/// `dynamic.damping`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DampingSpec {
+    /// Which damping.
+    #[serde(rename = "type")]
+    pub kind: DampingKindSpec,
+    /// Mass-proportional Rayleigh coefficient (1/s).
+    #[serde(default)]
+    pub alpha: Option<f64>,
+    /// Stiffness-proportional Rayleigh coefficient (s).
+    #[serde(default)]
+    pub beta: Option<f64>,
+    /// Modal damping ratios of modes 1, 2, ….
+    #[serde(default)]
+    pub ratios: Option<Vec<f64>>,
+}
+
+/// `dynamic.damping.type`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DampingKindSpec {
+    /// No damping.
+    None,
+    /// `C = α M(0) + β K`.
+    Rayleigh,
+    /// Damping ratios of the modes about the undeformed state.
+    Modal,
+}
+
+/// `[dynamic.initial]`: the state at `t = 0`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InitialSpec {
+    /// Which initial state.
+    #[serde(rename = "type")]
+    pub kind: InitialKindSpec,
+    /// Names of the loads of the initial static solution.
+    #[serde(default)]
+    pub loads: Option<Vec<String>>,
+    /// Joint rotations of the full model (rad).
+    #[serde(default)]
+    pub q: Option<Vec<f64>>,
+    /// Joint rotation rates of the full model (rad/s).
+    #[serde(default)]
+    pub qdot: Option<Vec<f64>>,
+}
+
+/// `dynamic.initial.type`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum InitialKindSpec {
+    /// Undeformed, at rest.
+    Rest,
+    /// The static deflection under the listed loads, at rest.
+    Static,
+    /// Given joint rotations and rates.
+    Given,
 }

@@ -108,7 +108,7 @@ impl Case {
                 "flexwing static needs at least one [[loads]] table",
             ));
         }
-        let reduced = reduced_plans(s)?;
+        let reduced = reduced_plans("static", &s.reduced, &s.reduced_modes)?;
         if !s.full && reduced.is_empty() {
             return Err(InputError::new(
                 "static.full",
@@ -131,17 +131,23 @@ impl Case {
     }
 }
 
-fn reduced_plans(s: &StaticSpec) -> Result<Vec<ReducedPlan>, InputError> {
+/// The reduced models of `reduced` and `reduced_modes` of the table `table` (`static`,
+/// `dynamic`), labelled, with the same model asked at most once.
+pub(super) fn reduced_plans(
+    table: &str,
+    reduced: &[usize],
+    reduced_modes: &[Vec<usize>],
+) -> Result<Vec<ReducedPlan>, InputError> {
     let mut plans: Vec<ReducedPlan> = Vec::new();
-    for (i, &r) in s.reduced.iter().enumerate() {
+    for (i, &r) in reduced.iter().enumerate() {
         plans.push(ReducedPlan {
             label: format!("reduced-r{r}"),
-            field: format!("static.reduced[{i}]"),
+            field: format!("{table}.reduced[{i}]"),
             modes: ReducedModes::First(r),
         });
     }
-    for (i, list) in s.reduced_modes.iter().enumerate() {
-        let field = format!("static.reduced_modes[{i}]");
+    for (i, list) in reduced_modes.iter().enumerate() {
+        let field = format!("{table}.reduced_modes[{i}]");
         if list.contains(&0) {
             return Err(InputError::new(field, "mode numbers start at 1, got 0"));
         }
@@ -246,22 +252,9 @@ fn loaded_modes(
 }
 
 fn sweep(case: &Case, spec: &SweepSpec) -> Result<Sweep, InputError> {
-    let load = case.load_index(&spec.load).ok_or_else(|| {
-        let names: Vec<String> = case
-            .loads
-            .iter()
-            .filter_map(|l| l.name.as_ref().map(|n| format!("{n:?}")))
-            .collect();
-        let known = if names.is_empty() {
-            "no load has a name; give one with name = \"...\" in its [[loads]] table".to_string()
-        } else {
-            format!("the named loads are {}", names.join(", "))
-        };
-        InputError::new(
-            "static.sweep.load",
-            format!("no load named {:?} ({known})", spec.load),
-        )
-    })?;
+    let load = case
+        .load_index(&spec.load)
+        .ok_or_else(|| InputError::new("static.sweep.load", case.unknown_load(&spec.load)))?;
     let range = (spec.from, spec.to, spec.steps);
     let scales = match (&spec.scales, range) {
         (Some(_), (None, None, None)) | (None, (Some(_), Some(_), Some(_))) => sweep_scales(spec)?,

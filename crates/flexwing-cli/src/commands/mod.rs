@@ -1,6 +1,7 @@
 //! One module per subcommand. Each returns a [`Failure`] that says whether the input or the run
 //! was at fault, which decides the exit status.
 
+pub mod dynamic;
 pub mod modes;
 pub mod statics;
 

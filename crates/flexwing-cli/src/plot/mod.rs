@@ -1,16 +1,18 @@
-//! Plots (SVG and PNG) with plotters: mode shapes (`modes.rs`) and static deformed shapes
-//! (`shapes.rs`).
+//! Plots (SVG and PNG) with plotters: mode shapes (`modes.rs`), deformed shapes (`shapes.rs`,
+//! static equilibria and dynamic snapshots) and tip time histories (`history.rs`).
 //!
 //! Text is drawn with DejaVu Sans compiled into the binary (the `dejavu` crate, registered with
 //! plotters' `ab_glyph` font table under the family name `sans-serif`), so the PNG renders the same
 //! on a machine with no fonts installed. The SVG keeps its text as `<text>` elements in the
 //! `sans-serif` family, which every SVG viewer can render.
 
+mod history;
 mod modes;
 mod shapes;
 
+pub use history::{write_tip_history, HistoryPlot, HistorySeries};
 pub use modes::{write_mode_shapes, ModePlot};
-pub use shapes::{write_static_shapes, ModelShapes, ShapePlot};
+pub use shapes::{write_shapes, ModelShapes, ShapePlot};
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;

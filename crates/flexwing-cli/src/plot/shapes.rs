@@ -1,5 +1,6 @@
-//! The figure of `flexwing static`: deformed shapes `y(x)` of every sweep point, one colour per
-//! model (the full model solid, reduced models dashed), on axes of equal scale.
+//! Deformed shapes `y(x)` on axes of equal scale: the figure of `flexwing static` (every sweep
+//! point, one colour per model, the full model solid and reduced models dashed) and the snapshots
+//! of `flexwing dynamic` (one shape per output time, coloured from dark to light along a gradient).
 
 use std::path::{Path, PathBuf};
 
@@ -26,13 +27,15 @@ pub struct ShapePlot {
     pub title: String,
     /// Span (m): the undeformed beam is drawn from 0 to `length` on `y = 0`.
     pub length: f64,
-    /// The models, the first drawn solid and the others dashed.
+    /// The models (or snapshots), each drawn solid or dashed as it says.
     pub models: Vec<ModelShapes>,
+    /// Colour the entries along a dark-to-light gradient (in order) instead of the line colours.
+    pub gradient: bool,
 }
 
 /// The deformed shapes of one model.
 pub struct ModelShapes {
-    /// Legend text.
+    /// Legend text; empty for no legend entry.
     pub label: String,
     /// Whether the curves are dashed.
     pub dashed: bool,
@@ -40,9 +43,9 @@ pub struct ModelShapes {
     pub shapes: Vec<Vec<(f64, f64)>>,
 }
 
-/// Write `static_shapes.svg` and `static_shapes.png` into `dir`; returns the paths written.
-pub fn write_static_shapes(dir: &Path, plot: &ShapePlot) -> Result<Vec<PathBuf>> {
-    write_figure(dir, "static_shapes", plot)
+/// Write `<stem>.svg` and `<stem>.png` into `dir`; returns the paths written.
+pub fn write_shapes(dir: &Path, stem: &str, plot: &ShapePlot) -> Result<Vec<PathBuf>> {
+    write_figure(dir, stem, plot)
 }
 
 /// Axis ranges of the chart (m).
@@ -74,7 +77,8 @@ impl ShapePlot {
     }
 
     fn legend_px(&self) -> f64 {
-        20.0 + LEGEND_ROW * (self.models.len() + 1) as f64
+        let entries = self.models.iter().filter(|m| !m.label.is_empty()).count();
+        20.0 + LEGEND_ROW * (entries + 1) as f64
     }
 
     /// Equal-scale ranges for a plotting area of `(width, height)` pixels.
@@ -146,7 +150,11 @@ impl Figure for ShapePlot {
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 30, y)], grey.stroke_width(4)));
 
         for (k, model) in self.models.iter().enumerate() {
-            let colour = COLOURS[k % COLOURS.len()];
+            let colour = if self.gradient {
+                gradient(k as f64 / (self.models.len().max(2) - 1) as f64)
+            } else {
+                COLOURS[k % COLOURS.len()]
+            };
             let style = colour.stroke_width(2);
             let label = model.label.clone();
             // The tips, so the end points can be told apart where curves overlap.
@@ -172,6 +180,9 @@ impl Figure for ShapePlot {
                         .map(|s| PathElement::new(s.clone(), style)),
                 )?
             };
+            if label.is_empty() {
+                continue;
+            }
             if model.dashed {
                 annotation.label(label).legend(move |(x, y)| {
                     DashedPathElement::new(vec![(x, y), (x + 30, y)], 9, 6, style)
@@ -195,6 +206,26 @@ impl Figure for ShapePlot {
     }
 }
 
+/// Anchors of the gradient: the viridis colour map (dark blue, teal, green, yellow).
+const GRADIENT: [(f64, f64, f64); 5] = [
+    (68.0, 1.0, 84.0),
+    (59.0, 82.0, 139.0),
+    (33.0, 145.0, 140.0),
+    (94.0, 201.0, 98.0),
+    (253.0, 231.0, 37.0),
+];
+
+/// The colour at `s` in `[0, 1]` along [`GRADIENT`], stopping short of its palest end so that
+/// every line stays visible on white.
+fn gradient(s: f64) -> RGBColor {
+    let s = 0.9 * s.clamp(0.0, 1.0) * (GRADIENT.len() - 1) as f64;
+    let k = (s.floor() as usize).min(GRADIENT.len() - 2);
+    let w = s - k as f64;
+    let (a, b) = (GRADIENT[k], GRADIENT[k + 1]);
+    let mix = |p: f64, q: f64| (p + w * (q - p)).round() as u8;
+    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -208,6 +239,7 @@ mod tests {
                 dashed: false,
                 shapes: vec![shape],
             }],
+            gradient: false,
         }
     }
 
@@ -221,5 +253,12 @@ mod tests {
         assert!((sx / sy - 1.0).abs() < 1e-12, "{sx} vs {sy}");
         assert!(f.x.0 < 0.0 && f.x.1 > 1.0);
         assert!(f.y.0 < -0.6 && f.y.1 > 0.0);
+    }
+
+    #[test]
+    fn gradient_runs_from_dark_to_light() {
+        assert_eq!(gradient(0.0), RGBColor(68, 1, 84));
+        let light = gradient(1.0);
+        assert!(light.1 > 150 && light.1 < 231, "{light:?}");
     }
 }

@@ -130,8 +130,9 @@ pub fn write_files(
     }
 
     if with_plot {
-        files.extend(plot::write_static_shapes(
+        files.extend(plot::write_shapes(
             dir,
+            "static_shapes",
             &shape_plot(outcome, full, case),
         )?);
     }
@@ -185,6 +186,7 @@ fn shape_plot(outcome: &Outcome, full: &FullModel, case: &Case) -> ShapePlot {
                     .collect(),
             })
             .collect(),
+        gradient: false,
     }
 }
 

@@ -6,7 +6,7 @@
 //! command exits with status 1.
 
 mod files;
-mod report;
+pub(crate) mod report;
 
 use std::io::Write as _;
 use std::path::PathBuf;

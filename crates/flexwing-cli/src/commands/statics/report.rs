@@ -8,20 +8,7 @@ use flexwing::model::{DistributedForce, Force, Load};
 use serde::Serialize;
 
 use super::{ModelRun, Outcome, PointResult};
-use crate::output;
-
-/// `v` with up to 6 significant digits and no trailing zeros: `150`, `0.0666667`, `1.5e-7`.
-pub fn short(v: f64) -> String {
-    let s = output::significant(v + 0.0, 6);
-    let (mantissa, exponent) = s.split_at(s.find('e').unwrap_or(s.len()));
-    if !mantissa.contains('.') {
-        return s;
-    }
-    format!(
-        "{}{exponent}",
-        mantissa.trim_end_matches('0').trim_end_matches('.')
-    )
-}
+pub use crate::output::short;
 
 /// One line describing a load.
 pub fn describe_load(load: &Load) -> String {

@@ -110,12 +110,24 @@ impl Stage {
                 for i in 0..dim {
                     self.z[i] += dz[i];
                 }
+                if !norm.is_finite() {
+                    break;
+                }
                 if norm <= tol {
                     ok = true;
                     break;
                 }
                 if let Some(o) = old {
-                    if norm > 0.9 * o {
+                    let rate = norm / o;
+                    // Converged to round-off: the corrections stopped shrinking but are already
+                    // far below the error scale.
+                    if rate > 0.9 {
+                        ok = norm <= 1e-2;
+                        break;
+                    }
+                    // Geometric convergence: the remaining corrections sum to rate/(1−rate)·norm.
+                    if rate / (1.0 - rate) * norm <= tol {
+                        ok = true;
                         break;
                     }
                 }

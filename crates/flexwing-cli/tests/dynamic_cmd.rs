@@ -1,0 +1,735 @@
+//! `flexwing dynamic`: the dynamic examples run and write what docs/cli.md promises; physical
+//! checks that need no reference data (energy conservation of the full model in free vibration,
+//! reduced models approaching the full one as modes are added, a reduced model on every mode
+//! reproducing the full model); bad input is rejected with one line naming the field; an
+//! integration that stops keeps what it computed and exits with status 1.
+//!
+//! Most checks compare the code with itself or with physical invariants; none is a comparison with
+//! published numbers (the library's tests hold those).
+
+mod common;
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+use common::{assert_success, example, flexwing_in, stderr, stdout, TempDir};
+use serde_json::Value;
+
+fn read_csv(path: &Path) -> (String, Vec<Vec<String>>) {
+    let text = fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines();
+    let header = lines.next().expect("header").to_string();
+    let rows = lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    (header, rows)
+}
+
+/// Run `flexwing dynamic CASE --out DIR [extra]`; returns the output and DIR.
+fn run_dynamic(dir: &TempDir, case: &Path, extra: &[&str]) -> (Output, PathBuf) {
+    let out = dir.path().join("out");
+    let mut args = vec![
+        "dynamic",
+        case.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    (flexwing_in(dir.path(), &args), out)
+}
+
+fn json(o: &Output) -> Value {
+    serde_json::from_slice(&o.stdout)
+        .unwrap_or_else(|e| panic!("stdout is not one JSON document: {e}\n{}", stdout(o)))
+}
+
+fn model<'a>(doc: &'a Value, label: &str) -> &'a Value {
+    doc["models"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|m| m["label"] == label)
+        .unwrap_or_else(|| panic!("no model {label}"))
+}
+
+fn numbers(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap_or_else(|| panic!("not an array: {v}"))
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// A copy of the example `file` in `dir` with `end_time` set to `end_time` (s), for runs that
+/// would be slow in full.
+fn shortened(dir: &TempDir, file: &str, end_time: &str) -> PathBuf {
+    let text = fs::read_to_string(example(file)).unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("end_time"))
+        .expect("an end_time line");
+    dir.write(
+        file,
+        &text.replacen(line, &format!("end_time = {end_time}"), 1),
+    )
+}
+
+/// Largest `|H(t) − H(0)| / H(0)` of a model's total energy.
+fn energy_drift(m: &Value) -> f64 {
+    let total = numbers(&m["energy"]["total_J"]);
+    total
+        .iter()
+        .map(|h| (h - total[0]).abs() / total[0])
+        .fold(0.0, f64::max)
+}
+
+/// Largest tip distance between two models over their common output times.
+fn max_tip_distance(a: &Value, b: &Value) -> f64 {
+    let (ax, ay) = (numbers(&a["tip"]["x_m"]), numbers(&a["tip"]["y_m"]));
+    let (bx, by) = (numbers(&b["tip"]["x_m"]), numbers(&b["tip"]["y_m"]));
+    (0..ax.len().min(bx.len()))
+        .map(|k| (ax[k] - bx[k]).hypot(ay[k] - by[k]))
+        .fold(0.0, f64::max)
+}
+
+/// Check the JSON document and the files of a complete run against docs/cli.md; returns the
+/// document.
+fn check_complete_run(case: &Path, labels: &[&str], times: usize, nodes: usize) -> Value {
+    let name = case.file_name().unwrap().to_string_lossy().into_owned();
+    let dir = TempDir::new("dynamic-example");
+    let (o, out) = run_dynamic(&dir, case, &["--json", "--plot"]);
+    assert_success(&o);
+    assert!(o.stderr.is_empty(), "{name}: stderr: {}", stderr(&o));
+    let doc = json(&o);
+    assert!(doc["case"].as_str().unwrap().ends_with(&name));
+    assert!(doc["title"].is_string());
+    assert_eq!(doc["status"], "complete", "{name}");
+    assert!(doc["error"].is_null());
+    assert_eq!(doc["n_elements"], nodes - 1);
+    assert!(doc["end_time_s"].as_f64().unwrap() > 0.0);
+    let models = doc["models"].as_array().unwrap();
+    let got: Vec<&str> = models
+        .iter()
+        .map(|m| m["label"].as_str().unwrap())
+        .collect();
+    assert_eq!(got, labels, "{name}");
+    for (k, m) in models.iter().enumerate() {
+        let label = m["label"].as_str().unwrap();
+        assert!(m["dofs"].as_u64().unwrap() >= 1);
+        assert!(["bdf", "dopri5", "midpoint"].contains(&m["integrator"].as_str().unwrap()));
+        assert!(["exact", "finite-difference", "neglected"]
+            .contains(&m["gyroscopic"].as_str().unwrap()));
+        for key in [
+            "steps",
+            "rejected_steps",
+            "rhs_evaluations",
+            "jacobian_evaluations",
+            "factorizations",
+            "newton_iterations",
+        ] {
+            assert!(m["stats"][key].is_u64(), "{label} stats {key}");
+        }
+        assert!(m["stats"]["steps"].as_u64().unwrap() > 0);
+        assert!(m["wall_time_s"].as_f64().unwrap() > 0.0);
+        assert_eq!(m["status"], "complete");
+        assert!(m["error"].is_null());
+        let t = numbers(&m["t_s"]);
+        assert_eq!(t.len(), times, "{name} {label}");
+        assert_eq!(t[0], 0.0);
+        assert_eq!(t[times - 1], doc["end_time_s"].as_f64().unwrap());
+        for key in ["x_m", "y_m", "twist_rad"] {
+            assert_eq!(numbers(&m["tip"][key]).len(), times, "{label} tip {key}");
+        }
+        for key in ["kinetic_J", "strain_J", "total_J"] {
+            assert_eq!(numbers(&m["energy"][key]).len(), times, "{label} {key}");
+        }
+        if k == 0 {
+            assert_eq!(m["ratio_to_first"], 1.0);
+            assert!(m["max_tip_difference_m"].is_null());
+            assert!(m["max_relative_error"].is_null());
+        } else {
+            assert!(m["ratio_to_first"].as_f64().unwrap() > 0.0);
+            let d = m["max_tip_difference_m"].as_f64().unwrap();
+            assert!((d - max_tip_distance(m, &models[0])).abs() <= 1e-12 * d.max(1.0));
+            assert!(m["max_relative_error"]["tip_y"].as_f64().unwrap() >= 0.0);
+        }
+        if label.starts_with("reduced") {
+            assert!(m["modes"].is_array());
+        } else {
+            assert!(m["modes"].is_null());
+        }
+    }
+
+    // The files: listed, present, with the documented columns, and no temporaries.
+    let files: Vec<&str> = doc["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f.as_str().unwrap())
+        .collect();
+    for f in &files {
+        assert!(Path::new(f).is_file(), "{f} listed but not written");
+    }
+    assert!(files.last().unwrap().ends_with("status.txt"));
+    let mut expected = vec![
+        "dynamic_nodes.csv",
+        "dynamic_snapshots.png",
+        "dynamic_snapshots.svg",
+        "dynamic_summary.csv",
+        "dynamic_tip.csv",
+        "dynamic_tip.png",
+        "dynamic_tip.svg",
+        "status.txt",
+    ];
+    let mut names: Vec<String> = fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    expected.sort();
+    assert_eq!(names, expected, "{name}: files (and no temporaries)");
+    assert_eq!(files.len(), expected.len());
+
+    let (header, rows) = read_csv(&out.join("dynamic_tip.csv"));
+    assert_eq!(
+        header,
+        "model,t_s,tip_x_m,tip_y_m,tip_twist_rad,kinetic_J,strain_J,total_J"
+    );
+    assert_eq!(rows.len(), labels.len() * times);
+    let (header, rows) = read_csv(&out.join("dynamic_nodes.csv"));
+    assert_eq!(header, "model,t_s,node,x_m,y_m,twist_rad");
+    assert_eq!(rows.len(), labels.len() * times.min(201) * nodes);
+    let (header, rows) = read_csv(&out.join("dynamic_summary.csv"));
+    assert_eq!(
+        header,
+        "model,dofs,integrator,steps,rejected_steps,rhs_evaluations,jacobian_evaluations,\
+         factorizations,wall_time_s,ratio_to_first,max_tip_difference_m,\
+         max_relative_error_tip_x,max_relative_error_tip_y,status"
+    );
+    assert_eq!(rows.len(), labels.len());
+    assert!(rows.iter().all(|r| r.last().unwrap() == "complete"));
+    assert_eq!(
+        fs::read_to_string(out.join("status.txt")).unwrap(),
+        "complete\n"
+    );
+    for stem in ["dynamic_tip", "dynamic_snapshots"] {
+        let svg = fs::read_to_string(out.join(format!("{stem}.svg"))).unwrap();
+        assert!(svg.starts_with("<svg"), "{stem}");
+        assert!(svg.contains(labels[0]), "{stem}: first model not named");
+        let png = fs::read(out.join(format!("{stem}.png"))).unwrap();
+        assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"), "{stem}: not a PNG");
+        assert!(png.len() > 10_000, "{stem}: PNG suspiciously small");
+    }
+    let tip_svg = fs::read_to_string(out.join("dynamic_tip.svg")).unwrap();
+    for l in labels {
+        assert!(tip_svg.contains(l), "{l} missing in the tip plot legend");
+    }
+    doc
+}
+
+#[test]
+fn paper_sine_reduced_models_approach_the_full_model() {
+    let labels = [
+        "full",
+        "reduced-r1",
+        "reduced-r2",
+        "reduced-r3",
+        "reduced-r4",
+    ];
+    let doc = check_complete_run(&example("paper_sine.toml"), &labels, 201, 21);
+    let full = model(&doc, "full");
+    assert_eq!(full["integrator"], "bdf");
+    assert_eq!(model(&doc, "reduced-r1")["integrator"], "dopri5");
+    assert_eq!(
+        model(&doc, "reduced-r4")["modes"],
+        serde_json::json!([1, 2, 3, 4])
+    );
+    // The beam starts at rest, undeformed: the tip at (L, 0) with no energy.
+    assert_eq!(numbers(&full["tip"]["x_m"])[0], 1.0);
+    assert_eq!(numbers(&full["energy"]["total_J"])[0], 0.0);
+    // The 10 N tip force moves the tip by centimetres.
+    let peak = numbers(&full["tip"]["y_m"])
+        .iter()
+        .fold(0.0_f64, |m, y| m.max(y.abs()));
+    assert!(peak > 0.05 && peak < 0.2, "peak tip y {peak}");
+    let r1 = max_tip_distance(model(&doc, "reduced-r1"), full);
+    let r4 = max_tip_distance(model(&doc, "reduced-r4"), full);
+    assert!(r4 < r1, "r = 4: {r4} m, r = 1: {r1} m");
+    assert!(r4 < 0.01 * peak, "r = 4 off by {r4} m");
+}
+
+#[test]
+fn paper_free_vibration_full_conserves_energy_and_simplified_differs() {
+    // The example runs 0.2 s; a tenth of a second shows the same and keeps the test quick.
+    let dir = TempDir::new("free-vibration-copy");
+    let case = shortened(&dir, "paper_free_vibration.toml", "0.1");
+    let doc = check_complete_run(&case, &["full", "simplified"], 21, 11);
+    let full = model(&doc, "full");
+    let simplified = model(&doc, "simplified");
+    assert_eq!(full["gyroscopic"], "exact");
+    assert_eq!(simplified["gyroscopic"], "neglected");
+    // Released at rest from the static deflection under the (inactive) 150 N tip force.
+    assert_eq!(numbers(&full["energy"]["kinetic_J"])[0], 0.0);
+    let y0 = numbers(&full["tip"]["y_m"])[0];
+    assert!(y0 > 0.5 && y0 < 0.7, "initial tip y {y0}");
+    assert_eq!(numbers(&simplified["tip"]["y_m"])[0], y0);
+    // No load and no damping during the motion: H = T + V is conserved by the full model.
+    let drift = energy_drift(full);
+    assert!(drift < 1e-3, "full model energy drift {drift}");
+    assert!(
+        energy_drift(simplified) > 1e-3,
+        "simplified model energy drift {}",
+        energy_drift(simplified)
+    );
+    assert!(simplified["max_tip_difference_m"].as_f64().unwrap() > 1e-3);
+}
+
+#[test]
+fn gust_wing_runs_with_damping_and_torsion() {
+    let dir = TempDir::new("gust-copy");
+    let case = shortened(&dir, "gust_wing.toml", "0.5");
+    let doc = check_complete_run(&case, &["full", "reduced-r6"], 51, 21);
+    assert_eq!(doc["has_torsion"], true);
+    let full = model(&doc, "full");
+    assert_eq!(full["dofs"], 40);
+    // The follower load, ramped up from zero, lifts the tip and the offset d0 twists it.
+    let y = numbers(&full["tip"]["y_m"]);
+    assert_eq!(y[0], 0.0);
+    assert!(y.iter().cloned().fold(0.0, f64::max) > 0.5);
+    let twist = numbers(&full["tip"]["twist_rad"]);
+    assert!(twist.iter().any(|t| t.abs() > 0.01));
+    let r6 = model(&doc, "reduced-r6");
+    assert_eq!(r6["dofs"], 6);
+    assert!(r6["max_tip_difference_m"].as_f64().unwrap() < 0.01);
+}
+
+#[test]
+fn table_output_names_every_model_side_by_side() {
+    let dir = TempDir::new("dynamic-table");
+    let (o, out) = run_dynamic(&dir, &example("paper_sine.toml"), &[]);
+    assert_success(&o);
+    let text = stdout(&o);
+    for needle in [
+        "model: 20 elements",
+        "× sin(20 t)",
+        "initial state: at rest",
+        "reduced-r4",
+        "RHS evaluations",
+        "Jacobian evaluations",
+        "factorizations",
+        "wall time (ms)",
+        "ratio to first",
+        "max Δtip from first (m)",
+        "max |Δy| / max |y₁|",
+        "status: complete",
+        "wrote ",
+    ] {
+        assert!(text.contains(needle), "{needle:?} missing:\n{text}");
+    }
+    // One header line with every label, in order.
+    let header = text
+        .lines()
+        .find(|l| l.contains("full") && l.contains("reduced-r1"))
+        .unwrap();
+    let positions: Vec<usize> = [
+        "full",
+        "reduced-r1",
+        "reduced-r2",
+        "reduced-r3",
+        "reduced-r4",
+    ]
+    .iter()
+    .map(|l| header.find(l).unwrap())
+    .collect();
+    assert!(positions.windows(2).all(|w| w[0] < w[1]), "{header}");
+    assert!(
+        !out.join("dynamic_tip.svg").exists(),
+        "plots without --plot"
+    );
+}
+
+/// A small bending-only beam (n = 4) with a named tip load, to vary one key at a time.
+const CASE: &str = r#"
+[beam]
+length = 1.0
+elements = 4
+
+[beam.section]
+EI = 50.0
+mass_per_length = 0.2
+
+[[loads]]
+name = "F1"
+type = "point-force"
+node = 4
+direction = "dead"
+fy = 5.0
+
+[dynamic]
+end_time = 0.2
+output_step = 0.01
+"#;
+
+fn edit(from: &str, to: &str) -> String {
+    assert!(CASE.contains(from), "{from:?} not in the base case");
+    CASE.replacen(from, to, 1)
+}
+
+#[test]
+fn a_reduced_model_on_every_mode_reproduces_the_full_model() {
+    // With all 4 modes (listed out of order) the projection is exact; modal damping must then
+    // act on the same modes in both models.
+    let dir = TempDir::new("all-modes");
+    let case = dir.write(
+        "case.toml",
+        &format!(
+            "{CASE}reduced_modes = [[4, 2, 3, 1]]\nintegrator = \"dopri5\"\nrtol = 1e-10\natol = 1e-12\n\
+             damping = {{ type = \"modal\", ratios = [0.05, 0.1, 0.2] }}\n\n\
+             [dynamic.initial]\ntype = \"given\"\nq = [0.2, -0.1, 0.05, 0.1]\n\
+             qdot = [1.0, 0.0, -2.0, 0.5]\n"
+        ),
+    );
+    let (o, _) = run_dynamic(&dir, &case, &["--json"]);
+    assert_success(&o);
+    let doc = json(&o);
+    let full = model(&doc, "full");
+    let reduced = model(&doc, "reduced-modes-4-2-3-1");
+    assert_eq!(reduced["modes"], serde_json::json!([4, 2, 3, 1]));
+    // The given state: the first joint rotated by 0.2 rad, and so on.
+    let x0 = numbers(&full["tip"]["x_m"])[0];
+    let angles = [0.2_f64, 0.1, 0.15, 0.25];
+    let expected: f64 = angles.iter().map(|a| 0.25 * a.cos()).sum();
+    assert!((x0 - expected).abs() < 1e-12, "{x0} vs {expected}");
+    let d = max_tip_distance(full, reduced);
+    assert!(d < 1e-6, "reduced model on every mode off by {d} m");
+    // Damped: the energy at the end is below the initial one.
+    let total = numbers(&full["energy"]["total_J"]);
+    assert!(total[total.len() - 1] < 0.9 * total[0]);
+
+    // Free vibration (the tip force removed) of reduced models on single modes: the model on mode
+    // 3 gets mode 3's ratio (the only non-zero one) and its energy dies out, while the undamped
+    // mode 1 keeps its energy.
+    let case = dir.write(
+        "case.toml",
+        &format!(
+            "{}full = false
+reduced_modes = [[3], [1]]
+             damping = {{ type = \"modal\", ratios = [0.0, 0.0, 0.2] }}\n\n\
+             [dynamic.initial]\ntype = \"given\"\nq = [0.01, 0.01, -0.01, 0.01]\n",
+            edit("fy = 5.0\n", "fy = 5.0\nactive = false\n")
+        ),
+    );
+    let (o, _) = run_dynamic(&dir, &case, &["--json"]);
+    assert_success(&o);
+    let doc = json(&o);
+    let energy = |label: &str| numbers(&model(&doc, label)["energy"]["total_J"]);
+    let (third, first) = (energy("reduced-modes-3"), energy("reduced-modes-1"));
+    assert!(third[20] < 1e-6 * third[0], "{} of {}", third[20], third[0]);
+    assert!((first[20] / first[0] - 1.0).abs() < 1e-3, "{first:?}");
+}
+
+#[test]
+fn every_integrator_and_gyroscopic_option_runs() {
+    for extra in [
+        "integrator = \"midpoint\"\n",
+        "integrator = \"midpoint\"\nstep = 2e-3\n",
+        "integrator = \"dopri5\"\ngyroscopic = \"finite-difference\"\ngyroscopic_step = 1e-6\n",
+        "integrator = \"bdf\"\nmax_order = 3\nsimplified = true\nreduced = [2]\n",
+        "gyroscopic = \"neglected\"\ndamping = { type = \"rayleigh\", alpha = 0.5, beta = 1e-4 }\n",
+    ] {
+        let dir = TempDir::new("options");
+        let case = dir.write("case.toml", &format!("{CASE}{extra}"));
+        let (o, _) = run_dynamic(&dir, &case, &["--json"]);
+        assert_success(&o);
+        let doc = json(&o);
+        assert_eq!(doc["status"], "complete", "{extra}");
+        let full = model(&doc, "full");
+        assert_eq!(numbers(&full["t_s"]).len(), 21, "{extra}");
+        if extra.contains("midpoint") {
+            assert_eq!(full["integrator"], "midpoint");
+        }
+    }
+}
+
+#[test]
+fn time_histories_and_inactive_loads() {
+    let dir = TempDir::new("histories");
+    let case = dir.write(
+        "case.toml",
+        &format!(
+            "{}\n[[loads]]\nname = \"G\"\ntype = \"gravity\"\nactive = false\n",
+            edit(
+                "fy = 5.0\n",
+                "fy = 5.0\ntime = { type = \"table\", t = [0.0, 0.1, 0.2], value = [0.0, 1.0, 1.0] }\n"
+            )
+        ),
+    );
+    let (o, _) = run_dynamic(&dir, &case, &["--json"]);
+    assert_success(&o);
+    let doc = json(&o);
+    let y = numbers(&model(&doc, "full")["tip"]["y_m"]);
+    // The force grows from zero: at rest at first, then lifted (the inactive gravity does not act).
+    assert_eq!(y[0], 0.0);
+    assert!(y[1].abs() < 0.05 * y[20], "{} vs {}", y[1], y[20]);
+    assert!(y[20] > 0.01, "{}", y[20]);
+    let (o, _) = run_dynamic(&dir, &case, &[]);
+    let text = stdout(&o);
+    assert!(
+        text.contains("× table of 3 points over [0, 0.2] s"),
+        "{text}"
+    );
+    assert!(text.contains("G: gravity"), "{text}");
+    assert!(text.contains("(inactive: not used)"), "{text}");
+}
+
+#[test]
+fn nodes_file_keeps_at_most_201_snapshots() {
+    let dir = TempDir::new("snapshots");
+    // 0, 0.0005, ..., 0.2 s: 401 output times, so every second one is written.
+    let case = dir.write(
+        "case.toml",
+        &edit("output_step = 0.01", "output_step = 0.0005"),
+    );
+    let (o, out) = run_dynamic(&dir, &case, &[]);
+    assert_success(&o);
+    let (_, rows) = read_csv(&out.join("dynamic_tip.csv"));
+    assert_eq!(rows.len(), 401);
+    let (_, rows) = read_csv(&out.join("dynamic_nodes.csv"));
+    assert_eq!(rows.len(), 201 * 5);
+    assert_eq!(
+        rows[5][1], "0.001",
+        "the second snapshot is the third output time"
+    );
+}
+
+#[test]
+fn default_output_directory_and_json_only_on_stdout() {
+    let dir = TempDir::new("dynamic-default-out");
+    dir.write("my_case.toml", CASE);
+    let o = flexwing_in(dir.path(), &["dynamic", "my_case.toml", "--json"]);
+    assert_success(&o);
+    assert!(o.stderr.is_empty(), "stderr: {}", stderr(&o));
+    json(&o);
+    let out = dir.path().join("results").join("my_case");
+    assert!(out.join("dynamic_tip.csv").is_file());
+    assert_eq!(
+        fs::read_to_string(out.join("status.txt")).unwrap(),
+        "complete\n"
+    );
+}
+
+/// Run `dynamic` on `case`: exit status 2, one line `error: …` naming every string of `names`,
+/// nothing on stdout, no output directory.
+fn assert_rejected(case: &str, names: &[&str]) {
+    let dir = TempDir::new("dynamic-bad");
+    let path = dir.write("case.toml", case);
+    let (o, out) = run_dynamic(&dir, &path, &[]);
+    let err = stderr(&o);
+    assert!(!err.contains("panicked"), "panic: {err}");
+    assert_eq!(o.status.code(), Some(2), "stderr: {err}");
+    assert!(err.starts_with("error: "), "{err:?}");
+    assert_eq!(err.lines().count(), 1, "not one line: {err:?}");
+    for name in names {
+        assert!(err.contains(name), "{name:?} not named in {err:?}");
+    }
+    assert!(o.stdout.is_empty(), "stdout: {}", stdout(&o));
+    assert!(!out.exists(), "output written for a bad case");
+}
+
+#[test]
+fn bad_input_names_the_field() {
+    let cases: Vec<(String, Vec<&str>)> = vec![
+        (
+            edit("end_time = 0.2", "end_time = -1"),
+            vec!["dynamic.end_time: must be a finite positive number, got -1"],
+        ),
+        (
+            edit("end_time = 0.2", "end_time = nan"),
+            vec!["dynamic.end_time", "NaN"],
+        ),
+        (
+            edit("output_step = 0.01", "output_times = [0.0, 0.05, 0.1, 2.0]"),
+            vec!["dynamic.output_times[3]: 2 is after end_time 0.2"],
+        ),
+        (
+            edit("output_step = 0.01", "output_times = [0.1, 0.05]"),
+            vec!["dynamic.output_times[1]", "increase"],
+        ),
+        (
+            edit("output_step = 0.01\n", ""),
+            vec!["dynamic.output_step: missing"],
+        ),
+        (
+            edit(
+                "output_step = 0.01",
+                "output_step = 0.01\noutput_times = [0.0]",
+            ),
+            vec!["dynamic.output_step", "not both"],
+        ),
+        (
+            edit(
+                "fy = 5.0\n",
+                "fy = 5.0\ntime = { type = \"table\", t = [0.0, 0.1], value = [0.0, 1.0] }\n",
+            ),
+            vec![
+                "loads[0].time.t: table covers [0, 0.1] s but the simulation runs over [0, 0.2] s",
+            ],
+        ),
+        (
+            edit(
+                "fy = 5.0\n",
+                "fy = 5.0\ntime = { type = \"sine\", omega = 20.0, time = 1.0 }\n",
+            ),
+            vec!["loads[0].time.time", "\"sine\""],
+        ),
+        (
+            edit("fy = 5.0\n", "fy = 5.0\ntime = { type = \"wobble\" }\n"),
+            vec!["loads[0].time.type", "unknown variant `wobble`"],
+        ),
+        (
+            edit("fy = 5.0\n", "fy = 5.0\nactive = \"no\"\n"),
+            vec!["loads[0].active", "invalid type"],
+        ),
+        (
+            format!("{CASE}rtol = 1e-300\n"),
+            vec!["dynamic.rtol", "1e-300"],
+        ),
+        (format!("{CASE}atol = 0\n"), vec!["dynamic.atol: must be"]),
+        (
+            format!("{CASE}max_order = 9\n"),
+            vec!["dynamic.max_order: must be between 1 and 5"],
+        ),
+        (
+            format!("{CASE}step = 1e-3\n"),
+            vec!["dynamic.step", "midpoint"],
+        ),
+        (
+            format!("{CASE}integrator = \"rk4\"\n"),
+            vec!["dynamic.integrator", "unknown variant `rk4`"],
+        ),
+        (
+            format!("{CASE}gyroscopic = \"finite-difference\"\ngyroscopic_step = 0\n"),
+            vec!["dynamic.gyroscopic_step: must be"],
+        ),
+        (
+            format!("{CASE}full = false\n"),
+            vec!["dynamic.full: nothing to simulate"],
+        ),
+        (
+            format!("{CASE}reduced = [9]\n"),
+            vec!["dynamic.reduced[0]", "9"],
+        ),
+        (
+            format!("{CASE}reduced_modes = [[1, 1]]\n"),
+            vec!["dynamic.reduced_modes[0]", "listed twice"],
+        ),
+        (
+            format!("{CASE}damping = {{ type = \"rayleigh\", alpha = -1.0 }}\n"),
+            vec!["dynamic.damping.alpha: must be a finite non-negative number, got -1"],
+        ),
+        (
+            format!("{CASE}damping = {{ type = \"modal\", ratios = [0.1, 0.1, 0.1, 0.1, 0.1] }}\n"),
+            vec!["dynamic.damping.ratios", "4 modes"],
+        ),
+        (
+            format!("{CASE}\n[dynamic.initial]\ntype = \"static\"\nloads = [\"F2\"]\n"),
+            vec!["dynamic.initial.loads[0]: no load named \"F2\""],
+        ),
+        (
+            format!("{CASE}\n[dynamic.initial]\ntype = \"given\"\nq = [0.1]\n"),
+            vec!["dynamic.initial.q: needs 4 values"],
+        ),
+        (
+            format!("{CASE}\n[dynamic.initial]\ntype = \"rest\"\nloads = [\"F1\"]\n"),
+            vec!["dynamic.initial.loads", "\"rest\""],
+        ),
+        (
+            format!("{CASE}bogus = 1\n"),
+            vec!["dynamic", "unknown field `bogus`"],
+        ),
+        (
+            CASE[..CASE.find("[dynamic]").unwrap()].to_string(),
+            vec!["dynamic: missing"],
+        ),
+    ];
+    for (case, names) in cases {
+        assert_rejected(&case, &names);
+    }
+}
+
+/// The full and simplified models with a fixed 0.25 s implicit midpoint step: quiet until a
+/// 500 N tip force is switched on at 0.3 s, which Newton's method cannot follow (even with the
+/// integrator's sub-steps), so both stop after the outputs at 0, 0.1 and 0.2 s.
+fn failing_case() -> String {
+    format!(
+        "{}simplified = true\nintegrator = \"midpoint\"\nstep = 0.25\n",
+        edit(
+            "fy = 5.0\n",
+            "fy = 500.0\ntime = { type = \"step\", time = 0.3 }\n"
+        )
+        .replace("end_time = 0.2", "end_time = 1.0")
+        .replace("output_step = 0.01", "output_step = 0.1")
+    )
+}
+
+#[test]
+fn an_integration_failure_keeps_what_was_computed() {
+    let dir = TempDir::new("dynamic-fail");
+    let case = dir.write("case.toml", &failing_case());
+    let (o, out) = run_dynamic(&dir, &case, &[]);
+    let err = stderr(&o);
+    assert!(!err.contains("panicked"), "panic: {err}");
+    assert_eq!(o.status.code(), Some(1), "stderr: {err}");
+    assert!(err.starts_with("error: "), "{err:?}");
+    assert_eq!(err.lines().count(), 1, "not one line: {err:?}");
+    for needle in ["full: ", "time integration stopped at t = ", "simplified"] {
+        assert!(err.contains(needle), "{needle:?} not in {err:?}");
+    }
+    assert!(stdout(&o).contains("status: incomplete: full: "));
+
+    let status = fs::read_to_string(out.join("status.txt")).unwrap();
+    let lines: Vec<&str> = status.lines().collect();
+    assert_eq!(lines.len(), 2, "{status}");
+    assert!(lines[0].starts_with("incomplete: full: time integration stopped at t = "));
+    assert!(lines[1].starts_with("incomplete: simplified: "));
+
+    let (_, rows) = read_csv(&out.join("dynamic_tip.csv"));
+    let times: Vec<(&str, &str)> = rows
+        .iter()
+        .map(|r| (r[0].as_str(), r[1].as_str()))
+        .collect();
+    assert_eq!(
+        times,
+        [
+            ("full", "0.0"),
+            ("full", "0.1"),
+            ("full", "0.2"),
+            ("simplified", "0.0"),
+            ("simplified", "0.1"),
+            ("simplified", "0.2"),
+        ]
+    );
+    let (_, rows) = read_csv(&out.join("dynamic_nodes.csv"));
+    assert_eq!(rows.len(), 2 * 3 * 5);
+    let (_, rows) = read_csv(&out.join("dynamic_summary.csv"));
+    assert!(rows.iter().all(|r| r.last().unwrap() == "incomplete"));
+}
+
+#[test]
+fn an_integration_failure_still_prints_one_json_document() {
+    let dir = TempDir::new("dynamic-fail-json");
+    let case = dir.write("case.toml", &failing_case());
+    let (o, _) = run_dynamic(&dir, &case, &["--json", "--plot"]);
+    assert_eq!(o.status.code(), Some(1));
+    let doc = json(&o);
+    assert_eq!(doc["status"], "incomplete");
+    assert!(doc["error"].as_str().unwrap().starts_with("full: "));
+    let full = model(&doc, "full");
+    assert_eq!(full["status"], "incomplete");
+    assert!(full["error"]
+        .as_str()
+        .unwrap()
+        .contains("time integration stopped"));
+    assert_eq!(numbers(&full["t_s"]), [0.0, 0.1, 0.2]);
+}
