@@ -16,7 +16,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::dopri5::initial_step;
 use super::{
-    check_output_times, IntegrationFailure, IntegrationResult, IntegratorStats, OdeSystem,
+    check_output_times, failure, outputs_at_start, IntegrationResult, IntegratorStats, OdeSystem,
     Tolerances, Trajectory,
 };
 use crate::error::SolveError;
@@ -122,13 +122,7 @@ impl Bdf {
         let opts = &self.options;
         let mut stats = IntegratorStats::default();
         let mut traj = Trajectory::default();
-        let fail = |traj: Trajectory, stats, error| {
-            Err(Box::new(IntegrationFailure {
-                trajectory: traj,
-                stats,
-                error,
-            }))
-        };
+        let fail = failure;
         if let Err(e) = check_output_times(t0, t_out)
             .and_then(|_| opts.tolerances.validate("dynamic.tolerances", dim))
         {
@@ -145,12 +139,7 @@ impl Bdf {
         let atol = opts.tolerances.atol(dim);
         let rtol = opts.tolerances.rtol;
         let t_end = t_out.last().copied().unwrap_or(t0);
-        let mut next_out = 0;
-        while next_out < t_out.len() && t_out[next_out] <= t0 {
-            traj.t.push(t_out[next_out]);
-            traj.y.push(y0.to_vec());
-            next_out += 1;
-        }
+        let mut next_out = outputs_at_start(t0, y0, t_out, &mut traj);
         if next_out == t_out.len() {
             return Ok((traj, stats));
         }

@@ -5,7 +5,7 @@
 //! (the coefficients and the continuous extension of `DOPRI5`).
 
 use super::{
-    check_output_times, error_norm, IntegrationFailure, IntegrationResult, IntegratorStats,
+    check_output_times, error_norm, failure, outputs_at_start, IntegrationResult, IntegratorStats,
     OdeSystem, Tolerances, Trajectory,
 };
 use crate::error::SolveError;
@@ -112,13 +112,7 @@ impl Dopri5 {
         let rtol = opts.tolerances.rtol;
         let mut stats = IntegratorStats::default();
         let mut traj = Trajectory::default();
-        let fail = |traj: Trajectory, stats, error| {
-            Err(Box::new(IntegrationFailure {
-                trajectory: traj,
-                stats,
-                error,
-            }))
-        };
+        let fail = failure;
         if let Err(e) = check_output_times(t0, t_out)
             .and_then(|_| opts.tolerances.validate("dynamic.tolerances", dim))
         {
@@ -133,12 +127,7 @@ impl Dopri5 {
         let mut t = t0;
         system.rhs(t, &y, &mut k[0]);
         stats.rhs_evaluations += 1;
-        let mut next_out = 0;
-        while next_out < t_out.len() && t_out[next_out] <= t0 {
-            traj.t.push(t_out[next_out]);
-            traj.y.push(y.clone());
-            next_out += 1;
-        }
+        let mut next_out = outputs_at_start(t0, y0, t_out, &mut traj);
         let mut h = match opts.first_step {
             Some(h) => h,
             None => initial_step(system, t, &y, &k[0], &atol, rtol, 5, &mut stats),

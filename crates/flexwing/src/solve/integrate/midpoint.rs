@@ -9,7 +9,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::dopri5::initial_step;
 use super::{
-    check_output_times, error_norm, IntegrationFailure, IntegrationResult, IntegratorStats,
+    check_output_times, error_norm, failure, outputs_at_start, IntegrationResult, IntegratorStats,
     OdeSystem, Tolerances, Trajectory,
 };
 use crate::error::SolveError;
@@ -163,13 +163,7 @@ impl ImplicitMidpoint {
         let opts = &self.options;
         let mut stats = IntegratorStats::default();
         let mut traj = Trajectory::default();
-        let fail = |traj: Trajectory, stats, error| {
-            Err(Box::new(IntegrationFailure {
-                trajectory: traj,
-                stats,
-                error,
-            }))
-        };
+        let fail = failure;
         let mut checks = check_output_times(t0, t_out)
             .and_then(|_| opts.tolerances.validate("dynamic.tolerances", dim));
         if let Some(h) = opts.step {
@@ -191,12 +185,7 @@ impl ImplicitMidpoint {
         let mut f0 = vec![0.0; dim];
         system.rhs(t, &y, &mut f0);
         stats.rhs_evaluations += 1;
-        let mut next_out = 0;
-        while next_out < t_out.len() && t_out[next_out] <= t0 {
-            traj.t.push(t_out[next_out]);
-            traj.y.push(y.clone());
-            next_out += 1;
-        }
+        let mut next_out = outputs_at_start(t0, y0, t_out, &mut traj);
         let mut stage = Stage {
             jac: DMatrix::zeros(dim, dim),
             lu: None,

@@ -77,6 +77,30 @@ impl std::error::Error for IntegrationFailure {}
 /// Result of an integration.
 pub type IntegrationResult = Result<(Trajectory, IntegratorStats), Box<IntegrationFailure>>;
 
+/// The failure result of a run that stopped: the output so far, the counters and the reason.
+pub(crate) fn failure(
+    trajectory: Trajectory,
+    stats: IntegratorStats,
+    error: SolveError,
+) -> IntegrationResult {
+    Err(Box::new(IntegrationFailure {
+        trajectory,
+        stats,
+        error,
+    }))
+}
+
+/// Record `y0` for the output times at or before `t0`; returns the index of the next output.
+pub(crate) fn outputs_at_start(t0: f64, y0: &[f64], t_out: &[f64], traj: &mut Trajectory) -> usize {
+    let mut next = 0;
+    while next < t_out.len() && t_out[next] <= t0 {
+        traj.t.push(t_out[next]);
+        traj.y.push(y0.to_vec());
+        next += 1;
+    }
+    next
+}
+
 /// Check output times against the start time: finite, non-decreasing, none before `t0`.
 pub(crate) fn check_output_times(t0: f64, t_out: &[f64]) -> Result<(), crate::InputError> {
     for (i, &t) in t_out.iter().enumerate() {
