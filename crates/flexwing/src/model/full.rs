@@ -221,11 +221,21 @@ pub struct Workspace {
     pub(super) resultants: Resultants,
     pub(super) dir: Vec<f64>,
     pub(super) kinetic: KineticScratch<f64>,
+    /// Configuration whose trigonometry `kinetic` holds (NaN: none yet).
+    pub(super) kinetic_at: Vec<f64>,
     pub(super) duals: KineticBuffers,
     pub(super) identity: DMatrix<f64>,
 }
 
 impl Workspace {
+    /// Make the kinetic scratch hold the trigonometry of `q`, unless it already does.
+    pub(super) fn configure(&mut self, model: &FullModel, q: &[f64]) {
+        if self.kinetic_at.as_slice() != q {
+            model.configure(q, &mut self.kinetic);
+            self.kinetic_at.copy_from_slice(q);
+        }
+    }
+
     /// The kinematics of the last configuration evaluated.
     pub fn kinematics(&self) -> &Kinematics {
         &self.kin
@@ -241,6 +251,7 @@ impl StructuralModel for FullModel {
             resultants: Resultants::zeros(self.n),
             dir: vec![0.0; self.n_dofs()],
             kinetic: KineticScratch::new(self.n),
+            kinetic_at: vec![f64::NAN; self.n_dofs()],
             duals: KineticBuffers::new(self),
             identity: DMatrix::identity(self.n_dofs(), self.n_dofs()),
         }
@@ -286,11 +297,13 @@ impl StructuralModel for FullModel {
     }
 
     fn momentum_into(&self, q: &[f64], qdot: &[f64], ws: &mut Workspace, out: &mut [f64]) {
-        self.kinetic_terms(q, qdot, &mut ws.kinetic, Some(out), None);
+        ws.configure(self, q);
+        self.kinetic_terms_configured(qdot, &mut ws.kinetic, Some(out), None);
     }
 
     fn gyroscopic_into(&self, q: &[f64], qdot: &[f64], ws: &mut Workspace, out: &mut [f64]) {
-        self.kinetic_terms(q, qdot, &mut ws.kinetic, None, Some(out));
+        ws.configure(self, q);
+        self.kinetic_terms_configured(qdot, &mut ws.kinetic, None, Some(out));
     }
 
     fn kinetic_derivatives_into(

@@ -78,22 +78,53 @@ impl FullModel {
         p: Option<&mut [D]>,
         gamma: Option<&mut [D]>,
     ) {
+        self.configure(q, sc);
+        self.kinetic_terms_configured(qdot, sc, p, gamma);
+    }
+
+    /// Sines and cosines of the absolute angles of `q` into `sc` (the costly part of the
+    /// recursions, shared by every velocity evaluated at the same configuration).
+    pub(crate) fn configure<D: DualNum<Primitive = f64> + Copy>(
+        &self,
+        q: &[D],
+        sc: &mut KineticScratch<D>,
+    ) {
         let n = self.n;
         let zero = D::from(0.0);
-        let (mut th, mut ps, mut thd, mut psd) = (zero, zero, zero, zero);
+        let (mut th, mut ps) = (zero, zero);
         for i in 0..n {
             th += q[i];
-            thd += qdot[i];
-            if self.torsion {
-                ps += q[n + i];
-                psd += qdot[n + i];
-            }
             let (s, c) = th.sin_cos();
-            let (sp, cp) = ps.sin_cos();
             sc.sin_theta[i] = s;
             sc.cos_theta[i] = c;
-            sc.sin_psi[i] = sp;
-            sc.cos_psi[i] = cp;
+            if self.torsion {
+                ps += q[n + i];
+                let (sp, cp) = ps.sin_cos();
+                sc.sin_psi[i] = sp;
+                sc.cos_psi[i] = cp;
+            } else {
+                sc.sin_psi[i] = zero;
+                sc.cos_psi[i] = D::from(1.0);
+            }
+        }
+    }
+
+    /// [`Self::kinetic_terms`] at the configuration last given to [`Self::configure`].
+    pub(crate) fn kinetic_terms_configured<D: DualNum<Primitive = f64> + Copy>(
+        &self,
+        qdot: &[D],
+        sc: &mut KineticScratch<D>,
+        p: Option<&mut [D]>,
+        gamma: Option<&mut [D]>,
+    ) {
+        let n = self.n;
+        let zero = D::from(0.0);
+        let (mut thd, mut psd) = (zero, zero);
+        for i in 0..n {
+            thd += qdot[i];
+            if self.torsion {
+                psd += qdot[n + i];
+            }
             sc.theta_dot[i] = thd;
             sc.psi_dot[i] = psd;
         }

@@ -180,11 +180,12 @@ impl StructuralModel for ReducedModel {
     }
 
     fn mass_matrix_into(&self, eta: &[f64], ws: &mut ReducedWorkspace, out: &mut DMatrix<f64>) {
-        // Φᵀ M(q) Φ from the columns M(q) φ_c = p(q, φ_c): O(n r²), no full mass matrix.
+        // Φᵀ M(q) Φ from the columns M(q) φ_c = p(q, φ_c): O(n r²), no full mass matrix, and
+        // the trigonometry of q computed once for all columns.
         self.expand(eta, &mut ws.q);
+        ws.full.configure(&self.full, &ws.q);
         for c in 0..self.phi.ncols() {
-            self.full.kinetic_terms(
-                &ws.q,
+            self.full.kinetic_terms_configured(
                 self.phi.column(c).as_slice(),
                 &mut ws.full.kinetic,
                 Some(&mut ws.column),
@@ -204,8 +205,8 @@ impl StructuralModel for ReducedModel {
     ) {
         self.expand(eta, &mut ws.q);
         self.expand(etadot, &mut ws.qdot);
-        self.full.kinetic_terms(
-            &ws.q,
+        ws.full.configure(&self.full, &ws.q);
+        self.full.kinetic_terms_configured(
             &ws.qdot,
             &mut ws.full.kinetic,
             Some(&mut ws.column),
@@ -223,8 +224,8 @@ impl StructuralModel for ReducedModel {
     ) {
         self.expand(eta, &mut ws.q);
         self.expand(etadot, &mut ws.qdot);
-        self.full.kinetic_terms(
-            &ws.q,
+        ws.full.configure(&self.full, &ws.q);
+        self.full.kinetic_terms_configured(
             &ws.qdot,
             &mut ws.full.kinetic,
             None,
