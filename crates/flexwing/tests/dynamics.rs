@@ -511,3 +511,51 @@ fn paper_case_b_reduced_models_converge_to_the_full_model() {
     );
     assert!(err[3] < 1e-2, "r = 4: {:.2e} of the amplitude", err[3]);
 }
+
+#[test]
+fn tip_history_converges_at_second_order_in_n() {
+    // Sine case over 0.2 s, the same fixed time step for every n (its own error is common to all
+    // and far smaller than the spatial one at these n); reference n = 64.
+    let t = times(0.2, 0.01);
+    let history = |n: usize| {
+        let full = table4(n);
+        let loads = full
+            .apply(
+                &[Load::PointForce {
+                    span: 1.0,
+                    force: Force::Dead { fx: 0.0, fy: 10.0 },
+                }],
+                "loads",
+            )
+            .unwrap();
+        let tf = vec![TimeFunction::Sine {
+            omega: 20.0,
+            phase: 0.0,
+        }];
+        let mut eom =
+            EquationsOfMotion::new(&full, &loads, tf, Gyroscopic::Exact, &Damping::None).unwrap();
+        let traj = midpoint(&mut eom, &vec![0.0; 2 * n], &t, 2e-4);
+        traj.y
+            .iter()
+            .map(|y| tip(&full, &y[..n])[1])
+            .collect::<Vec<_>>()
+    };
+    let reference = history(64);
+    let e: Vec<f64> = [8, 16, 32]
+        .iter()
+        .map(|&n| {
+            history(n)
+                .iter()
+                .zip(&reference)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    eprintln!("n-convergence errors (n = 8, 16, 32 against 64): {e:?}");
+    for w in e.windows(2) {
+        let order = (w[0] / w[1]).log2();
+        // Second order in 1/n, as the frequencies; the n = 64 reference makes the last ratio a
+        // little larger than 4 (its own error is a quarter of n = 32's).
+        assert!((1.6..2.6).contains(&order), "order {order}");
+    }
+}
