@@ -9,7 +9,7 @@
 //! with the gyroscopic term `γ` exact, by central differences of `−½ pᵀ M(x)⁻¹ p`, or neglected,
 //! and an exact Jacobian `∂(ẋ, ṗ)/∂(x, p)` for the implicit integrators.
 
-use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
+use nalgebra::{DMatrix, DVector};
 
 use super::integrate::OdeSystem;
 use crate::error::InputError;
@@ -194,7 +194,9 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     ws: M::Workspace,
     n: usize,
     mass: DMatrix<f64>,
-    chol: Option<Cholesky<f64, Dyn>>,
+    /// Cholesky factor of the last mass matrix (lower triangle), if it was positive definite.
+    factor: DMatrix<f64>,
+    factored: bool,
     scales: Vec<f64>,
     xdot: Vec<f64>,
     gamma: Vec<f64>,
@@ -254,7 +256,8 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             ws,
             n,
             mass: DMatrix::zeros(n, n),
-            chol: None,
+            factor: DMatrix::zeros(n, n),
+            factored: false,
             xdot: vec![0.0; n],
             gamma: vec![0.0; n],
             force: DVector::zeros(n),
@@ -316,17 +319,17 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
 
     fn factor_mass(&mut self, x: &[f64]) {
         self.model.mass_matrix_into(x, &mut self.ws, &mut self.mass);
-        self.chol = self.mass.clone().cholesky();
+        self.factor.copy_from(&self.mass);
+        self.factored = cholesky_in_place(&mut self.factor);
     }
 
-    /// `ẋ = M⁻¹ p` into `self.xdot`, with the factor of the last `factor_mass`.
+    /// `ẋ = M⁻¹ p` into `self.xdot`, with the factor of the last `factor_mass` (no allocation).
     fn solve_velocities(&mut self, p: &[f64]) {
-        match &self.chol {
-            Some(ch) => {
-                let v = ch.solve(&DVector::from_column_slice(p));
-                self.xdot.copy_from_slice(v.as_slice());
-            }
-            None => self.xdot.fill(f64::NAN),
+        self.xdot.copy_from_slice(p);
+        if self.factored {
+            cholesky_solve(&self.factor, &mut self.xdot);
+        } else {
+            self.xdot.fill(f64::NAN);
         }
     }
 
@@ -355,6 +358,50 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             xs[i] = x[i];
             self.gamma[i] = -(half_energy[0] - half_energy[1]) / (2.0 * h);
         }
+    }
+}
+
+/// In-place Cholesky factorization `A = L Lᵀ`: the lower triangle of `a` becomes `L`. Returns
+/// false if `a` is not (numerically) positive definite.
+fn cholesky_in_place(a: &mut DMatrix<f64>) -> bool {
+    let n = a.nrows();
+    for j in 0..n {
+        let mut d = a[(j, j)];
+        for k in 0..j {
+            d -= a[(j, k)] * a[(j, k)];
+        }
+        if !(d > 0.0) {
+            return false;
+        }
+        let d = d.sqrt();
+        a[(j, j)] = d;
+        for i in j + 1..n {
+            let mut v = a[(i, j)];
+            for k in 0..j {
+                v -= a[(i, k)] * a[(j, k)];
+            }
+            a[(i, j)] = v / d;
+        }
+    }
+    true
+}
+
+/// Solve `L Lᵀ x = b` in place with the factor of [`cholesky_in_place`].
+fn cholesky_solve(l: &DMatrix<f64>, b: &mut [f64]) {
+    let n = l.nrows();
+    for i in 0..n {
+        let mut v = b[i];
+        for k in 0..i {
+            v -= l[(i, k)] * b[k];
+        }
+        b[i] = v / l[(i, i)];
+    }
+    for i in (0..n).rev() {
+        let mut v = b[i];
+        for k in i + 1..n {
+            v -= l[(k, i)] * b[k];
+        }
+        b[i] = v / l[(i, i)];
     }
 }
 
@@ -462,10 +509,10 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         self.factor_mass(x);
         self.solve_velocities(p);
         self.update_scales(t);
-        let Some(ch) = self.chol.clone() else {
+        if !self.factored {
             jac.fill(f64::NAN);
             return;
-        };
+        }
         self.model.kinetic_derivatives_into(
             x,
             &self.xdot,
@@ -480,7 +527,10 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
             &mut self.ws,
             &mut self.load_jac,
         );
-        let minv = ch.inverse();
+        let mut minv = DMatrix::identity(n, n);
+        for mut col in minv.column_iter_mut() {
+            cholesky_solve(&self.factor, col.as_mut_slice());
+        }
         let dxdx = -(&minv * &self.dp);
         let mut g_xdot = match self.gyroscopic {
             Gyroscopic::Neglected => DMatrix::zeros(n, n),
