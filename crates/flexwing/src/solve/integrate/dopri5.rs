@@ -80,6 +80,8 @@ const E: [f64; 7] = [
     22.0 / 525.0,
     -1.0 / 40.0,
 ];
+/// Weight of the previous error in the PI step-size controller.
+const PI_BETA: f64 = 0.04;
 /// Dense-output coefficients.
 const D: [f64; 7] = [
     -12715105075.0 / 11282082432.0,
@@ -135,6 +137,7 @@ impl Dopri5 {
         .min(opts.max_step)
         .min((t_end - t).max(0.0));
         let mut rejected_last = false;
+        let mut err_old: f64 = 1e-4;
         while next_out < t_out.len() {
             if h < 10.0 * f64::EPSILON * t.abs().max(1.0) || !h.is_finite() {
                 return fail(
@@ -196,11 +199,16 @@ impl Dopri5 {
                 k.swap(0, 6); // first same as last
                 stats.steps += 1;
                 progress(t);
-                let mut factor = 0.9 * en.max(1e-10).powf(-0.2);
+                // PI step control (Hairer, Nørsett & Wanner I, §IV.2, as in DOPRI5, β = 0.04):
+                // the previous error damps the oscillation between acceptance and rejection that
+                // a pure I controller shows when the step is limited by stability.
+                let mut factor =
+                    0.9 * en.max(1e-10).powf(-(0.2 - 0.75 * PI_BETA)) * err_old.powf(PI_BETA);
                 factor = factor.clamp(0.2, 5.0);
                 if rejected_last {
                     factor = factor.min(1.0);
                 }
+                err_old = en.max(1e-4);
                 rejected_last = false;
                 h = (h * factor).min(opts.max_step);
             } else {
