@@ -733,3 +733,28 @@ fn an_integration_failure_still_prints_one_json_document() {
         .contains("time integration stopped"));
     assert_eq!(numbers(&full["t_s"]), [0.0, 0.1, 0.2]);
 }
+
+#[test]
+fn a_step_budget_stops_a_run_and_keeps_its_output() {
+    // The paper's sine case with a budget of 50 integrator steps per model: every model stops
+    // early, names the limit, and the output computed so far is kept and marked incomplete.
+    let dir = TempDir::new("dynamic-budget");
+    let text = fs::read_to_string(example("paper_sine.toml")).unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("end_time"))
+        .expect("an end_time line");
+    let case = dir.write(
+        "case.toml",
+        &text.replacen(line, &format!("{line}\nmax_steps = 50"), 1),
+    );
+    let (o, out) = run_dynamic(&dir, &case, &[]);
+    let err = stderr(&o);
+    assert!(!err.contains("panicked"), "panic: {err}");
+    assert_eq!(o.status.code(), Some(1), "stderr: {err}");
+    assert!(err.contains("max_steps"), "{err:?}");
+    let status = fs::read_to_string(out.join("status.txt")).unwrap();
+    assert!(status.starts_with("incomplete: full: "), "{status}");
+    let (_, rows) = read_csv(&out.join("dynamic_tip.csv"));
+    assert!(!rows.is_empty(), "no partial output kept");
+}

@@ -64,6 +64,14 @@ pub enum SolveError {
         /// Step size attempted (s).
         step: f64,
     },
+    /// The run used up its budget of steps (`max_steps`), e.g. a solution that blows up.
+    #[error("time integration stopped at t = {time} s: {steps} steps (accepted and rejected) reached the limit max_steps")]
+    TooManySteps {
+        /// Time reached (s).
+        time: f64,
+        /// Steps taken, accepted and rejected.
+        steps: usize,
+    },
     /// Newton's method of an implicit step did not converge even on small sub-steps.
     #[error("time integration stopped at t = {time} s: Newton's method did not converge with step {step:.3e} s")]
     NewtonFailed {

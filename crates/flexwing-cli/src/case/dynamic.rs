@@ -22,6 +22,8 @@ pub const DEFAULT_RTOL: f64 = 1e-6;
 pub const DEFAULT_ATOL: f64 = 1e-8;
 /// Default largest BDF order.
 pub const DEFAULT_MAX_ORDER: usize = 2;
+/// Default budget of integrator steps per model (accepted and rejected): the library's default.
+pub const DEFAULT_MAX_STEPS: usize = 1_000_000;
 /// Default step of the finite-difference gyroscopic term (rad), as the paper's eq. 17.
 pub const DEFAULT_GYROSCOPIC_STEP: f64 = 1e-6;
 /// Smallest accepted relative tolerance: below it round-off dominates the error estimates.
@@ -105,6 +107,8 @@ pub struct IntegratorSettings {
     pub max_order: usize,
     /// Fixed step of the implicit midpoint rule (s); adaptive without it.
     pub step: Option<f64>,
+    /// Budget of integrator steps per model.
+    pub max_steps: usize,
 }
 
 /// The state at `t = 0`.
@@ -441,11 +445,18 @@ fn settings(d: &DynamicSpec) -> Result<IntegratorSettings, InputError> {
             ));
         }
     }
+    if d.max_steps == Some(0) {
+        return Err(InputError::new(
+            "dynamic.max_steps",
+            "must be at least 1, got 0",
+        ));
+    }
     Ok(IntegratorSettings {
         rtol,
         atol,
         max_order: d.max_order.unwrap_or(DEFAULT_MAX_ORDER),
         step: d.step,
+        max_steps: d.max_steps.unwrap_or(DEFAULT_MAX_STEPS),
     })
 }
 

@@ -338,6 +338,9 @@ pub struct DynamicSpec {
     /// Fixed step of the implicit midpoint rule (s).
     #[serde(default)]
     pub step: Option<f64>,
+    /// Budget of integrator steps (accepted and rejected) per model.
+    #[serde(default)]
+    pub max_steps: Option<usize>,
     /// Structural damping; none without it.
     #[serde(default)]
     pub damping: Option<DampingSpec>,

@@ -610,6 +610,7 @@ fn integrate<M: StructuralModel>(
             options: BdfOptions {
                 tolerances,
                 max_order: settings.max_order,
+                max_steps: settings.max_steps,
                 ..BdfOptions::default()
             },
         }
@@ -617,6 +618,7 @@ fn integrate<M: StructuralModel>(
         Integrator::Dopri5 => Dopri5 {
             options: Dopri5Options {
                 tolerances,
+                max_steps: settings.max_steps,
                 ..Dopri5Options::default()
             },
         }
@@ -625,6 +627,7 @@ fn integrate<M: StructuralModel>(
             options: MidpointOptions {
                 tolerances,
                 step: settings.step,
+                max_steps: settings.max_steps,
                 ..MidpointOptions::default()
             },
         }

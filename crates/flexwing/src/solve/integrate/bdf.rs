@@ -41,6 +41,9 @@ pub struct BdfOptions {
     pub ndf: bool,
     /// Largest step (s). Default infinite.
     pub max_step: f64,
+    /// Budget of steps, accepted and rejected, before the run stops with
+    /// [`SolveError::TooManySteps`] and the output so far. Default 1 000 000.
+    pub max_steps: usize,
 }
 
 impl Default for BdfOptions {
@@ -50,6 +53,7 @@ impl Default for BdfOptions {
             max_order: 2,
             ndf: true,
             max_step: f64::INFINITY,
+            max_steps: 1_000_000,
         }
     }
 }
@@ -184,6 +188,10 @@ impl Bdf {
         let mut rhs_v = DVector::zeros(dim);
 
         while next_out < t_out.len() {
+            if stats.steps + stats.rejected_steps >= opts.max_steps {
+                let steps = stats.steps + stats.rejected_steps;
+                return fail(traj, stats, SolveError::TooManySteps { time: t, steps });
+            }
             let min_step = 10.0 * f64::EPSILON * t.abs().max(1e-300);
             if h_abs > opts.max_step {
                 change_d(&mut d, order, opts.max_step / h_abs);

@@ -17,6 +17,9 @@ pub struct Dopri5Options {
     pub tolerances: Tolerances,
     /// Largest step (s). Default infinite.
     pub max_step: f64,
+    /// Budget of steps, accepted and rejected, before the run stops with
+    /// [`SolveError::TooManySteps`] and the output so far. Default 1 000 000.
+    pub max_steps: usize,
     /// First step (s); `None` picks one from the problem's scales.
     pub first_step: Option<f64>,
 }
@@ -26,6 +29,7 @@ impl Default for Dopri5Options {
         Self {
             tolerances: Tolerances::default(),
             max_step: f64::INFINITY,
+            max_steps: 1_000_000,
             first_step: None,
         }
     }
@@ -139,6 +143,10 @@ impl Dopri5 {
         let mut rejected_last = false;
         let mut err_old: f64 = 1e-4;
         while next_out < t_out.len() {
+            if stats.steps + stats.rejected_steps >= opts.max_steps {
+                let steps = stats.steps + stats.rejected_steps;
+                return fail(traj, stats, SolveError::TooManySteps { time: t, steps });
+            }
             if h < 10.0 * f64::EPSILON * t.abs().max(1.0) || !h.is_finite() {
                 return fail(
                     traj,

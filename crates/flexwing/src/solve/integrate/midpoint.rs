@@ -23,6 +23,9 @@ pub struct MidpointOptions {
     pub step: Option<f64>,
     /// Largest step (s). Default infinite.
     pub max_step: f64,
+    /// Budget of steps, accepted and rejected, before the run stops with
+    /// [`SolveError::TooManySteps`] and the output so far. Default 1 000 000.
+    pub max_steps: usize,
     /// Newton tolerance, relative to the error scale `atol + rtol |y|`. Default `1e-4`: tight, so
     /// that the unconverged Newton residual does not spoil the energy conservation.
     pub newton_tolerance: f64,
@@ -34,6 +37,7 @@ impl Default for MidpointOptions {
             tolerances: Tolerances::default(),
             step: None,
             max_step: f64::INFINITY,
+            max_steps: 1_000_000,
             newton_tolerance: 1e-4,
         }
     }
@@ -204,6 +208,10 @@ impl ImplicitMidpoint {
         let mut f1 = vec![0.0; dim];
         let mut err = vec![0.0; dim];
         while next_out < t_out.len() {
+            if stats.steps + stats.rejected_steps >= opts.max_steps {
+                let steps = stats.steps + stats.rejected_steps;
+                return fail(traj, stats, SolveError::TooManySteps { time: t, steps });
+            }
             let h_try = h.min(t_end - t);
             if h_try < 10.0 * f64::EPSILON * t.abs().max(1.0) || !h_try.is_finite() {
                 return fail(
