@@ -93,3 +93,25 @@ mod tests {
         assert_eq!(Failure::run("solver failed").exit_status(), 1);
     }
 }
+
+/// Something that did not complete (a model's run, the loaded modes), for `status.txt`, stdout
+/// and stderr.
+#[derive(Debug, Clone)]
+pub struct Incomplete {
+    /// The model label, or `loaded modes`.
+    pub what: String,
+    /// One-line reason, naming where the solver stopped.
+    pub message: String,
+}
+
+/// `complete`, or one line `incomplete: WHAT: MESSAGE` per thing that did not complete: the text
+/// of `status.txt`.
+pub fn status_text(incomplete: &[Incomplete]) -> String {
+    if incomplete.is_empty() {
+        return "complete\n".into();
+    }
+    incomplete
+        .iter()
+        .map(|i| format!("incomplete: {}: {}\n", i.what, i.message))
+        .collect()
+}

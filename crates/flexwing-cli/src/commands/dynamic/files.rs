@@ -138,21 +138,12 @@ pub fn write_files(
     }
 
     let status = dir.join("status.txt");
-    output::write_bytes(&status, status_text(outcome).as_bytes())?;
+    output::write_bytes(
+        &status,
+        crate::commands::status_text(&outcome.incomplete).as_bytes(),
+    )?;
     files.push(status);
     Ok(files)
-}
-
-/// `complete`, or one line `incomplete: MODEL: MESSAGE` per model that did not complete.
-pub fn status_text(outcome: &Outcome) -> String {
-    if outcome.incomplete.is_empty() {
-        return "complete\n".into();
-    }
-    outcome
-        .incomplete
-        .iter()
-        .map(|i| format!("incomplete: {}: {}\n", i.what, i.message))
-        .collect()
 }
 
 fn case_title(outcome: &Outcome, case: &Case) -> String {

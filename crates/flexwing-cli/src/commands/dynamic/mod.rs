@@ -136,14 +136,7 @@ pub struct Comparison {
     pub relative_y: Option<f64>,
 }
 
-/// A model that did not complete, for `status.txt`, stdout and stderr.
-#[derive(Debug, Clone)]
-pub struct Incomplete {
-    /// The model label.
-    pub what: String,
-    /// One-line reason, naming the time reached.
-    pub message: String,
-}
+pub use super::Incomplete;
 
 /// Everything the reports and files need.
 #[derive(Debug)]

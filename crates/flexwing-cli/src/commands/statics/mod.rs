@@ -99,14 +99,7 @@ pub struct LoadedMode {
     pub unloaded_omega: f64,
 }
 
-/// Something that did not complete, for `status.txt`, stdout and stderr.
-#[derive(Debug, Clone)]
-pub struct Incomplete {
-    /// The model label, or `loaded modes`.
-    pub what: String,
-    /// One-line reason.
-    pub message: String,
-}
+pub use super::Incomplete;
 
 /// Everything the reports and files need.
 #[derive(Debug)]
