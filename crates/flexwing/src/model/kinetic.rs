@@ -24,7 +24,7 @@
 use nalgebra::DMatrix;
 use num_dual::{Dual64, DualNum};
 
-use super::FullModel;
+use super::{suffix_sum_in_blocks, FullModel};
 
 /// Scratch of the kinetic recursions for scalar `D`.
 #[derive(Debug, Clone)]
@@ -55,16 +55,6 @@ impl<D: DualNum<Primitive = f64> + Copy> KineticScratch<D> {
 
 fn dot<D: DualNum<Primitive = f64> + Copy>(a: &[D; 3], b: &[D; 3]) -> D {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// Suffix sums within each block of `n`: `x ← Tᵀ x`.
-fn suffix_blocks<D: DualNum<Primitive = f64> + Copy>(x: &mut [D], n: usize) {
-    for block in x.chunks_mut(n) {
-        for i in (0..n.saturating_sub(1)).rev() {
-            let next = block[i + 1];
-            block[i] += next;
-        }
-    }
 }
 
 impl FullModel {
@@ -196,10 +186,10 @@ impl FullModel {
             }
         }
         if let Some(p) = p {
-            suffix_blocks(p, n);
+            suffix_sum_in_blocks(p, n);
         }
         if let Some(gm) = gamma {
-            suffix_blocks(gm, n);
+            suffix_sum_in_blocks(gm, n);
         }
     }
 

@@ -9,7 +9,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::{suffix_sum_blocks, FullModel, Kinematics};
+use super::{suffix_sum_blocks, suffix_sum_in_blocks, FullModel, Kinematics};
 use crate::beam::Profile;
 use crate::error::InputError;
 
@@ -290,11 +290,7 @@ impl FullModel {
                 mass_out += mj;
             }
         }
-        for block in out.as_mut_slice().chunks_mut(n) {
-            for i in (0..n - 1).rev() {
-                block[i] += block[i + 1];
-            }
-        }
+        suffix_sum_in_blocks(out.as_mut_slice(), n);
     }
 
     /// Load Jacobian `∂Q/∂q` at `kin`, into `out` (`n_dofs × n_dofs`). Symmetric for conservative
@@ -380,11 +376,7 @@ impl FullModel {
             let mut column = out.column_mut(col);
             let o = column.as_mut_slice();
             self.directional_abs(kin, r, dir, o);
-            for block in o.chunks_mut(n) {
-                for i in (0..n - 1).rev() {
-                    block[i] += block[i + 1];
-                }
-            }
+            suffix_sum_in_blocks(o, n);
         }
     }
 

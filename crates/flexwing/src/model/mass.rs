@@ -17,7 +17,7 @@
 
 use nalgebra::DMatrix;
 
-use super::{FullModel, Kinematics};
+use super::{suffix_sum_in_blocks, FullModel, Kinematics};
 
 impl FullModel {
     /// Mass matrix `M(q)` at the configuration described by `kin`, into `out`.
@@ -76,11 +76,7 @@ pub(crate) fn suffix_sum_blocks(x: &mut DMatrix<f64>, n: usize) {
     let nd = x.nrows();
     let data = x.as_mut_slice(); // column-major: column c is data[c * nd..(c + 1) * nd]
     for column in data.chunks_mut(nd) {
-        for block in column.chunks_mut(n) {
-            for r in (0..n - 1).rev() {
-                block[r] += block[r + 1];
-            }
-        }
+        suffix_sum_in_blocks(column, n);
     }
     for start in (0..nd).step_by(n) {
         for col in (start..start + n - 1).rev() {

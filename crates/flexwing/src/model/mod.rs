@@ -15,6 +15,20 @@ pub use full::{FullModel, Workspace};
 pub use kinematics::Kinematics;
 pub use loads::{AppliedLoads, DistributedForce, Force, Load};
 pub(crate) use mass::suffix_sum_blocks;
+
+/// Suffix sums within each consecutive block of `n` entries, `x ← Tᵀ x` for joint coordinates:
+/// the map from forces conjugate to absolute angles to forces conjugate to joint rotations.
+pub(crate) fn suffix_sum_in_blocks<D: num_dual::DualNum<Primitive = f64> + Copy>(
+    x: &mut [D],
+    n: usize,
+) {
+    for block in x.chunks_mut(n) {
+        for i in (0..block.len().saturating_sub(1)).rev() {
+            let next = block[i + 1];
+            block[i] += next;
+        }
+    }
+}
 pub use reduced::{ReducedModel, ReducedWorkspace};
 
 use nalgebra::{DMatrix, DVector};

@@ -343,16 +343,19 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     fn gyroscopic_fd(&mut self, x: &[f64], p: &[f64], h: f64) {
         let n = self.n;
         let mut xs = x.to_vec();
-        let pv = DVector::from_column_slice(p);
+        let mut v = vec![0.0; n];
         let mut m = DMatrix::zeros(n, n);
         for i in 0..n {
             let mut half_energy = [0.0; 2];
             for (k, sign) in [1.0, -1.0].iter().enumerate() {
                 xs[i] = x[i] + sign * h;
                 self.model.mass_matrix_into(&xs, &mut self.ws, &mut m);
-                half_energy[k] = match m.clone().cholesky() {
-                    Some(ch) => 0.5 * pv.dot(&ch.solve(&pv)),
-                    None => f64::NAN,
+                half_energy[k] = if cholesky_in_place(&mut m) {
+                    v.copy_from_slice(p);
+                    cholesky_solve(&m, &mut v);
+                    0.5 * p.iter().zip(&v).map(|(a, b)| a * b).sum::<f64>()
+                } else {
+                    f64::NAN
                 };
             }
             xs[i] = x[i];
