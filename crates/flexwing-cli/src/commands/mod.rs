@@ -3,6 +3,7 @@
 
 pub mod dynamic;
 pub mod modes;
+pub mod reproduce;
 pub mod statics;
 
 use std::fmt::Display;

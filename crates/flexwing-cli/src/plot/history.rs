@@ -45,7 +45,12 @@ pub struct HistorySeries {
 
 /// Write `dynamic_tip.svg` and `dynamic_tip.png` into `dir`; returns the paths written.
 pub fn write_tip_history(dir: &Path, plot: &HistoryPlot) -> Result<Vec<PathBuf>> {
-    write_figure(dir, "dynamic_tip", plot)
+    write_history(dir, "dynamic_tip", plot)
+}
+
+/// Write `<stem>.svg` and `<stem>.png` into `dir`; returns the paths written.
+pub fn write_history(dir: &Path, stem: &str, plot: &HistoryPlot) -> Result<Vec<PathBuf>> {
+    write_figure(dir, stem, plot)
 }
 
 impl HistoryPlot {

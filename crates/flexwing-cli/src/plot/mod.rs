@@ -7,10 +7,12 @@
 //! `sans-serif` family, which every SVG viewer can render.
 
 mod history;
+mod lines;
 mod modes;
 mod shapes;
 
-pub use history::{write_tip_history, HistoryPlot, HistorySeries};
+pub use history::{write_history, write_tip_history, HistoryPlot, HistorySeries};
+pub use lines::{write_lines, LinePlot, Panel, Series};
 pub use modes::{write_mode_shapes, ModePlot};
 pub use shapes::{write_shapes, ModelShapes, ShapePlot};
 

@@ -1,0 +1,153 @@
+//! Time integration for the reproduction: one driver over the library's integrators, with a
+//! guard that stops a run whose energy explodes (the simplified model released from a large
+//! deflection) instead of letting the integrator grind to a tiny step.
+
+use flexwing::model::StructuralModel;
+use flexwing::solve::integrate::{
+    Bdf, BdfOptions, Dopri5, Dopri5Options, ImplicitMidpoint, IntegratorStats, MidpointOptions,
+    Tolerances, Trajectory,
+};
+use flexwing::solve::EquationsOfMotion;
+
+/// An integrator and its accuracy setting.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Method {
+    /// Variable-order BDF (orders ≤ 2), relative tolerance.
+    Bdf(f64),
+    /// Dormand–Prince 5(4), relative tolerance.
+    Dopri5(f64),
+    /// Implicit midpoint rule with a fixed step (s).
+    Midpoint(f64),
+}
+
+impl Method {
+    /// Description for the report.
+    pub fn describe(&self) -> String {
+        match self {
+            Self::Bdf(rtol) => format!("BDF (order ≤ 2), rtol {rtol:.0e}"),
+            Self::Dopri5(rtol) => format!("Dormand–Prince 5(4), rtol {rtol:.0e}"),
+            Self::Midpoint(h) => format!("implicit midpoint, h = {h:.1e} s"),
+        }
+    }
+
+    /// Short name for tables.
+    pub fn short(&self) -> String {
+        match self {
+            Self::Bdf(rtol) => format!("BDF {rtol:.0e}"),
+            Self::Dopri5(rtol) => format!("DOPRI5 {rtol:.0e}"),
+            Self::Midpoint(h) => format!("midpoint h {h:.1e}"),
+        }
+    }
+}
+
+/// A run: the output reached, the integrator's counters and, if it stopped early, why.
+pub struct Run {
+    pub trajectory: Trajectory,
+    pub stats: IntegratorStats,
+    pub stopped: Option<String>,
+}
+
+fn add(a: &mut IntegratorStats, b: &IntegratorStats) {
+    a.steps += b.steps;
+    a.rejected_steps += b.rejected_steps;
+    a.rhs_evaluations += b.rhs_evaluations;
+    a.jacobian_evaluations += b.jacobian_evaluations;
+    a.factorizations += b.factorizations;
+    a.newton_iterations += b.newton_iterations;
+}
+
+/// Integrate `eom` from `y0` at `t_out[0]` to the output times `t_out`. With `energy_limit`, the
+/// run goes in windows of `window` output intervals and stops when the energy exceeds that
+/// multiple of its initial value (a blown-up run). Tolerances: `rtol`, and `rtol/100` rad on the
+/// coordinates with consistent momenta (`EquationsOfMotion::state_atol`).
+pub fn integrate<M: StructuralModel>(
+    eom: &mut EquationsOfMotion<'_, M>,
+    y0: &[f64],
+    t_out: &[f64],
+    method: Method,
+    energy_limit: Option<(f64, usize)>,
+) -> Run {
+    let rtol = match method {
+        Method::Bdf(r) | Method::Dopri5(r) => r,
+        Method::Midpoint(_) => 1e-6,
+    };
+    let tolerances = Tolerances {
+        rtol,
+        atol: eom.state_atol(rtol * 1e-2),
+    };
+    let energy = |eom: &mut EquationsOfMotion<'_, M>, y: &[f64]| {
+        let (k, s) = eom.energies(y);
+        k + s
+    };
+    let h0 = energy(eom, y0);
+    let window = energy_limit.map_or(t_out.len(), |(_, w)| w.max(1));
+    let mut run = Run {
+        trajectory: Trajectory::default(),
+        stats: IntegratorStats::default(),
+        stopped: None,
+    };
+    let mut y = y0.to_vec();
+    let mut start = 0;
+    while start + 1 < t_out.len() || (start == 0 && t_out.len() == 1) {
+        let end = (start + window).min(t_out.len() - 1);
+        let times = &t_out[start..=end];
+        let t0 = times[0];
+        let result = match method {
+            Method::Bdf(_) => Bdf {
+                options: BdfOptions {
+                    tolerances: tolerances.clone(),
+                    ..Default::default()
+                },
+            }
+            .integrate(eom, t0, &y, times, &mut |_| {}),
+            Method::Dopri5(_) => Dopri5 {
+                options: Dopri5Options {
+                    tolerances: tolerances.clone(),
+                    ..Default::default()
+                },
+            }
+            .integrate(eom, t0, &y, times, &mut |_| {}),
+            Method::Midpoint(h) => ImplicitMidpoint {
+                options: MidpointOptions {
+                    tolerances: tolerances.clone(),
+                    step: Some(h),
+                    ..Default::default()
+                },
+            }
+            .integrate(eom, t0, &y, times, &mut |_| {}),
+        };
+        let (mut traj, stats, error) = match result {
+            Ok((traj, stats)) => (traj, stats, None),
+            Err(f) => (f.trajectory, f.stats, Some(f.error.to_string())),
+        };
+        add(&mut run.stats, &stats);
+        // Each window repeats the previous window's last output as its first.
+        let skip = usize::from(start > 0 && !traj.t.is_empty());
+        if let Some(last) = traj.y.last() {
+            y.clone_from(last);
+        }
+        run.trajectory.t.extend(traj.t.drain(skip..));
+        run.trajectory.y.extend(traj.y.drain(skip..));
+        if let Some(e) = error {
+            run.stopped = Some(e);
+            break;
+        }
+        if let Some((limit, _)) = energy_limit {
+            let h = energy(eom, &y);
+            if !(h <= limit * h0) {
+                run.stopped = Some(format!(
+                    "stopped at t = {} s: the energy grew to {:.3} times its initial value \
+                     (a blown-up run; limit {limit})",
+                    t_out[end],
+                    h / h0
+                ));
+                break;
+            }
+        }
+        if end + 1 >= t_out.len() {
+            break;
+        }
+        start = end;
+    }
+    run
+}
