@@ -19,10 +19,10 @@
 //! K. Gustafsson, "Control-theoretic techniques for stepsize selection in implicit Runge–Kutta
 //! methods", ACM TOMS 20 (1994) 496–517 (the predictive controller).
 
-use nalgebra::{Complex, DMatrix};
+use nalgebra::DMatrix;
 
 use super::dopri5::initial_step;
-use super::lu::DenseLu;
+use super::lu::{ComplexLu, DenseLu};
 use super::{
     check_output_times, failure, outputs_at_start, IntegrationResult, IntegratorStats, OdeSystem,
     Tolerances, Trajectory,
@@ -44,9 +44,16 @@ pub struct RadauOptions {
     /// Largest number of simplified Newton iterations per step (`RADAU5`'s `NIT`). Default 7.
     pub max_newton_iterations: usize,
     /// Contraction rate of the Newton iteration below which the Jacobian is kept for the next
-    /// step (`RADAU5`'s `THET`). Default 0.001 (as `RADAU5`); larger values (0.1) save
-    /// Jacobians when they are expensive, a negative value recomputes it at every step.
+    /// step (`RADAU5`'s `THET`). Default 0.1, `RADAU5`'s advice for Jacobians that are expensive
+    /// (a beam model's costs about ten right-hand sides; on the paper's case (b) it halves the
+    /// Jacobian evaluations against `RADAU5`'s default 0.001). A negative value recomputes it at
+    /// every step.
     pub jacobian_reuse: f64,
+    /// When the proposed new step over the current one lies in `[lower, upper]`, the step and
+    /// the factorizations are kept (`RADAU5`'s `WORK(5)`, `WORK(6)`). Default `(1.0, 1.2)`;
+    /// `RADAU5` suggests `(0.99, 2.0)` for large systems, where an LU costs more than a few
+    /// right-hand sides.
+    pub unchanged_step_ratio: (f64, f64),
     /// Stopping tolerance of the Newton iteration relative to the error scale (`RADAU5`'s
     /// `FNEWT`); `None` (default) for `max(10 ε/rtol', min(0.03, √rtol'))`.
     pub newton_tolerance: Option<f64>,
@@ -60,7 +67,8 @@ impl Default for RadauOptions {
             max_steps: 1_000_000,
             first_step: None,
             max_newton_iterations: 7,
-            jacobian_reuse: 0.001,
+            jacobian_reuse: 0.1,
+            unchanged_step_ratio: (QUOT1, QUOT2),
             newton_tolerance: None,
         }
     }
@@ -95,7 +103,7 @@ const ALPHA: f64 = 2.681_082_873_627_752_3;
 const BETA: f64 = 3.050_430_199_247_410_5;
 /// Eigenvectors of `A⁻¹` (`T`) and the inverse (`T⁻¹`): `T⁻¹ A⁻¹ T = [[γ, 0, 0], [0, α, −β],
 /// [0, β, α]]`.
-const T11: f64 = 9.123_239_487_089_294e-2;
+const T11: f64 = 9.123_239_487_089_295e-2;
 const T12: f64 = -0.141_255_295_020_954_2;
 const T13: f64 = -3.002_919_410_514_742_4e-2;
 const T21: f64 = 0.241_717_932_707_107;
@@ -117,7 +125,7 @@ const SAFE: f64 = 0.9;
 /// most 5-fold.
 const FACL: f64 = 5.0;
 const FACR: f64 = 1.0 / 8.0;
-/// Keep the factorizations when the new step is between `QUOT1` and `QUOT2` times the old.
+/// Default bounds of [`RadauOptions::unchanged_step_ratio`].
 const QUOT1: f64 = 1.0;
 const QUOT2: f64 = 1.2;
 
@@ -133,16 +141,14 @@ enum Newton {
 /// Scratch of the integrator, allocated once per run.
 struct Scratch {
     jac: DMatrix<f64>,
-    e1: DenseLu<f64>,
-    e2: DenseLu<Complex<f64>>,
+    e1: DenseLu,
+    e2: ComplexLu,
     /// Stage increments `Z_i = Y_i − y` (and the right-hand sides during an iteration).
     z: [Vec<f64>; 3],
     /// Transformed increments `W = T⁻¹ Z`.
     w: [Vec<f64>; 3],
     /// Coefficients of the collocation polynomial of the last accepted step.
     cont: [Vec<f64>; 3],
-    /// Complex right-hand side of the second system.
-    zc: Vec<Complex<f64>>,
     /// Stage state, error-estimate vectors.
     tmp: Vec<f64>,
     f2: Vec<f64>,
@@ -157,11 +163,10 @@ impl Scratch {
         Self {
             jac: DMatrix::zeros(n, n),
             e1: DenseLu::new(n),
-            e2: DenseLu::new(n),
+            e2: ComplexLu::new(n),
             z: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
             w: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
             cont: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
-            zc: vec![Complex::new(0.0, 0.0); n],
             tmp: vec![0.0; n],
             f2: vec![0.0; n],
             err: vec![0.0; n],
@@ -182,12 +187,14 @@ impl Scratch {
         for i in 0..n {
             m1[i + i * n] += fac1;
         }
-        let m2 = self.e2.matrix_mut();
-        for (a, &b) in m2.iter_mut().zip(j) {
-            *a = Complex::new(-b, 0.0);
+        let (m2r, m2i) = self.e2.matrix_mut();
+        for (a, &b) in m2r.iter_mut().zip(j) {
+            *a = -b;
         }
+        m2i.fill(0.0);
         for i in 0..n {
-            m2[i + i * n] += Complex::new(alphn, betan);
+            m2r[i + i * n] += alphn;
+            m2i[i + i * n] = betan;
         }
         self.e1.factor() && self.e2.factor()
     }
@@ -202,17 +209,11 @@ impl Scratch {
         for i in 0..n {
             z1[i] -= w1[i] * fac1;
             let (s2, s3) = (-w2[i], -w3[i]);
-            self.zc[i] = Complex::new(
-                z2[i] + s2 * alphn - s3 * betan,
-                z3[i] + s3 * alphn + s2 * betan,
-            );
+            z2[i] += s2 * alphn - s3 * betan;
+            z3[i] += s3 * alphn + s2 * betan;
         }
         self.e1.solve_in_place(z1);
-        self.e2.solve_in_place(&mut self.zc);
-        for i in 0..n {
-            z2[i] = self.zc[i].re;
-            z3[i] = self.zc[i].im;
-        }
+        self.e2.solve_in_place(z2, z3);
     }
 }
 
@@ -255,6 +256,13 @@ impl Radau {
             return Err(crate::InputError::new(
                 "dynamic.jacobian_reuse",
                 format!("must be below 1, got {}", o.jacobian_reuse),
+            ));
+        }
+        let (q1, q2) = o.unchanged_step_ratio;
+        if !(q1 > 0.0 && q1 <= 1.0 && q2 >= 1.0 && q2.is_finite()) {
+            return Err(crate::InputError::new(
+                "dynamic.unchanged_step_ratio",
+                format!("needs 0 < lower ≤ 1 ≤ upper (finite), got ({q1}, {q2})"),
             ));
         }
         if let Some(f) = o.newton_tolerance {
@@ -312,6 +320,7 @@ impl Radau {
         let fnewt = opts
             .newton_tolerance
             .unwrap_or_else(|| (10.0 * f64::EPSILON / rtol).max(0.03f64.min(rtol.sqrt())));
+        let (quot1, quot2) = opts.unchanged_step_ratio;
         let cfac = SAFE * (1 + 2 * nit) as f64;
         let hmaxn = opts.max_step.min(t_end - t0);
 
@@ -596,12 +605,12 @@ impl Radau {
                     h_new = h_new.min(h);
                 }
                 reject = false;
-                if t + h_new / QUOT1 >= t_end {
+                if t + h_new / quot1 >= t_end {
                     h = t_end - t;
                     last = true;
                 } else {
                     let qt = h_new / h;
-                    if theta <= thet && (QUOT1..=QUOT2).contains(&qt) {
+                    if theta <= thet && (quot1..=quot2).contains(&qt) {
                         // Keep the step and the factorizations.
                         continue;
                     }
