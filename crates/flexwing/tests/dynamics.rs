@@ -8,8 +8,8 @@ use common::*;
 use flexwing::beam::{Calibration, Profile};
 use flexwing::model::{Force, FullModel, Load, ReducedModel, StructuralModel};
 use flexwing::solve::integrate::{
-    Bdf, BdfOptions, Dopri5, Dopri5Options, ImplicitMidpoint, MidpointOptions, OdeSystem,
-    Tolerances, Trajectory,
+    Bdf, BdfOptions, Dopri5, Dopri5Options, ImplicitMidpoint, MidpointOptions, OdeSystem, Radau,
+    RadauOptions, Tolerances, Trajectory,
 };
 use flexwing::solve::{
     solve_static, Damping, EquationsOfMotion, Gyroscopic, Modes, StaticOptions, TimeFunction,
@@ -77,6 +77,23 @@ fn dopri<M: StructuralModel>(
     .integrate(eom, 0.0, y0, t, &mut |_| {})
     .expect("integrates")
     .0
+}
+
+fn radau<M: StructuralModel>(
+    eom: &mut EquationsOfMotion<'_, M>,
+    y0: &[f64],
+    t: &[f64],
+    rtol: f64,
+) -> (Trajectory, flexwing::solve::integrate::IntegratorStats) {
+    let tolerances = tolerances(eom, rtol);
+    Radau {
+        options: RadauOptions {
+            tolerances,
+            ..Default::default()
+        },
+    }
+    .integrate(eom, 0.0, y0, t, &mut |_| {})
+    .expect("integrates")
 }
 
 /// Fixed-step implicit midpoint; a run that stops early returns what it computed.
@@ -557,5 +574,132 @@ fn tip_history_converges_at_second_order_in_n() {
         // Second order in 1/n, as the frequencies; the n = 64 reference makes the last ratio a
         // little larger than 4 (its own error is a quarter of n = 32's).
         assert!((1.6..2.6).contains(&order), "order {order}");
+    }
+}
+
+#[test]
+fn paper_case_b_radau_agrees_with_a_tight_bdf_reference() {
+    // Case (b) on the full model, n = 20: the converged reference is BDF2 at rtol 1e-8 (measured
+    // 3e-8 m from rtol 1e-9 in the benchmark's terms: far below what is asserted here).
+    let full = table4(20);
+    let loads = full
+        .apply(
+            &[Load::PointForce {
+                span: 1.0,
+                force: Force::Dead { fx: 0.0, fy: 10.0 },
+            }],
+            "loads",
+        )
+        .unwrap();
+    let tf = vec![TimeFunction::Sine {
+        omega: 20.0,
+        phase: 0.0,
+    }];
+    let t = times(1.0, 0.005);
+    let mut eom =
+        EquationsOfMotion::new(&full, &loads, tf, Gyroscopic::Exact, &Damping::None).unwrap();
+    let reference: Vec<[f64; 2]> = bdf(&mut eom, &[0.0; 40], &t, 1e-8)
+        .y
+        .iter()
+        .map(|y| tip(&full, &y[..20]))
+        .collect();
+    let mut errors = vec![];
+    for rtol in [1e-3, 1e-5] {
+        let (traj, stats) = radau(&mut eom, &[0.0; 40], &t, rtol);
+        let err = traj
+            .y
+            .iter()
+            .zip(&reference)
+            .map(|(y, p)| {
+                let q = tip(&full, &y[..20]);
+                (q[0] - p[0]).hypot(q[1] - p[1])
+            })
+            .fold(0.0, f64::max);
+        eprintln!("case (b), Radau rtol {rtol:.0e}: max tip error {err:.2e} m, {stats:?}");
+        errors.push((err, stats));
+    }
+    // Measured 1.1e-4 m (rtol 1e-3, ~130 steps) and 6e-6 m (rtol 1e-5, ~550 steps), with a tip
+    // amplitude of about 0.3 m; between steps the collocation polynomial (stage order 3) adds to
+    // the error at the grid points. Margins of 3.
+    assert!(errors[0].0 < 3e-4, "rtol 1e-3: {:.2e}", errors[0].0);
+    assert!(errors[1].0 < 2e-5, "rtol 1e-5: {:.2e}", errors[1].0);
+    // L-stable and order 5: far fewer steps than BDF2 needs (1271 at rtol 1e-4 for 8e-4 m).
+    assert!(errors[0].1.steps < 400, "{:?}", errors[0].1);
+}
+
+#[test]
+fn radau_free_vibration_energy_drift_is_small_but_not_zero() {
+    // The large first-mode vibration of the energy test, 3 s (about 27 periods). Radau IIA is
+    // not symplectic and conserves neither the energy nor its bound: its error is that of the
+    // tolerance, not a bounded oscillation as with the implicit midpoint rule.
+    let full = table4(10);
+    let q0 = first_mode_state(&full);
+    let none = full.apply(&[], "loads").unwrap();
+    let mut eom =
+        EquationsOfMotion::new(&full, &none, vec![], Gyroscopic::Exact, &Damping::None).unwrap();
+    let y0 = eom.state(&q0, &[0.0; 10]);
+    let t = times(3.0, 0.01);
+    let mut drifts = vec![];
+    for rtol in [1e-4, 1e-5] {
+        let (traj, stats) = radau(&mut eom, &y0, &t, rtol);
+        let drift = energy_drift(&mut eom, &traj);
+        let (k1, s1) = eom.energies(traj.y.last().unwrap());
+        let (k0, s0) = eom.energies(&y0);
+        eprintln!(
+            "Radau rtol {rtol:.0e}, 3 s free vibration: max |ΔH|/H {drift:.2e}, final H/H0 {:.6}, {stats:?}",
+            (k1 + s1) / (k0 + s0)
+        );
+        drifts.push(drift);
+    }
+    // Measured max |ΔH|/H: 1.2e-4 (rtol 1e-4, the energy grows by 1e-4 over 3 s), 6e-6
+    // (rtol 1e-5); the drift falls with the tolerance. Margins of about 10.
+    assert!(drifts[0] < 1e-3, "rtol 1e-4: {:.2e}", drifts[0]);
+    assert!(drifts[1] < 1e-4, "rtol 1e-5: {:.2e}", drifts[1]);
+    assert!(drifts[1] < drifts[0]);
+}
+
+#[test]
+fn radau_on_reduced_models_matches_dormand_prince() {
+    // Case (b) with r = 2 and r = 4: the reduced models are not stiff, and both integrators at
+    // tight tolerances must agree (independent methods: explicit and implicit).
+    let full = table4(20);
+    let loads = full
+        .apply(
+            &[Load::PointForce {
+                span: 1.0,
+                force: Force::Dead { fx: 0.0, fy: 10.0 },
+            }],
+            "loads",
+        )
+        .unwrap();
+    let tf = vec![TimeFunction::Sine {
+        omega: 20.0,
+        phase: 0.0,
+    }];
+    let t = times(1.0, 0.005);
+    let modes = Modes::undeformed(&full).unwrap();
+    for r in [2, 4] {
+        let rom = ReducedModel::first(&full, modes.shapes(), r).unwrap();
+        let mut eom =
+            EquationsOfMotion::new(&rom, &loads, tf.clone(), Gyroscopic::Exact, &Damping::None)
+                .unwrap();
+        let a = dopri(&mut eom, &vec![0.0; 2 * r], &t, 1e-10);
+        let (b, stats) = radau(&mut eom, &vec![0.0; 2 * r], &t, 1e-6);
+        let worst =
+            a.y.iter()
+                .zip(&b.y)
+                .map(|(ya, yb)| {
+                    let (p, q) = (
+                        tip(&full, &rom.full_coordinates(&ya[..r])),
+                        tip(&full, &rom.full_coordinates(&yb[..r])),
+                    );
+                    (p[0] - q[0]).hypot(p[1] - q[1])
+                })
+                .fold(0.0, f64::max);
+        eprintln!(
+            "reduced r = {r}: Radau rtol 1e-6 against DOPRI5 1e-10: {worst:.2e} m, {stats:?}"
+        );
+        // The benchmark measures 1e-8 to 2e-8 m at rtol 1e-6; 1e-6 m leaves room.
+        assert!(worst < 1e-6, "r = {r}: {worst:.2e}");
     }
 }

@@ -83,6 +83,8 @@ pub enum Integrator {
     Dopri5,
     /// Implicit midpoint rule.
     Midpoint,
+    /// Radau IIA of order 5.
+    Radau,
 }
 
 impl Integrator {
@@ -92,6 +94,7 @@ impl Integrator {
             Integrator::Bdf => "bdf",
             Integrator::Dopri5 => "dopri5",
             Integrator::Midpoint => "midpoint",
+            Integrator::Radau => "radau",
         }
     }
 }
@@ -487,6 +490,7 @@ fn models(d: &DynamicSpec) -> Result<Vec<ModelPlan>, InputError> {
         IntegratorSpec::Auto | IntegratorSpec::Bdf => Integrator::Bdf,
         IntegratorSpec::Dopri5 => Integrator::Dopri5,
         IntegratorSpec::Midpoint => Integrator::Midpoint,
+        IntegratorSpec::Radau => Integrator::Radau,
     };
     let mut models = Vec::new();
     if d.full {

@@ -375,6 +375,8 @@ pub enum IntegratorSpec {
     Midpoint,
     /// Dormand–Prince 5(4).
     Dopri5,
+    /// Radau IIA of order 5 (`RADAU5`).
+    Radau,
 }
 
 /// `dynamic.damping`.

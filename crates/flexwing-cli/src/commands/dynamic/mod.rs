@@ -18,7 +18,7 @@ use clap::Args;
 use flexwing::model::{AppliedLoads, FullModel, Load, ReducedModel, StructuralModel};
 use flexwing::solve::integrate::{
     Bdf, BdfOptions, Dopri5, Dopri5Options, ImplicitMidpoint, IntegratorStats, MidpointOptions,
-    Tolerances,
+    Radau, RadauOptions, Tolerances,
 };
 use flexwing::solve::{
     solve_static, Damping, EquationsOfMotion, Gyroscopic, Modes, StaticOptions, TimeFunction,
@@ -622,6 +622,14 @@ fn integrate<M: StructuralModel>(
                 step: settings.step,
                 max_steps: settings.max_steps,
                 ..MidpointOptions::default()
+            },
+        }
+        .integrate(eom, 0.0, y0, t_out, progress),
+        Integrator::Radau => Radau {
+            options: RadauOptions {
+                tolerances,
+                max_steps: settings.max_steps,
+                ..RadauOptions::default()
             },
         }
         .integrate(eom, 0.0, y0, t_out, progress),

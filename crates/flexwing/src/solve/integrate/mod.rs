@@ -1,6 +1,7 @@
 //! Time integrators for first-order systems `y' = f(t, y)`: an explicit adaptive Runge–Kutta
 //! (Dormand–Prince 5(4)), a variable-step variable-order BDF/NDF (the family of MATLAB's
-//! `ode15s`), and the implicit midpoint rule (symplectic, for structural dynamics).
+//! `ode15s`), the three-stage Radau IIA method of order 5 (Hairer & Wanner's `RADAU5`, for stiff
+//! systems), and the implicit midpoint rule (symplectic, for structural dynamics).
 //!
 //! Each returns the solution at the requested output times (dense output, no extra steps) and its
 //! counters. A run that cannot continue returns the output produced so far with the error, so that
@@ -8,11 +9,14 @@
 
 mod bdf;
 mod dopri5;
+mod lu;
 mod midpoint;
+mod radau;
 
 pub use bdf::{Bdf, BdfOptions};
 pub use dopri5::{Dopri5, Dopri5Options};
 pub use midpoint::{ImplicitMidpoint, MidpointOptions};
+pub use radau::{Radau, RadauOptions};
 
 use nalgebra::DMatrix;
 
