@@ -1,44 +1,53 @@
-//! Time integration for the reproduction: one driver over the library's integrators, with a
+//! Time integration for the reproduction: one driver over the library's integrators (those the
+//! reproduction uses), with a
 //! guard that stops a run whose energy explodes (the simplified model released from a large
 //! deflection) instead of letting the integrator grind to a tiny step.
 
 use flexwing::model::StructuralModel;
 use flexwing::solve::integrate::{
-    Bdf, BdfOptions, Dopri5, Dopri5Options, ImplicitMidpoint, IntegratorStats, MidpointOptions,
-    Tolerances, Trajectory,
+    Dopri5, Dopri5Options, ImplicitMidpoint, IntegratorStats, MidpointOptions,
+    Radau, RadauOptions, Tolerances, Trajectory,
 };
 use flexwing::solve::EquationsOfMotion;
 
 /// An integrator and its accuracy setting.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Method {
-    /// Variable-order BDF (orders ≤ 2), relative tolerance.
-    Bdf(f64),
     /// Dormand–Prince 5(4), relative tolerance.
     Dopri5(f64),
     /// Implicit midpoint rule with a fixed step (s).
     Midpoint(f64),
+    /// Radau IIA of order 5, relative tolerance and largest step (s).
+    Radau(f64, f64),
 }
 
 impl Method {
     /// Description for the report.
     pub fn describe(&self) -> String {
         match self {
-            Self::Bdf(rtol) => format!("BDF (order ≤ 2), rtol {rtol:.0e}"),
             Self::Dopri5(rtol) => format!("Dormand–Prince 5(4), rtol {rtol:.0e}"),
             Self::Midpoint(h) => format!("implicit midpoint, h = {h:.1e} s"),
+            Self::Radau(rtol, h) if h.is_finite() => {
+                format!("Radau IIA order 5, rtol {rtol:.0e}, steps ≤ {h} s")
+            }
+            Self::Radau(rtol, _) => format!("Radau IIA order 5, rtol {rtol:.0e}"),
         }
     }
 
     /// Short name for tables.
     pub fn short(&self) -> String {
         match self {
-            Self::Bdf(rtol) => format!("BDF {rtol:.0e}"),
             Self::Dopri5(rtol) => format!("DOPRI5 {rtol:.0e}"),
             Self::Midpoint(h) => format!("midpoint h {h:.1e}"),
+            Self::Radau(rtol, _) => format!("Radau {rtol:.0e}"),
         }
     }
 }
+
+/// Steps allowed per window of a guarded run: 5 000 steps for one output interval means steps
+/// below 2e-4 of the output interval, a hundred times more than the full model needs at the
+/// tightest tolerance used here, unless it blew up.
+pub const WINDOW_STEPS: usize = 5_000;
 
 /// A run: the output reached, the integrator's counters and, if it stopped early, why.
 pub struct Run {
@@ -58,8 +67,10 @@ fn add(a: &mut IntegratorStats, b: &IntegratorStats) {
 
 /// Integrate `eom` from `y0` at `t_out[0]` to the output times `t_out`. With `energy_limit`, the
 /// run goes in windows of `window` output intervals and stops when the energy exceeds that
-/// multiple of its initial value (a blown-up run). Tolerances: `rtol`, and `rtol/100` rad on the
-/// coordinates with consistent momenta (`EquationsOfMotion::state_atol`).
+/// multiple of its initial value, or when one window needs more than [`WINDOW_STEPS`] steps (a
+/// blown-up run). Tolerances: `rtol`, and an absolute tolerance on the coordinates (rad) with
+/// consistent momenta (`EquationsOfMotion::state_atol`) of `rtol/100` (`rtol` for Radau, whose
+/// tolerances are rescaled internally as in `RADAU5`).
 pub fn integrate<M: StructuralModel>(
     eom: &mut EquationsOfMotion<'_, M>,
     y0: &[f64],
@@ -67,13 +78,19 @@ pub fn integrate<M: StructuralModel>(
     method: Method,
     energy_limit: Option<(f64, usize)>,
 ) -> Run {
-    let rtol = match method {
-        Method::Bdf(r) | Method::Dopri5(r) => r,
-        Method::Midpoint(_) => 1e-6,
+    let (rtol, atol) = match method {
+        Method::Dopri5(r) => (r, r * 1e-2),
+        Method::Radau(r, _) => (r, r),
+        Method::Midpoint(_) => (1e-6, 1e-8),
     };
     let tolerances = Tolerances {
         rtol,
-        atol: eom.state_atol(rtol * 1e-2),
+        atol: eom.state_atol(atol),
+    };
+    let max_steps = if energy_limit.is_some() {
+        WINDOW_STEPS
+    } else {
+        1_000_000
     };
     let energy = |eom: &mut EquationsOfMotion<'_, M>, y: &[f64]| {
         let (k, s) = eom.energies(y);
@@ -93,16 +110,10 @@ pub fn integrate<M: StructuralModel>(
         let times = &t_out[start..=end];
         let t0 = times[0];
         let result = match method {
-            Method::Bdf(_) => Bdf {
-                options: BdfOptions {
-                    tolerances: tolerances.clone(),
-                    ..Default::default()
-                },
-            }
-            .integrate(eom, t0, &y, times, &mut |_| {}),
             Method::Dopri5(_) => Dopri5 {
                 options: Dopri5Options {
                     tolerances: tolerances.clone(),
+                    max_steps,
                     ..Default::default()
                 },
             }
@@ -111,6 +122,16 @@ pub fn integrate<M: StructuralModel>(
                 options: MidpointOptions {
                     tolerances: tolerances.clone(),
                     step: Some(h),
+                    max_steps,
+                    ..Default::default()
+                },
+            }
+            .integrate(eom, t0, &y, times, &mut |_| {}),
+            Method::Radau(_, max_step) => Radau {
+                options: RadauOptions {
+                    tolerances: tolerances.clone(),
+                    max_step,
+                    max_steps,
                     ..Default::default()
                 },
             }
