@@ -2,6 +2,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::chain_solve::ChainScratch;
 use super::kinetic::{KineticBuffers, KineticScratch};
 use super::loads::Resultants;
 use super::{AppliedLoads, Kinematics, StructuralModel};
@@ -183,6 +184,48 @@ impl FullModel {
         jac
     }
 
+    /// Velocities `q̇ = M(q)⁻¹ p` into `out`, in O(n) and without forming `M(q)`: a backward
+    /// Riccati sweep along the chain and a forward substitution (derivation in the source of
+    /// `model::chain_solve`). Returns false, leaving `out` unspecified, if `M(q)` is not
+    /// numerically positive definite. Allocates nothing.
+    ///
+    /// ```
+    /// use flexwing::beam::{Beam, Calibration, Discretization, Profile, SectionProperties};
+    /// use flexwing::model::{FullModel, StructuralModel};
+    /// let section = SectionProperties {
+    ///     ei: Profile::Uniform(50.0),
+    ///     mass_per_length: Profile::Uniform(0.2),
+    ///     torsion: None,
+    /// };
+    /// let model = FullModel::new(Beam::new(1.0, &section, &Discretization::Uniform(4), Calibration::TipLoad)?);
+    /// let mut ws = model.workspace();
+    /// let (q, qdot) = ([0.1, -0.2, 0.3, 0.0], [1.0, 2.0, -1.0, 0.5]);
+    /// let mut p = [0.0; 4];
+    /// model.momentum_into(&q, &qdot, &mut p);
+    /// let mut v = [0.0; 4];
+    /// assert!(model.solve_mass_into(&q, &p, &mut ws, &mut v));
+    /// assert!(v.iter().zip(&qdot).all(|(a, b)| (a - b).abs() < 1e-12));
+    /// # Ok::<(), flexwing::InputError>(())
+    /// ```
+    ///
+    /// # Panics
+    /// If a slice length differs from `n_dofs()`.
+    pub fn solve_mass_into(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        ws: &mut Workspace,
+        out: &mut [f64],
+    ) -> bool {
+        let nd = self.n_dofs();
+        assert!(
+            q.len() == nd && p.len() == nd && out.len() == nd,
+            "slices must have n_dofs entries"
+        );
+        ws.configure(self, q);
+        self.solve_mass_configured(&ws.kinetic, p, &mut ws.chain, out)
+    }
+
     /// Jacobian `∂g_i/∂q` (3 × `n_dofs`) of the mass centre of element `i` (0-based).
     pub fn mass_centre_jacobian(&self, kin: &Kinematics, i: usize) -> DMatrix<f64> {
         let mut jac = DMatrix::zeros(3, self.n_dofs());
@@ -224,6 +267,7 @@ pub struct Workspace {
     /// Configuration whose trigonometry `kinetic` holds (NaN: none yet).
     pub(super) kinetic_at: Vec<f64>,
     pub(super) duals: KineticBuffers,
+    pub(super) chain: ChainScratch<f64>,
     pub(super) identity: DMatrix<f64>,
 }
 
@@ -253,6 +297,7 @@ impl StructuralModel for FullModel {
             kinetic: KineticScratch::new(self.n),
             kinetic_at: vec![f64::NAN; self.n_dofs()],
             duals: KineticBuffers::new(self),
+            chain: ChainScratch::new(self.n),
             identity: DMatrix::identity(self.n_dofs(), self.n_dofs()),
         }
     }
@@ -299,6 +344,10 @@ impl StructuralModel for FullModel {
     fn momentum_into(&self, q: &[f64], qdot: &[f64], ws: &mut Workspace, out: &mut [f64]) {
         ws.configure(self, q);
         self.kinetic_terms_configured(qdot, &mut ws.kinetic, Some(out), None);
+    }
+
+    fn velocities_into(&self, q: &[f64], p: &[f64], ws: &mut Workspace, out: &mut [f64]) -> bool {
+        self.solve_mass_into(q, p, ws, out)
     }
 
     fn gyroscopic_into(&self, q: &[f64], qdot: &[f64], ws: &mut Workspace, out: &mut [f64]) {

@@ -29,13 +29,13 @@ use super::{suffix_sum_in_blocks, FullModel};
 /// Scratch of the kinetic recursions for scalar `D`.
 #[derive(Debug, Clone)]
 pub(crate) struct KineticScratch<D> {
-    cos_theta: Vec<D>,
-    sin_theta: Vec<D>,
-    cos_psi: Vec<D>,
-    sin_psi: Vec<D>,
-    theta_dot: Vec<D>,
-    psi_dot: Vec<D>,
-    g_dot: Vec<[D; 3]>,
+    pub(super) cos_theta: Vec<D>,
+    pub(super) sin_theta: Vec<D>,
+    pub(super) cos_psi: Vec<D>,
+    pub(super) sin_psi: Vec<D>,
+    pub(super) theta_dot: Vec<D>,
+    pub(super) psi_dot: Vec<D>,
+    pub(super) g_dot: Vec<[D; 3]>,
 }
 
 impl<D: DualNum<Primitive = f64> + Copy> KineticScratch<D> {

@@ -4,6 +4,7 @@
 //! `q_{n+1} … q_{2n}` the torsion joint rotations (absent in a bending-only model). Absolute angles
 //! are `θ = T q_b`, `ψ = T q_t` with `T` the lower-triangular matrix of ones.
 
+mod chain_solve;
 mod full;
 mod kinematics;
 mod kinetic;
@@ -70,6 +71,16 @@ pub trait StructuralModel {
     );
     /// Momentum `p = M(x) ẋ` into `out`.
     fn momentum_into(&self, x: &[f64], xdot: &[f64], ws: &mut Self::Workspace, out: &mut [f64]);
+    /// Velocities `ẋ = M(x)⁻¹ p` into `out`: O(n) for the full model (a Riccati sweep along the
+    /// chain, `model::chain_solve`), a dense `r × r` Cholesky factorization for the reduced one.
+    /// Returns false, leaving `out` unspecified, if `M(x)` is not numerically positive definite.
+    fn velocities_into(
+        &self,
+        x: &[f64],
+        p: &[f64],
+        ws: &mut Self::Workspace,
+        out: &mut [f64],
+    ) -> bool;
     /// Gyroscopic term `γ = ∂T/∂x|_ẋ` into `out`.
     fn gyroscopic_into(&self, x: &[f64], xdot: &[f64], ws: &mut Self::Workspace, out: &mut [f64]);
     /// Exact derivatives with respect to `x` at fixed `ẋ` of the momentum, `∂(M ẋ)/∂x`, and of

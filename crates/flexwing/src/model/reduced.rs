@@ -139,6 +139,8 @@ pub struct ReducedWorkspace {
     block: DMatrix<f64>,
     block2: DMatrix<f64>,
     column: Vec<f64>,
+    /// Reduced mass matrix, then its Cholesky factor (lower triangle).
+    factor: DMatrix<f64>,
 }
 
 /// `out = Φᵀ v`.
@@ -172,6 +174,7 @@ impl StructuralModel for ReducedModel {
             block: DMatrix::zeros(nd, self.phi.ncols()),
             block2: DMatrix::zeros(nd, self.phi.ncols()),
             column: vec![0.0; nd],
+            factor: DMatrix::zeros(self.phi.ncols(), self.phi.ncols()),
         }
     }
 
@@ -213,6 +216,24 @@ impl StructuralModel for ReducedModel {
             None,
         );
         project(&self.phi, &ws.column, out);
+    }
+
+    fn velocities_into(
+        &self,
+        eta: &[f64],
+        p: &[f64],
+        ws: &mut ReducedWorkspace,
+        out: &mut [f64],
+    ) -> bool {
+        let mut factor = std::mem::take(&mut ws.factor);
+        self.mass_matrix_into(eta, ws, &mut factor);
+        let ok = cholesky_in_place(&mut factor);
+        if ok {
+            out.copy_from_slice(p);
+            cholesky_solve(&factor, out);
+        }
+        ws.factor = factor;
+        ok
     }
 
     fn gyroscopic_into(
@@ -306,5 +327,49 @@ impl StructuralModel for ReducedModel {
 
     fn full_model(&self) -> &FullModel {
         &self.full
+    }
+}
+
+/// In-place Cholesky factorization `A = L Lᵀ`: the lower triangle of `a` becomes `L`. Returns
+/// false if `a` is not (numerically) positive definite.
+fn cholesky_in_place(a: &mut DMatrix<f64>) -> bool {
+    let n = a.nrows();
+    for j in 0..n {
+        let mut d = a[(j, j)];
+        for k in 0..j {
+            d -= a[(j, k)] * a[(j, k)];
+        }
+        if !(d > 0.0) {
+            return false;
+        }
+        let d = d.sqrt();
+        a[(j, j)] = d;
+        for i in j + 1..n {
+            let mut v = a[(i, j)];
+            for k in 0..j {
+                v -= a[(i, k)] * a[(j, k)];
+            }
+            a[(i, j)] = v / d;
+        }
+    }
+    true
+}
+
+/// Solve `L Lᵀ x = b` in place with the factor of [`cholesky_in_place`].
+fn cholesky_solve(l: &DMatrix<f64>, b: &mut [f64]) {
+    let n = l.nrows();
+    for i in 0..n {
+        let mut v = b[i];
+        for k in 0..i {
+            v -= l[(i, k)] * b[k];
+        }
+        b[i] = v / l[(i, i)];
+    }
+    for i in (0..n).rev() {
+        let mut v = b[i];
+        for k in i + 1..n {
+            v -= l[(k, i)] * b[k];
+        }
+        b[i] = v / l[(i, i)];
     }
 }

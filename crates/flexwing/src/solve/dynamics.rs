@@ -21,7 +21,7 @@ pub enum Gyroscopic {
     /// Exact, in O(n) (the chain recursion of `model::kinetic`).
     Exact,
     /// Central finite differences of `−½ pᵀ M(x)⁻¹ p` with step `step` (paper eq. 17); costs
-    /// `2 n_dofs` mass-matrix factorizations per evaluation.
+    /// `2 n_dofs` velocity solves per evaluation.
     FiniteDifference {
         /// Step `h` (rad), e.g. `1e-6`.
         step: f64,
@@ -194,9 +194,6 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     ws: M::Workspace,
     n: usize,
     mass: DMatrix<f64>,
-    /// Cholesky factor of the last mass matrix (lower triangle), if it was positive definite.
-    factor: DMatrix<f64>,
-    factored: bool,
     scales: Vec<f64>,
     xdot: Vec<f64>,
     gamma: Vec<f64>,
@@ -204,6 +201,10 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     dp: DMatrix<f64>,
     dgamma: DMatrix<f64>,
     load_jac: DMatrix<f64>,
+    unit: Vec<f64>,
+    p_shift: Vec<f64>,
+    minv: DMatrix<f64>,
+    dxdx: DMatrix<f64>,
     /// Right-hand-side evaluations.
     pub rhs_evaluations: usize,
     /// Jacobian evaluations.
@@ -256,8 +257,10 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             ws,
             n,
             mass: DMatrix::zeros(n, n),
-            factor: DMatrix::zeros(n, n),
-            factored: false,
+            unit: vec![0.0; n],
+            p_shift: vec![0.0; n],
+            minv: DMatrix::zeros(n, n),
+            dxdx: DMatrix::zeros(n, n),
             xdot: vec![0.0; n],
             gamma: vec![0.0; n],
             force: DVector::zeros(n),
@@ -302,8 +305,8 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
 
     /// Velocities `ẋ = M(x)⁻¹ p` of the state `y`.
     pub fn velocities(&mut self, y: &[f64]) -> Vec<f64> {
-        self.factor_mass(&y[..self.n]);
-        self.solve_velocities(&y[self.n..]);
+        let (x, p) = y.split_at(self.n);
+        self.solve_velocities(x, p);
         self.xdot.clone()
     }
 
@@ -317,20 +320,16 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         (kinetic, strain)
     }
 
-    fn factor_mass(&mut self, x: &[f64]) {
-        self.model.mass_matrix_into(x, &mut self.ws, &mut self.mass);
-        self.factor.copy_from(&self.mass);
-        self.factored = cholesky_in_place(&mut self.factor);
-    }
-
-    /// `ẋ = M⁻¹ p` into `self.xdot`, with the factor of the last `factor_mass` (no allocation).
-    fn solve_velocities(&mut self, p: &[f64]) {
-        self.xdot.copy_from_slice(p);
-        if self.factored {
-            cholesky_solve(&self.factor, &mut self.xdot);
-        } else {
+    /// `ẋ = M(x)⁻¹ p` into `self.xdot` (NaN if `M(x)` is not positive definite); false if
+    /// it is not. No allocation.
+    fn solve_velocities(&mut self, x: &[f64], p: &[f64]) -> bool {
+        let ok = self
+            .model
+            .velocities_into(x, p, &mut self.ws, &mut self.xdot);
+        if !ok {
             self.xdot.fill(f64::NAN);
         }
+        ok
     }
 
     fn update_scales(&mut self, t: f64) {
@@ -340,71 +339,25 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     }
 
     /// `γ` by central differences of `H_T(x) = ½ pᵀ M(x)⁻¹ p` at fixed `p`: `γ = −∂H_T/∂x`.
+    /// Each of the `2 n` energies costs one velocity solve; `self.dxdx` column 0 is scratch.
     fn gyroscopic_fd(&mut self, x: &[f64], p: &[f64], h: f64) {
         let n = self.n;
-        let mut xs = x.to_vec();
-        let mut v = vec![0.0; n];
-        let mut m = DMatrix::zeros(n, n);
+        self.unit.copy_from_slice(x);
         for i in 0..n {
             let mut half_energy = [0.0; 2];
             for (k, sign) in [1.0, -1.0].iter().enumerate() {
-                xs[i] = x[i] + sign * h;
-                self.model.mass_matrix_into(&xs, &mut self.ws, &mut m);
-                half_energy[k] = if cholesky_in_place(&mut m) {
-                    v.copy_from_slice(p);
-                    cholesky_solve(&m, &mut v);
-                    0.5 * p.iter().zip(&v).map(|(a, b)| a * b).sum::<f64>()
+                self.unit[i] = x[i] + sign * h;
+                let v = self.dxdx.column_mut(0);
+                let v = v.data.into_slice_mut();
+                half_energy[k] = if self.model.velocities_into(&self.unit, p, &mut self.ws, v) {
+                    0.5 * p.iter().zip(v.iter()).map(|(a, b)| a * b).sum::<f64>()
                 } else {
                     f64::NAN
                 };
             }
-            xs[i] = x[i];
+            self.unit[i] = x[i];
             self.gamma[i] = -(half_energy[0] - half_energy[1]) / (2.0 * h);
         }
-    }
-}
-
-/// In-place Cholesky factorization `A = L Lᵀ`: the lower triangle of `a` becomes `L`. Returns
-/// false if `a` is not (numerically) positive definite.
-fn cholesky_in_place(a: &mut DMatrix<f64>) -> bool {
-    let n = a.nrows();
-    for j in 0..n {
-        let mut d = a[(j, j)];
-        for k in 0..j {
-            d -= a[(j, k)] * a[(j, k)];
-        }
-        if !(d > 0.0) {
-            return false;
-        }
-        let d = d.sqrt();
-        a[(j, j)] = d;
-        for i in j + 1..n {
-            let mut v = a[(i, j)];
-            for k in 0..j {
-                v -= a[(i, k)] * a[(j, k)];
-            }
-            a[(i, j)] = v / d;
-        }
-    }
-    true
-}
-
-/// Solve `L Lᵀ x = b` in place with the factor of [`cholesky_in_place`].
-fn cholesky_solve(l: &DMatrix<f64>, b: &mut [f64]) {
-    let n = l.nrows();
-    for i in 0..n {
-        let mut v = b[i];
-        for k in 0..i {
-            v -= l[(i, k)] * b[k];
-        }
-        b[i] = v / l[(i, i)];
-    }
-    for i in (0..n).rev() {
-        let mut v = b[i];
-        for k in i + 1..n {
-            v -= l[(k, i)] * b[k];
-        }
-        b[i] = v / l[(i, i)];
     }
 }
 
@@ -466,8 +419,7 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         self.rhs_evaluations += 1;
         let n = self.n;
         let (x, p) = y.split_at(n);
-        self.factor_mass(x);
-        self.solve_velocities(p);
+        self.solve_velocities(x, p);
         self.update_scales(t);
         self.model.generalized_forces_into(
             x,
@@ -509,10 +461,8 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         self.jacobian_evaluations += 1;
         let n = self.n;
         let (x, p) = y.split_at(n);
-        self.factor_mass(x);
-        self.solve_velocities(p);
         self.update_scales(t);
-        if !self.factored {
+        if !self.solve_velocities(x, p) {
             jac.fill(f64::NAN);
             return;
         }
@@ -530,26 +480,42 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
             &mut self.ws,
             &mut self.load_jac,
         );
-        let mut minv = DMatrix::identity(n, n);
-        for mut col in minv.column_iter_mut() {
-            cholesky_solve(&self.factor, col.as_mut_slice());
+        // Columns of M⁻¹ and of ∂ẋ/∂x = −M⁻¹ B, one velocity solve each: O(n²) for the full
+        // model, never a dense factorization or inverse.
+        for c in 0..n {
+            self.unit.fill(0.0);
+            self.unit[c] = 1.0;
+            let col = self.minv.column_mut(c).data.into_slice_mut();
+            self.model.velocities_into(x, &self.unit, &mut self.ws, col);
+            let col = self.dxdx.column_mut(c).data.into_slice_mut();
+            self.p_shift.copy_from_slice(self.dp.column(c).as_slice());
+            self.model
+                .velocities_into(x, &self.p_shift, &mut self.ws, col);
+            col.iter_mut().for_each(|v| *v = -*v);
         }
-        let dxdx = -(&minv * &self.dp);
-        let mut g_xdot = match self.gyroscopic {
-            Gyroscopic::Neglected => DMatrix::zeros(n, n),
-            _ => self.dp.transpose(),
-        };
-        if let Some(c) = &self.c {
-            g_xdot -= c;
-        }
-        let mut dpdx = &self.load_jac - &self.k + &g_xdot * &dxdx;
+        jac.view_mut((0, 0), (n, n)).copy_from(&self.dxdx);
+        jac.view_mut((0, n), (n, n)).copy_from(&self.minv);
+        let mut dpdx = jac.view_mut((n, 0), (n, n));
+        dpdx.copy_from(&self.load_jac);
+        dpdx -= &self.k;
         if !matches!(self.gyroscopic, Gyroscopic::Neglected) {
+            // G_x + Bᵀ ∂ẋ/∂x; the one O(n³) product left, a matrix–matrix multiply.
             dpdx += &self.dgamma;
+            dpdx.gemm_tr(1.0, &self.dp, &self.dxdx, 1.0);
         }
-        let dpdp = &g_xdot * &minv;
-        jac.view_mut((0, 0), (n, n)).copy_from(&dxdx);
-        jac.view_mut((0, n), (n, n)).copy_from(&minv);
-        jac.view_mut((n, 0), (n, n)).copy_from(&dpdx);
-        jac.view_mut((n, n), (n, n)).copy_from(&dpdp);
+        if let Some(c) = &self.c {
+            dpdx.gemm(-1.0, c, &self.dxdx, 1.0);
+        }
+        // ∂ṗ/∂p = (Bᵀ − C) M⁻¹ with Bᵀ M⁻¹ = (M⁻¹ B)ᵀ = −(∂ẋ/∂x)ᵀ since M is symmetric.
+        let mut dpdp = jac.view_mut((n, n), (n, n));
+        if matches!(self.gyroscopic, Gyroscopic::Neglected) {
+            dpdp.fill(0.0);
+        } else {
+            dpdp.copy_from(&self.dxdx.transpose());
+            dpdp.neg_mut();
+        }
+        if let Some(c) = &self.c {
+            dpdp.gemm(-1.0, c, &self.minv, 1.0);
+        }
     }
 }
