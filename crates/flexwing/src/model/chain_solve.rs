@@ -57,10 +57,15 @@ use num_dual::DualNum;
 use super::kinetic::KineticScratch;
 use super::FullModel;
 
-/// Per-element gains of the backward sweep: `K_i` (row-major 2 × 2) and `k_i`.
+/// The factorization of `M(q)` by the backward sweep, per element: the `L D Lᵀ` factors of
+/// `H_i`, the gain `K_i = H_i⁻¹ G_i` (row-major 2 × 2) and `G_i`; then the feed-forward terms
+/// `k_i` of the last solve. Everything but `k_i` depends on `q` only, so one factorization
+/// serves any number of right-hand sides at about a third of the cost of each.
 #[derive(Debug, Clone)]
 pub(crate) struct ChainScratch<D> {
+    pivot: Vec<(D, D, D)>,
     gain: Vec<[D; 4]>,
+    coupling: Vec<[D; 4]>,
     feed: Vec<[D; 2]>,
 }
 
@@ -68,7 +73,9 @@ impl<D: DualNum<Primitive = f64> + Copy> ChainScratch<D> {
     pub(crate) fn new(n: usize) -> Self {
         let z = D::from(0.0);
         Self {
+            pivot: vec![(z, z, z); n],
             gain: vec![[z; 4]; n],
+            coupling: vec![[z; 4]; n],
             feed: vec![[z; 2]; n],
         }
     }
@@ -94,41 +101,48 @@ impl FullModel {
         chain: &mut ChainScratch<D>,
         out: &mut [D],
     ) -> bool {
-        let n = self.n;
+        if !self.factor_mass_configured(sc, chain) {
+            return false;
+        }
+        self.solve_factored(sc, chain, p, out);
+        true
+    }
+
+    /// The backward sweep's `p`-independent part: pivots `H_i`, gains `K_i`, couplings `G_i`.
+    /// False if a pivot is not positive definite (then `M(q)` is not).
+    pub(crate) fn factor_mass_configured<D: DualNum<Primitive = f64> + Copy>(
+        &self,
+        sc: &KineticScratch<D>,
+        chain: &mut ChainScratch<D>,
+    ) -> bool {
         let zero = D::from(0.0);
-        // Backward sweep: P = [p00 p01; p01 p11], w.
+        // P = [p00 p01; p01 p11].
         let (mut p00, mut p01, mut p11) = (zero, zero, zero);
-        let mut w = [zero; 2];
-        for i in (0..n).rev() {
+        for i in (0..self.n).rev() {
             let (c, s) = (sc.cos_theta[i], sc.sin_theta[i]);
             let (l, h, d, m) = (self.ell[i], 0.5 * self.ell[i], self.d0[i], self.mass[i]);
-            // Absolute-angle momenta: differences of the joint momenta.
-            let next = |k: usize| if i + 1 < n { p[k + 1] } else { zero };
-            let p_th = p[i] - next(i);
             let nv = [-s, c];
             // b_θ (in plane) and b_ψ (in plane, plus −d0 sin ψ ẑ).
-            let (bt, bp, h11, p_ps) = if self.torsion {
+            let (bt, bp, h11) = if self.torsion {
                 let (cp, sp) = (sc.cos_psi[i], sc.sin_psi[i]);
                 (
                     [nv[0] * h - c * sp * d, nv[1] * h - s * sp * d],
                     [nv[0] * cp * d, nv[1] * cp * d],
                     D::from(m * d * d + self.inertia[i]),
-                    p[n + i] - next(n + i),
                 )
             } else {
-                ([nv[0] * h, nv[1] * h], [zero; 2], D::from(1.0), zero)
+                ([nv[0] * h, nv[1] * h], [zero; 2], D::from(1.0))
             };
             // P a with a = ℓ n.
             let pa = [
                 (p00 * nv[0] + p01 * nv[1]) * l,
                 (p01 * nv[0] + p11 * nv[1]) * l,
             ];
-            let h00 = (bt[0] * bt[0] + bt[1] * bt[1]) * m + pa[0] * nv[0] * l + pa[1] * nv[1] * l;
+            let h00 = (bt[0] * bt[0] + bt[1] * bt[1]) * m + (pa[0] * nv[0] + pa[1] * nv[1]) * l;
             let h01 = (bt[0] * bp[0] + bt[1] * bp[1]) * m;
             // G rows: m b_θ + P a, and m b_ψ.
             let g0 = [bt[0] * m + pa[0], bt[1] * m + pa[1]];
             let g1 = [bp[0] * m, bp[1] * m];
-            let rhs = [p_th + (w[0] * nv[0] + w[1] * nv[1]) * l, p_ps];
             if !(h00.re() > 0.0) {
                 return false;
             }
@@ -141,15 +155,46 @@ impl FullModel {
             // K = H⁻¹ G column by column (columns of G are the V components).
             let kx = solve2(f, [g0[0], g1[0]]);
             let ky = solve2(f, [g0[1], g1[1]]);
-            let k = solve2(f, rhs);
+            chain.pivot[i] = f;
             chain.gain[i] = [kx[0], ky[0], kx[1], ky[1]];
-            chain.feed[i] = k;
-            // P ← m I + P − Gᵀ K, w ← w − Gᵀ k, with Gᵀ = [g0 g1] (columns).
+            chain.coupling[i] = [g0[0], g0[1], g1[0], g1[1]];
+            // P ← m I + P − Gᵀ K, with Gᵀ = [g0 g1] (columns).
             p00 += D::from(m) - (g0[0] * kx[0] + g1[0] * kx[1]);
             p01 -= g0[0] * ky[0] + g1[0] * ky[1];
             p11 += D::from(m) - (g0[1] * ky[0] + g1[1] * ky[1]);
-            w[0] -= g0[0] * k[0] + g1[0] * k[1];
-            w[1] -= g0[1] * k[0] + g1[1] * k[1];
+        }
+        true
+    }
+
+    /// `out = M(q)⁻¹ p` with the factorization of [`Self::factor_mass_configured`]: the
+    /// backward sweep of `w` and `k_i`, then the forward sweep.
+    pub(crate) fn solve_factored<D: DualNum<Primitive = f64> + Copy>(
+        &self,
+        sc: &KineticScratch<D>,
+        chain: &mut ChainScratch<D>,
+        p: &[D],
+        out: &mut [D],
+    ) {
+        let n = self.n;
+        let zero = D::from(0.0);
+        let mut w = [zero; 2];
+        for i in (0..n).rev() {
+            // Absolute-angle momenta: differences of the joint momenta.
+            let next = |k: usize| if i + 1 < n { p[k + 1] } else { zero };
+            let p_th = p[i] - next(i);
+            let p_ps = if self.torsion {
+                p[n + i] - next(n + i)
+            } else {
+                zero
+            };
+            let (c, s, l) = (sc.cos_theta[i], sc.sin_theta[i], self.ell[i]);
+            let rhs = [p_th + (c * w[1] - s * w[0]) * l, p_ps];
+            let k = solve2(chain.pivot[i], rhs);
+            let g = chain.coupling[i];
+            // w ← w − Gᵀ k.
+            w[0] -= g[0] * k[0] + g[2] * k[1];
+            w[1] -= g[1] * k[0] + g[3] * k[1];
+            chain.feed[i] = k;
         }
         // Forward sweep, and joint rates as differences of the absolute ones.
         let mut v = [zero; 2];
@@ -169,6 +214,5 @@ impl FullModel {
             v[0] -= sc.sin_theta[i] * u_th * l;
             v[1] += sc.cos_theta[i] * u_th * l;
         }
-        true
     }
 }

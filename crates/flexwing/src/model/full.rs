@@ -350,6 +350,25 @@ impl StructuralModel for FullModel {
         self.solve_mass_into(q, p, ws, out)
     }
 
+    fn velocities_block_into(
+        &self,
+        q: &[f64],
+        p: &DMatrix<f64>,
+        ws: &mut Workspace,
+        out: &mut DMatrix<f64>,
+    ) -> bool {
+        assert_eq!(p.shape(), out.shape(), "output block has the wrong shape");
+        ws.configure(self, q);
+        if !self.factor_mass_configured(&ws.kinetic, &mut ws.chain) {
+            return false;
+        }
+        for c in 0..p.ncols() {
+            let col = out.column_mut(c).data.into_slice_mut();
+            self.solve_factored(&ws.kinetic, &mut ws.chain, p.column(c).as_slice(), col);
+        }
+        true
+    }
+
     fn gyroscopic_into(&self, q: &[f64], qdot: &[f64], ws: &mut Workspace, out: &mut [f64]) {
         ws.configure(self, q);
         self.kinetic_terms_configured(qdot, &mut ws.kinetic, None, Some(out));

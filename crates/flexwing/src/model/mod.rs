@@ -81,6 +81,20 @@ pub trait StructuralModel {
         ws: &mut Self::Workspace,
         out: &mut [f64],
     ) -> bool;
+    /// `M(x)⁻¹ P` for the columns of `p` into `out` (same shape), factoring `M(x)` once.
+    /// Returns false, leaving `out` unspecified, if `M(x)` is not positive definite.
+    fn velocities_block_into(
+        &self,
+        x: &[f64],
+        p: &DMatrix<f64>,
+        ws: &mut Self::Workspace,
+        out: &mut DMatrix<f64>,
+    ) -> bool {
+        (0..p.ncols()).all(|c| {
+            let col = out.column_mut(c).data.into_slice_mut();
+            self.velocities_into(x, p.column(c).as_slice(), ws, col)
+        })
+    }
     /// Gyroscopic term `γ = ∂T/∂x|_ẋ` into `out`.
     fn gyroscopic_into(&self, x: &[f64], xdot: &[f64], ws: &mut Self::Workspace, out: &mut [f64]);
     /// Exact derivatives with respect to `x` at fixed `ẋ` of the momentum, `∂(M ẋ)/∂x`, and of

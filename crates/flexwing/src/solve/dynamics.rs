@@ -190,6 +190,8 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     time_functions: Vec<TimeFunction>,
     gyroscopic: Gyroscopic,
     k: DMatrix<f64>,
+    /// The diagonal of `K` when `K` is diagonal (the full model): `K x` in O(n).
+    k_diag: Option<Vec<f64>>,
     c: Option<DMatrix<f64>>,
     ws: M::Workspace,
     n: usize,
@@ -201,8 +203,8 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     dp: DMatrix<f64>,
     dgamma: DMatrix<f64>,
     load_jac: DMatrix<f64>,
-    unit: Vec<f64>,
-    p_shift: Vec<f64>,
+    x_shift: Vec<f64>,
+    identity: DMatrix<f64>,
     minv: DMatrix<f64>,
     dxdx: DMatrix<f64>,
     /// Right-hand-side evaluations.
@@ -246,19 +248,23 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         let n = model.n_dofs();
         let mut ws = model.workspace();
         let c = damping_matrix(model, &mut ws, damping)?;
+        let k = model.stiffness_matrix();
+        let diagonal = (0..n).all(|j| (0..n).all(|i| i == j || k[(i, j)] == 0.0));
+        let k_diag = diagonal.then(|| k.diagonal().as_slice().to_vec());
         Ok(Self {
             model,
             loads,
             scales: vec![0.0; time_functions.len()],
             time_functions,
             gyroscopic,
-            k: model.stiffness_matrix(),
+            k,
+            k_diag,
             c,
             ws,
             n,
             mass: DMatrix::zeros(n, n),
-            unit: vec![0.0; n],
-            p_shift: vec![0.0; n],
+            x_shift: vec![0.0; n],
+            identity: DMatrix::identity(n, n),
             minv: DMatrix::zeros(n, n),
             dxdx: DMatrix::zeros(n, n),
             xdot: vec![0.0; n],
@@ -342,20 +348,23 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     /// Each of the `2 n` energies costs one velocity solve; `self.dxdx` column 0 is scratch.
     fn gyroscopic_fd(&mut self, x: &[f64], p: &[f64], h: f64) {
         let n = self.n;
-        self.unit.copy_from_slice(x);
+        self.x_shift.copy_from_slice(x);
         for i in 0..n {
             let mut half_energy = [0.0; 2];
             for (k, sign) in [1.0, -1.0].iter().enumerate() {
-                self.unit[i] = x[i] + sign * h;
+                self.x_shift[i] = x[i] + sign * h;
                 let v = self.dxdx.column_mut(0);
                 let v = v.data.into_slice_mut();
-                half_energy[k] = if self.model.velocities_into(&self.unit, p, &mut self.ws, v) {
+                half_energy[k] = if self
+                    .model
+                    .velocities_into(&self.x_shift, p, &mut self.ws, v)
+                {
                     0.5 * p.iter().zip(v.iter()).map(|(a, b)| a * b).sum::<f64>()
                 } else {
                     f64::NAN
                 };
             }
-            self.unit[i] = x[i];
+            self.x_shift[i] = x[i];
             self.gamma[i] = -(half_energy[0] - half_energy[1]) / (2.0 * h);
         }
     }
@@ -440,8 +449,13 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         dx.copy_from_slice(&self.xdot);
         for i in 0..n {
             let mut v = self.force[i] + self.gamma[i];
-            for j in 0..n {
-                v -= self.k[(i, j)] * x[j];
+            match &self.k_diag {
+                Some(k) => v -= k[i] * x[i],
+                None => {
+                    for j in 0..n {
+                        v -= self.k[(i, j)] * x[j];
+                    }
+                }
             }
             if let Some(c) = &self.c {
                 for j in 0..n {
@@ -480,19 +494,13 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
             &mut self.ws,
             &mut self.load_jac,
         );
-        // Columns of M⁻¹ and of ∂ẋ/∂x = −M⁻¹ B, one velocity solve each: O(n²) for the full
-        // model, never a dense factorization or inverse.
-        for c in 0..n {
-            self.unit.fill(0.0);
-            self.unit[c] = 1.0;
-            let col = self.minv.column_mut(c).data.into_slice_mut();
-            self.model.velocities_into(x, &self.unit, &mut self.ws, col);
-            let col = self.dxdx.column_mut(c).data.into_slice_mut();
-            self.p_shift.copy_from_slice(self.dp.column(c).as_slice());
-            self.model
-                .velocities_into(x, &self.p_shift, &mut self.ws, col);
-            col.iter_mut().for_each(|v| *v = -*v);
-        }
+        // M⁻¹ and ∂ẋ/∂x = −M⁻¹ B by one factorization and one velocity solve per column:
+        // O(n²) for the full model, never a dense factorization or inverse.
+        self.model
+            .velocities_block_into(x, &self.identity, &mut self.ws, &mut self.minv);
+        self.model
+            .velocities_block_into(x, &self.dp, &mut self.ws, &mut self.dxdx);
+        self.dxdx.neg_mut();
         jac.view_mut((0, 0), (n, n)).copy_from(&self.dxdx);
         jac.view_mut((0, n), (n, n)).copy_from(&self.minv);
         let mut dpdx = jac.view_mut((n, 0), (n, n));
@@ -537,7 +545,7 @@ mod tests {
                 x: vec![0.0, 2.0],
                 value: vec![0.6, 0.2],
             },
-            torsion: torsion.then(|| TorsionProperties {
+            torsion: torsion.then_some(TorsionProperties {
                 gj: Profile::Uniform(3.0),
                 polar_inertia: Profile::Uniform(0.01),
                 inertia_axis: InertiaAxis::MassCentre,
