@@ -272,10 +272,13 @@ pub struct Workspace {
 }
 
 impl Workspace {
-    /// Make the kinetic scratch hold the trigonometry of `q`, unless it already does.
+    /// Make the kinematics and the kinetic scratch hold the trigonometry of `q`, unless they
+    /// already do: one set of sines and cosines per configuration, shared by the mass matrix,
+    /// the velocity solve, the kinetic recursions and the loads.
     pub(super) fn configure(&mut self, model: &FullModel, q: &[f64]) {
         if self.kinetic_at.as_slice() != q {
-            model.configure(q, &mut self.kinetic);
+            self.kin.update(q);
+            model.configure_from(&self.kin, &mut self.kinetic);
             self.kinetic_at.copy_from_slice(q);
         }
     }
@@ -307,7 +310,7 @@ impl StructuralModel for FullModel {
     }
 
     fn mass_matrix_into(&self, q: &[f64], ws: &mut Workspace, out: &mut DMatrix<f64>) {
-        ws.kin.update(q);
+        ws.configure(self, q);
         self.mass_matrix_kin_into(&ws.kin, out);
     }
 
@@ -323,7 +326,7 @@ impl StructuralModel for FullModel {
         ws: &mut Workspace,
         out: &mut DVector<f64>,
     ) {
-        ws.kin.update(q);
+        ws.configure(self, q);
         ws.resultants.update(self, &ws.kin, loads, scales);
         self.forces_from(&ws.kin, &ws.resultants, out);
     }
@@ -336,7 +339,7 @@ impl StructuralModel for FullModel {
         ws: &mut Workspace,
         out: &mut DMatrix<f64>,
     ) {
-        ws.kin.update(q);
+        ws.configure(self, q);
         ws.resultants.update(self, &ws.kin, loads, scales);
         self.jacobian_from(&ws.kin, &ws.resultants, &mut ws.dir, out);
     }

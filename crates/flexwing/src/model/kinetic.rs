@@ -99,13 +99,21 @@ impl FullModel {
         }
     }
 
+    /// The trigonometry of `kin` into `sc` (f64 scratch), instead of recomputing it.
+    pub(crate) fn configure_from(&self, kin: &super::Kinematics, sc: &mut KineticScratch<f64>) {
+        sc.cos_theta.copy_from_slice(&kin.cos_theta);
+        sc.sin_theta.copy_from_slice(&kin.sin_theta);
+        sc.cos_psi.copy_from_slice(&kin.cos_psi);
+        sc.sin_psi.copy_from_slice(&kin.sin_psi);
+    }
+
     /// [`Self::kinetic_terms`] at the configuration last given to [`Self::configure`].
     pub(crate) fn kinetic_terms_configured<D: DualNum<Primitive = f64> + Copy>(
         &self,
         qdot: &[D],
         sc: &mut KineticScratch<D>,
-        p: Option<&mut [D]>,
-        gamma: Option<&mut [D]>,
+        mut p: Option<&mut [D]>,
+        mut gamma: Option<&mut [D]>,
     ) {
         let n = self.n;
         let zero = D::from(0.0);
@@ -140,6 +148,26 @@ impl FullModel {
             v[0] -= s * td * self.ell[i];
             v[1] += c * td * self.ell[i];
         }
+        self.kinetic_backward(sc, p.as_deref_mut(), gamma.as_deref_mut());
+        if let Some(p) = p {
+            suffix_sum_in_blocks(p, n);
+        }
+        if let Some(gm) = gamma {
+            suffix_sum_in_blocks(gm, n);
+        }
+    }
+
+    /// The backward half of the recursions: from the rates `sc.theta_dot`, `sc.psi_dot` and the
+    /// mass-centre velocities `sc.g_dot`, the momenta `∂T/∂(θ̇, ψ̇)` (into `p`) and the
+    /// gyroscopic term `∂T/∂(θ, ψ)` (into `gamma`) in absolute angles (no suffix sums).
+    pub(crate) fn kinetic_backward<D: DualNum<Primitive = f64> + Copy>(
+        &self,
+        sc: &KineticScratch<D>,
+        p: Option<&mut [D]>,
+        gamma: Option<&mut [D]>,
+    ) {
+        let n = self.n;
+        let zero = D::from(0.0);
         let mut outboard = [zero; 3]; // S_j = Σ_{i>j} m_i ġ_i
         let mut p = p;
         let mut gamma = gamma;
@@ -184,12 +212,6 @@ impl FullModel {
             for a in 0..3 {
                 outboard[a] += g[a] * m;
             }
-        }
-        if let Some(p) = p {
-            suffix_sum_in_blocks(p, n);
-        }
-        if let Some(gm) = gamma {
-            suffix_sum_in_blocks(gm, n);
         }
     }
 
