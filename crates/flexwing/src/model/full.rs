@@ -388,6 +388,18 @@ impl StructuralModel for FullModel {
         self.kinetic_directional(q, qdot, &ws.identity, &mut ws.duals, dp, dgamma);
     }
 
+    fn hamiltonian_derivatives_into(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        ws: &mut Workspace,
+        with_gamma: bool,
+        dxdx: &mut DMatrix<f64>,
+        dgamma: &mut DMatrix<f64>,
+    ) -> bool {
+        self.hamiltonian_directional(q, p, &mut ws.duals, with_gamma, dxdx, dgamma)
+    }
+
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64> {
         x.to_vec()
     }

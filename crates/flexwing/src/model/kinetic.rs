@@ -24,6 +24,7 @@
 use nalgebra::DMatrix;
 use num_dual::{Dual64, DualNum};
 
+use super::chain_solve::ChainScratch;
 use super::{suffix_sum_in_blocks, FullModel};
 
 /// Scratch of the kinetic recursions for scalar `D`.
@@ -275,7 +276,57 @@ impl FullModel {
     }
 }
 
-/// Dual-number buffers for [`FullModel::kinetic_directional`].
+impl FullModel {
+    /// [`crate::model::StructuralModel::hamiltonian_derivatives_into`] in O(n²): for each unit
+    /// direction `e_k` of `q`, one dual-number pass of the O(n) velocity solve
+    /// `ẋ = M(q + ε e_k)⁻¹ p` (dual part: column `k` of `∂ẋ/∂q|_p`) and, if `with_gamma`, of the
+    /// gyroscopic recursion at `(q + ε e_k, ẋ)` (dual part: column `k` of `dγ/dq|_p`). No
+    /// `∂(M q̇)/∂q` and no matrix product.
+    pub(crate) fn hamiltonian_directional(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        buf: &mut KineticBuffers,
+        with_gamma: bool,
+        dxdx: &mut DMatrix<f64>,
+        dgamma: &mut DMatrix<f64>,
+    ) -> bool {
+        let nd = self.n_dofs();
+        let KineticBuffers {
+            q: qd,
+            qdot,
+            p: pd,
+            gamma,
+            scratch,
+            chain,
+        } = buf;
+        for i in 0..nd {
+            pd[i] = Dual64::from(p[i]);
+            qd[i] = Dual64::from(q[i]);
+        }
+        for col in 0..nd {
+            qd[col].eps = 1.0;
+            self.configure(qd, scratch);
+            qd[col].eps = 0.0;
+            if !self.solve_mass_configured(scratch, pd, chain, qdot) {
+                return false;
+            }
+            for i in 0..nd {
+                dxdx[(i, col)] = qdot[i].eps;
+            }
+            if with_gamma {
+                self.kinetic_terms_configured(qdot, scratch, None, Some(gamma));
+                for i in 0..nd {
+                    dgamma[(i, col)] = gamma[i].eps;
+                }
+            }
+        }
+        true
+    }
+}
+
+/// Dual-number buffers for [`FullModel::kinetic_directional`] and
+/// [`FullModel::hamiltonian_directional`].
 #[derive(Debug, Clone)]
 pub(crate) struct KineticBuffers {
     q: Vec<Dual64>,
@@ -283,6 +334,7 @@ pub(crate) struct KineticBuffers {
     p: Vec<Dual64>,
     gamma: Vec<Dual64>,
     scratch: KineticScratch<Dual64>,
+    chain: ChainScratch<Dual64>,
 }
 
 impl KineticBuffers {
@@ -295,6 +347,7 @@ impl KineticBuffers {
             p: vec![z; nd],
             gamma: vec![z; nd],
             scratch: KineticScratch::new(model.n_elements()),
+            chain: ChainScratch::new(model.n_elements()),
         }
     }
 }

@@ -108,6 +108,38 @@ pub trait StructuralModel {
         dp: &mut DMatrix<f64>,
         dgamma: &mut DMatrix<f64>,
     );
+    /// Derivatives at fixed momentum `p` of the velocities and of the gyroscopic term:
+    /// `dxdx = ∂ẋ/∂x|_p = −M⁻¹ B` and, if `with_gamma`, `dgamma = d γ(x, ẋ(x, p))/dx|_p =
+    /// ∂γ/∂x|_ẋ + Bᵀ dxdx`, with `B = ∂(M ẋ)/∂x|_ẋ` (`n_dofs × n_dofs` each; `dgamma` is
+    /// scratch otherwise). False if `M(x)` is not positive definite.
+    ///
+    /// The default forms `B` and the product `Bᵀ dxdx` (O(n_dofs³)); the full model overrides
+    /// it with dual numbers through the O(n) velocity solve, O(n²) in all.
+    fn hamiltonian_derivatives_into(
+        &self,
+        x: &[f64],
+        p: &[f64],
+        ws: &mut Self::Workspace,
+        with_gamma: bool,
+        dxdx: &mut DMatrix<f64>,
+        dgamma: &mut DMatrix<f64>,
+    ) -> bool {
+        let n = self.n_dofs();
+        let mut xdot = vec![0.0; n];
+        if !self.velocities_into(x, p, ws, &mut xdot) {
+            return false;
+        }
+        let mut b = DMatrix::zeros(n, n);
+        self.kinetic_derivatives_into(x, &xdot, ws, &mut b, dgamma);
+        if !self.velocities_block_into(x, &b, ws, dxdx) {
+            return false;
+        }
+        dxdx.neg_mut();
+        if with_gamma {
+            dgamma.gemm_tr(1.0, &b, dxdx, 1.0);
+        }
+        true
+    }
     /// Joint rotations `q` of the full model for the model's coordinates `x`.
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64>;
     /// The full model underneath (itself for the full model).

@@ -200,7 +200,6 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     xdot: Vec<f64>,
     gamma: Vec<f64>,
     force: DVector<f64>,
-    dp: DMatrix<f64>,
     dgamma: DMatrix<f64>,
     load_jac: DMatrix<f64>,
     x_shift: Vec<f64>,
@@ -270,7 +269,6 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             xdot: vec![0.0; n],
             gamma: vec![0.0; n],
             force: DVector::zeros(n),
-            dp: DMatrix::zeros(n, n),
             dgamma: DMatrix::zeros(n, n),
             load_jac: DMatrix::zeros(n, n),
             rhs_evaluations: 0,
@@ -480,11 +478,15 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
             jac.fill(f64::NAN);
             return;
         }
-        self.model.kinetic_derivatives_into(
+        let with_gamma = !matches!(self.gyroscopic, Gyroscopic::Neglected);
+        // ∂ẋ/∂x = −M⁻¹ B and dγ/dx|_p = G_x + Bᵀ ∂ẋ/∂x: O(n²) for the full model (dual numbers
+        // through the O(n) velocity solve), a few dense products for the reduced one.
+        self.model.hamiltonian_derivatives_into(
             x,
-            &self.xdot,
+            p,
             &mut self.ws,
-            &mut self.dp,
+            with_gamma,
+            &mut self.dxdx,
             &mut self.dgamma,
         );
         self.model.load_jacobian_into(
@@ -494,22 +496,16 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
             &mut self.ws,
             &mut self.load_jac,
         );
-        // M⁻¹ and ∂ẋ/∂x = −M⁻¹ B by one factorization and one velocity solve per column:
-        // O(n²) for the full model, never a dense factorization or inverse.
+        // M⁻¹ by one factorization and one O(n) velocity solve per column.
         self.model
             .velocities_block_into(x, &self.identity, &mut self.ws, &mut self.minv);
-        self.model
-            .velocities_block_into(x, &self.dp, &mut self.ws, &mut self.dxdx);
-        self.dxdx.neg_mut();
         jac.view_mut((0, 0), (n, n)).copy_from(&self.dxdx);
         jac.view_mut((0, n), (n, n)).copy_from(&self.minv);
         let mut dpdx = jac.view_mut((n, 0), (n, n));
         dpdx.copy_from(&self.load_jac);
         dpdx -= &self.k;
-        if !matches!(self.gyroscopic, Gyroscopic::Neglected) {
-            // G_x + Bᵀ ∂ẋ/∂x; the one O(n³) product left, a matrix–matrix multiply.
+        if with_gamma {
             dpdx += &self.dgamma;
-            dpdx.gemm_tr(1.0, &self.dp, &self.dxdx, 1.0);
         }
         if let Some(c) = &self.c {
             dpdx.gemm(-1.0, c, &self.dxdx, 1.0);
