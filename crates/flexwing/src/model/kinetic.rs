@@ -25,7 +25,7 @@ use nalgebra::DMatrix;
 use num_dual::{Dual64, DualNum};
 
 use super::chain_solve::ChainScratch;
-use super::{suffix_sum_in_blocks, FullModel};
+use super::{suffix_sum_in_blocks, FullModel, Kinematics};
 
 /// Scratch of the kinetic recursions for scalar `D`.
 #[derive(Debug, Clone)]
@@ -106,6 +106,34 @@ impl FullModel {
         sc.sin_theta.copy_from_slice(&kin.sin_theta);
         sc.cos_psi.copy_from_slice(&kin.cos_psi);
         sc.sin_psi.copy_from_slice(&kin.sin_psi);
+    }
+
+    /// Dual trigonometry of `q + ε v` into `sc` from the real trigonometry `kin` of `q`, without
+    /// any trigonometric call: `sin(θ + ε dθ) = sin θ + ε cos θ dθ`, with the absolute direction
+    /// `dθ = T v` (prefix sums, into `abs`, length `n_dofs`).
+    pub(crate) fn configure_along(
+        &self,
+        kin: &Kinematics,
+        v: &[f64],
+        abs: &mut [f64],
+        sc: &mut KineticScratch<Dual64>,
+    ) {
+        let n = self.n;
+        abs.copy_from_slice(v);
+        for block in abs.chunks_mut(n) {
+            for i in 1..block.len() {
+                block[i] += block[i - 1];
+            }
+        }
+        for i in 0..n {
+            let (s, c, dt) = (kin.sin_theta[i], kin.cos_theta[i], abs[i]);
+            sc.sin_theta[i] = Dual64::new(s, c * dt);
+            sc.cos_theta[i] = Dual64::new(c, -s * dt);
+            let (sp, cp) = (kin.sin_psi[i], kin.cos_psi[i]);
+            let dp = if self.torsion { abs[n + i] } else { 0.0 };
+            sc.sin_psi[i] = Dual64::new(sp, cp * dp);
+            sc.cos_psi[i] = Dual64::new(cp, -sp * dp);
+        }
     }
 
     /// [`Self::kinetic_terms`] at the configuration last given to [`Self::configure`].
@@ -257,12 +285,15 @@ impl FullModel {
         for (i, v) in qdot.iter().enumerate() {
             sc.qdot[i] = Dual64::from(*v);
         }
+        sc.kin.update(q);
         for col in 0..dirs.ncols() {
-            for i in 0..nd {
-                sc.q[i] = Dual64::new(q[i], dirs[(i, col)]);
-            }
-            self.kinetic_terms(
-                &sc.q,
+            self.configure_along(
+                &sc.kin,
+                dirs.column(col).as_slice(),
+                &mut sc.dir,
+                &mut sc.scratch,
+            );
+            self.kinetic_terms_configured(
                 &sc.qdot,
                 &mut sc.scratch,
                 Some(&mut sc.p),
@@ -293,21 +324,24 @@ impl FullModel {
     ) -> bool {
         let nd = self.n_dofs();
         let KineticBuffers {
-            q: qd,
             qdot,
             p: pd,
             gamma,
             scratch,
             chain,
+            kin,
+            dir,
+            unit,
         } = buf;
         for i in 0..nd {
             pd[i] = Dual64::from(p[i]);
-            qd[i] = Dual64::from(q[i]);
         }
+        unit.fill(0.0);
+        kin.update(q);
         for col in 0..nd {
-            qd[col].eps = 1.0;
-            self.configure(qd, scratch);
-            qd[col].eps = 0.0;
+            unit[col] = 1.0;
+            self.configure_along(kin, unit, dir, scratch);
+            unit[col] = 0.0;
             if !self.solve_mass_configured(scratch, pd, chain, qdot) {
                 return false;
             }
@@ -329,12 +363,14 @@ impl FullModel {
 /// [`FullModel::hamiltonian_directional`].
 #[derive(Debug, Clone)]
 pub(crate) struct KineticBuffers {
-    q: Vec<Dual64>,
     qdot: Vec<Dual64>,
     p: Vec<Dual64>,
     gamma: Vec<Dual64>,
     scratch: KineticScratch<Dual64>,
     chain: ChainScratch<Dual64>,
+    kin: Kinematics,
+    dir: Vec<f64>,
+    unit: Vec<f64>,
 }
 
 impl KineticBuffers {
@@ -342,12 +378,14 @@ impl KineticBuffers {
         let nd = model.n_dofs();
         let z = Dual64::from(0.0);
         Self {
-            q: vec![z; nd],
             qdot: vec![z; nd],
             p: vec![z; nd],
             gamma: vec![z; nd],
             scratch: KineticScratch::new(model.n_elements()),
             chain: ChainScratch::new(model.n_elements()),
+            kin: Kinematics::new(model.n_elements()),
+            dir: vec![0.0; nd],
+            unit: vec![0.0; nd],
         }
     }
 }
