@@ -256,6 +256,10 @@ impl FullModel {
     }
 }
 
+/// From this many coordinates on, the Jacobian's kinetic part is taken from dual-number velocity
+/// solves (O(n²)) instead of `B = ∂(M q̇)/∂q` and a matrix product (O(n³) with a small constant).
+const DUAL_SOLVE_MIN_DOFS: usize = 128;
+
 /// Scratch buffers of the full model: the kinematics of the current configuration and the
 /// per-element load resultants.
 #[derive(Debug, Clone)]
@@ -397,7 +401,13 @@ impl StructuralModel for FullModel {
         dxdx: &mut DMatrix<f64>,
         dgamma: &mut DMatrix<f64>,
     ) -> bool {
-        self.hamiltonian_directional(q, p, &mut ws.duals, with_gamma, dxdx, dgamma)
+        // Both are exact. The dual-number solves are O(n²) but cost about 4 times a dense product
+        // per entry; measured crossover (benches/eom.rs) between 80 and 160 coordinates.
+        if self.n_dofs() < DUAL_SOLVE_MIN_DOFS {
+            super::hamiltonian_derivatives_dense(self, q, p, ws, with_gamma, dxdx, dgamma)
+        } else {
+            self.hamiltonian_directional(q, p, &mut ws.duals, with_gamma, dxdx, dgamma)
+        }
     }
 
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64> {

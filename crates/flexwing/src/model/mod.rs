@@ -113,8 +113,8 @@ pub trait StructuralModel {
     /// ∂γ/∂x|_ẋ + Bᵀ dxdx`, with `B = ∂(M ẋ)/∂x|_ẋ` (`n_dofs × n_dofs` each; `dgamma` is
     /// scratch otherwise). False if `M(x)` is not positive definite.
     ///
-    /// The default forms `B` and the product `Bᵀ dxdx` (O(n_dofs³)); the full model overrides
-    /// it with dual numbers through the O(n) velocity solve, O(n²) in all.
+    /// The default forms `B` and the product `Bᵀ dxdx` (O(n_dofs³)); the full model, from 128
+    /// coordinates on, uses dual numbers through the O(n) velocity solve instead, O(n²) in all.
     fn hamiltonian_derivatives_into(
         &self,
         x: &[f64],
@@ -124,24 +124,38 @@ pub trait StructuralModel {
         dxdx: &mut DMatrix<f64>,
         dgamma: &mut DMatrix<f64>,
     ) -> bool {
-        let n = self.n_dofs();
-        let mut xdot = vec![0.0; n];
-        if !self.velocities_into(x, p, ws, &mut xdot) {
-            return false;
-        }
-        let mut b = DMatrix::zeros(n, n);
-        self.kinetic_derivatives_into(x, &xdot, ws, &mut b, dgamma);
-        if !self.velocities_block_into(x, &b, ws, dxdx) {
-            return false;
-        }
-        dxdx.neg_mut();
-        if with_gamma {
-            dgamma.gemm_tr(1.0, &b, dxdx, 1.0);
-        }
-        true
+        hamiltonian_derivatives_dense(self, x, p, ws, with_gamma, dxdx, dgamma)
     }
     /// Joint rotations `q` of the full model for the model's coordinates `x`.
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64>;
     /// The full model underneath (itself for the full model).
     fn full_model(&self) -> &FullModel;
+}
+
+/// [`StructuralModel::hamiltonian_derivatives_into`] from `B = ∂(M ẋ)/∂x` and dense products:
+/// `∂ẋ/∂x = −M⁻¹ B` (velocity solves by column), `dγ/dx = G_x + Bᵀ ∂ẋ/∂x` (one matrix product).
+pub(crate) fn hamiltonian_derivatives_dense<M: StructuralModel + ?Sized>(
+    model: &M,
+    x: &[f64],
+    p: &[f64],
+    ws: &mut M::Workspace,
+    with_gamma: bool,
+    dxdx: &mut DMatrix<f64>,
+    dgamma: &mut DMatrix<f64>,
+) -> bool {
+    let n = model.n_dofs();
+    let mut xdot = vec![0.0; n];
+    if !model.velocities_into(x, p, ws, &mut xdot) {
+        return false;
+    }
+    let mut b = DMatrix::zeros(n, n);
+    model.kinetic_derivatives_into(x, &xdot, ws, &mut b, dgamma);
+    if !model.velocities_block_into(x, &b, ws, dxdx) {
+        return false;
+    }
+    dxdx.neg_mut();
+    if with_gamma {
+        dgamma.gemm_tr(1.0, &b, dxdx, 1.0);
+    }
+    true
 }
