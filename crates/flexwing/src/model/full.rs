@@ -2,6 +2,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::chain_solve::ChainScratch;
 use super::kinetic::{KineticBuffers, KineticScratch};
 use super::loads::Resultants;
 use super::{AppliedLoads, Kinematics, StructuralModel};
@@ -183,6 +184,48 @@ impl FullModel {
         jac
     }
 
+    /// Velocities `q̇ = M(q)⁻¹ p` into `out`, in O(n) and without forming `M(q)`: a backward
+    /// Riccati sweep along the chain and a forward substitution (derivation in the source of
+    /// `model::chain_solve`). Returns false, leaving `out` unspecified, if `M(q)` is not
+    /// numerically positive definite. Allocates nothing.
+    ///
+    /// ```
+    /// use flexwing::beam::{Beam, Calibration, Discretization, Profile, SectionProperties};
+    /// use flexwing::model::{FullModel, StructuralModel};
+    /// let section = SectionProperties {
+    ///     ei: Profile::Uniform(50.0),
+    ///     mass_per_length: Profile::Uniform(0.2),
+    ///     torsion: None,
+    /// };
+    /// let model = FullModel::new(Beam::new(1.0, &section, &Discretization::Uniform(4), Calibration::TipLoad)?);
+    /// let mut ws = model.workspace();
+    /// let (q, qdot) = ([0.1, -0.2, 0.3, 0.0], [1.0, 2.0, -1.0, 0.5]);
+    /// let mut p = [0.0; 4];
+    /// model.momentum_into(&q, &qdot, &mut p);
+    /// let mut v = [0.0; 4];
+    /// assert!(model.solve_mass_into(&q, &p, &mut ws, &mut v));
+    /// assert!(v.iter().zip(&qdot).all(|(a, b)| (a - b).abs() < 1e-12));
+    /// # Ok::<(), flexwing::InputError>(())
+    /// ```
+    ///
+    /// # Panics
+    /// If a slice length differs from `n_dofs()`.
+    pub fn solve_mass_into(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        ws: &mut Workspace,
+        out: &mut [f64],
+    ) -> bool {
+        let nd = self.n_dofs();
+        assert!(
+            q.len() == nd && p.len() == nd && out.len() == nd,
+            "slices must have n_dofs entries"
+        );
+        ws.configure(self, q);
+        self.solve_mass_configured(&ws.kinetic, p, &mut ws.chain, out)
+    }
+
     /// Jacobian `∂g_i/∂q` (3 × `n_dofs`) of the mass centre of element `i` (0-based).
     pub fn mass_centre_jacobian(&self, kin: &Kinematics, i: usize) -> DMatrix<f64> {
         let mut jac = DMatrix::zeros(3, self.n_dofs());
@@ -213,6 +256,10 @@ impl FullModel {
     }
 }
 
+/// From this many coordinates on, the Jacobian's kinetic part is taken from dual-number velocity
+/// solves (O(n²)) instead of `B = ∂(M q̇)/∂q` and a matrix product (O(n³) with a small constant).
+const DUAL_SOLVE_MIN_DOFS: usize = 128;
+
 /// Scratch buffers of the full model: the kinematics of the current configuration and the
 /// per-element load resultants.
 #[derive(Debug, Clone)]
@@ -224,14 +271,18 @@ pub struct Workspace {
     /// Configuration whose trigonometry `kinetic` holds (NaN: none yet).
     pub(super) kinetic_at: Vec<f64>,
     pub(super) duals: KineticBuffers,
+    pub(super) chain: ChainScratch<f64>,
     pub(super) identity: DMatrix<f64>,
 }
 
 impl Workspace {
-    /// Make the kinetic scratch hold the trigonometry of `q`, unless it already does.
+    /// Make the kinematics and the kinetic scratch hold the trigonometry of `q`, unless they
+    /// already do: one set of sines and cosines per configuration, shared by the mass matrix,
+    /// the velocity solve, the kinetic recursions and the loads.
     pub(super) fn configure(&mut self, model: &FullModel, q: &[f64]) {
         if self.kinetic_at.as_slice() != q {
-            model.configure(q, &mut self.kinetic);
+            self.kin.update(q);
+            model.configure_from(&self.kin, &mut self.kinetic);
             self.kinetic_at.copy_from_slice(q);
         }
     }
@@ -253,6 +304,7 @@ impl StructuralModel for FullModel {
             kinetic: KineticScratch::new(self.n),
             kinetic_at: vec![f64::NAN; self.n_dofs()],
             duals: KineticBuffers::new(self),
+            chain: ChainScratch::new(self.n),
             identity: DMatrix::identity(self.n_dofs(), self.n_dofs()),
         }
     }
@@ -262,7 +314,7 @@ impl StructuralModel for FullModel {
     }
 
     fn mass_matrix_into(&self, q: &[f64], ws: &mut Workspace, out: &mut DMatrix<f64>) {
-        ws.kin.update(q);
+        ws.configure(self, q);
         self.mass_matrix_kin_into(&ws.kin, out);
     }
 
@@ -278,7 +330,7 @@ impl StructuralModel for FullModel {
         ws: &mut Workspace,
         out: &mut DVector<f64>,
     ) {
-        ws.kin.update(q);
+        ws.configure(self, q);
         ws.resultants.update(self, &ws.kin, loads, scales);
         self.forces_from(&ws.kin, &ws.resultants, out);
     }
@@ -291,7 +343,7 @@ impl StructuralModel for FullModel {
         ws: &mut Workspace,
         out: &mut DMatrix<f64>,
     ) {
-        ws.kin.update(q);
+        ws.configure(self, q);
         ws.resultants.update(self, &ws.kin, loads, scales);
         self.jacobian_from(&ws.kin, &ws.resultants, &mut ws.dir, out);
     }
@@ -299,6 +351,29 @@ impl StructuralModel for FullModel {
     fn momentum_into(&self, q: &[f64], qdot: &[f64], ws: &mut Workspace, out: &mut [f64]) {
         ws.configure(self, q);
         self.kinetic_terms_configured(qdot, &mut ws.kinetic, Some(out), None);
+    }
+
+    fn velocities_into(&self, q: &[f64], p: &[f64], ws: &mut Workspace, out: &mut [f64]) -> bool {
+        self.solve_mass_into(q, p, ws, out)
+    }
+
+    fn velocities_block_into(
+        &self,
+        q: &[f64],
+        p: &DMatrix<f64>,
+        ws: &mut Workspace,
+        out: &mut DMatrix<f64>,
+    ) -> bool {
+        assert_eq!(p.shape(), out.shape(), "output block has the wrong shape");
+        ws.configure(self, q);
+        if !self.factor_mass_configured(&ws.kinetic, &mut ws.chain) {
+            return false;
+        }
+        for c in 0..p.ncols() {
+            let col = out.column_mut(c).data.into_slice_mut();
+            self.solve_factored(&ws.kinetic, &mut ws.chain, p.column(c).as_slice(), col);
+        }
+        true
     }
 
     fn gyroscopic_into(&self, q: &[f64], qdot: &[f64], ws: &mut Workspace, out: &mut [f64]) {
@@ -315,6 +390,24 @@ impl StructuralModel for FullModel {
         dgamma: &mut DMatrix<f64>,
     ) {
         self.kinetic_directional(q, qdot, &ws.identity, &mut ws.duals, dp, dgamma);
+    }
+
+    fn hamiltonian_derivatives_into(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        ws: &mut Workspace,
+        with_gamma: bool,
+        dxdx: &mut DMatrix<f64>,
+        dgamma: &mut DMatrix<f64>,
+    ) -> bool {
+        // Both are exact. The dual-number solves are O(n²) but cost about 4 times a dense product
+        // per entry; measured crossover (benches/eom.rs) between 80 and 160 coordinates.
+        if self.n_dofs() < DUAL_SOLVE_MIN_DOFS {
+            super::hamiltonian_derivatives_dense(self, q, p, ws, with_gamma, dxdx, dgamma)
+        } else {
+            self.hamiltonian_directional(q, p, &mut ws.duals, with_gamma, dxdx, dgamma)
+        }
     }
 
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64> {

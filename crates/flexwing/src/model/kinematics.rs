@@ -49,16 +49,22 @@ impl Kinematics {
             q.len()
         );
         let mut th = 0.0;
-        let mut ps = 0.0;
         for i in 0..n {
             th += q[i];
-            if q.len() == 2 * n {
-                ps += q[n + i];
-            }
             self.theta[i] = th;
             (self.sin_theta[i], self.cos_theta[i]) = th.sin_cos();
-            self.psi[i] = ps;
-            (self.sin_psi[i], self.cos_psi[i]) = ps.sin_cos();
+        }
+        if q.len() == 2 * n {
+            let mut ps = 0.0;
+            for i in 0..n {
+                ps += q[n + i];
+                self.psi[i] = ps;
+                (self.sin_psi[i], self.cos_psi[i]) = ps.sin_cos();
+            }
+        } else {
+            self.psi.fill(0.0);
+            self.sin_psi.fill(0.0);
+            self.cos_psi.fill(1.0);
         }
     }
 }

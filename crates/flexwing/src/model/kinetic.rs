@@ -24,18 +24,19 @@
 use nalgebra::DMatrix;
 use num_dual::{Dual64, DualNum};
 
-use super::{suffix_sum_in_blocks, FullModel};
+use super::chain_solve::ChainScratch;
+use super::{suffix_sum_in_blocks, FullModel, Kinematics};
 
 /// Scratch of the kinetic recursions for scalar `D`.
 #[derive(Debug, Clone)]
 pub(crate) struct KineticScratch<D> {
-    cos_theta: Vec<D>,
-    sin_theta: Vec<D>,
-    cos_psi: Vec<D>,
-    sin_psi: Vec<D>,
-    theta_dot: Vec<D>,
-    psi_dot: Vec<D>,
-    g_dot: Vec<[D; 3]>,
+    pub(super) cos_theta: Vec<D>,
+    pub(super) sin_theta: Vec<D>,
+    pub(super) cos_psi: Vec<D>,
+    pub(super) sin_psi: Vec<D>,
+    pub(super) theta_dot: Vec<D>,
+    pub(super) psi_dot: Vec<D>,
+    pub(super) g_dot: Vec<[D; 3]>,
 }
 
 impl<D: DualNum<Primitive = f64> + Copy> KineticScratch<D> {
@@ -99,13 +100,49 @@ impl FullModel {
         }
     }
 
+    /// The trigonometry of `kin` into `sc` (f64 scratch), instead of recomputing it.
+    pub(crate) fn configure_from(&self, kin: &super::Kinematics, sc: &mut KineticScratch<f64>) {
+        sc.cos_theta.copy_from_slice(&kin.cos_theta);
+        sc.sin_theta.copy_from_slice(&kin.sin_theta);
+        sc.cos_psi.copy_from_slice(&kin.cos_psi);
+        sc.sin_psi.copy_from_slice(&kin.sin_psi);
+    }
+
+    /// Dual trigonometry of `q + ε v` into `sc` from the real trigonometry `kin` of `q`, without
+    /// any trigonometric call: `sin(θ + ε dθ) = sin θ + ε cos θ dθ`, with the absolute direction
+    /// `dθ = T v` (prefix sums, into `abs`, length `n_dofs`).
+    pub(crate) fn configure_along(
+        &self,
+        kin: &Kinematics,
+        v: &[f64],
+        abs: &mut [f64],
+        sc: &mut KineticScratch<Dual64>,
+    ) {
+        let n = self.n;
+        abs.copy_from_slice(v);
+        for block in abs.chunks_mut(n) {
+            for i in 1..block.len() {
+                block[i] += block[i - 1];
+            }
+        }
+        for i in 0..n {
+            let (s, c, dt) = (kin.sin_theta[i], kin.cos_theta[i], abs[i]);
+            sc.sin_theta[i] = Dual64::new(s, c * dt);
+            sc.cos_theta[i] = Dual64::new(c, -s * dt);
+            let (sp, cp) = (kin.sin_psi[i], kin.cos_psi[i]);
+            let dp = if self.torsion { abs[n + i] } else { 0.0 };
+            sc.sin_psi[i] = Dual64::new(sp, cp * dp);
+            sc.cos_psi[i] = Dual64::new(cp, -sp * dp);
+        }
+    }
+
     /// [`Self::kinetic_terms`] at the configuration last given to [`Self::configure`].
     pub(crate) fn kinetic_terms_configured<D: DualNum<Primitive = f64> + Copy>(
         &self,
         qdot: &[D],
         sc: &mut KineticScratch<D>,
-        p: Option<&mut [D]>,
-        gamma: Option<&mut [D]>,
+        mut p: Option<&mut [D]>,
+        mut gamma: Option<&mut [D]>,
     ) {
         let n = self.n;
         let zero = D::from(0.0);
@@ -140,6 +177,26 @@ impl FullModel {
             v[0] -= s * td * self.ell[i];
             v[1] += c * td * self.ell[i];
         }
+        self.kinetic_backward(sc, p.as_deref_mut(), gamma.as_deref_mut());
+        if let Some(p) = p {
+            suffix_sum_in_blocks(p, n);
+        }
+        if let Some(gm) = gamma {
+            suffix_sum_in_blocks(gm, n);
+        }
+    }
+
+    /// The backward half of the recursions: from the rates `sc.theta_dot`, `sc.psi_dot` and the
+    /// mass-centre velocities `sc.g_dot`, the momenta `∂T/∂(θ̇, ψ̇)` (into `p`) and the
+    /// gyroscopic term `∂T/∂(θ, ψ)` (into `gamma`) in absolute angles (no suffix sums).
+    pub(crate) fn kinetic_backward<D: DualNum<Primitive = f64> + Copy>(
+        &self,
+        sc: &KineticScratch<D>,
+        p: Option<&mut [D]>,
+        gamma: Option<&mut [D]>,
+    ) {
+        let n = self.n;
+        let zero = D::from(0.0);
         let mut outboard = [zero; 3]; // S_j = Σ_{i>j} m_i ġ_i
         let mut p = p;
         let mut gamma = gamma;
@@ -185,12 +242,6 @@ impl FullModel {
                 outboard[a] += g[a] * m;
             }
         }
-        if let Some(p) = p {
-            suffix_sum_in_blocks(p, n);
-        }
-        if let Some(gm) = gamma {
-            suffix_sum_in_blocks(gm, n);
-        }
     }
 
     /// Momentum `p = M(q) q̇` in O(n), into `out`.
@@ -234,12 +285,15 @@ impl FullModel {
         for (i, v) in qdot.iter().enumerate() {
             sc.qdot[i] = Dual64::from(*v);
         }
+        sc.kin.update(q);
         for col in 0..dirs.ncols() {
-            for i in 0..nd {
-                sc.q[i] = Dual64::new(q[i], dirs[(i, col)]);
-            }
-            self.kinetic_terms(
-                &sc.q,
+            self.configure_along(
+                &sc.kin,
+                dirs.column(col).as_slice(),
+                &mut sc.dir,
+                &mut sc.scratch,
+            );
+            self.kinetic_terms_configured(
                 &sc.qdot,
                 &mut sc.scratch,
                 Some(&mut sc.p),
@@ -253,14 +307,70 @@ impl FullModel {
     }
 }
 
-/// Dual-number buffers for [`FullModel::kinetic_directional`].
+impl FullModel {
+    /// [`crate::model::StructuralModel::hamiltonian_derivatives_into`] in O(n²): for each unit
+    /// direction `e_k` of `q`, one dual-number pass of the O(n) velocity solve
+    /// `ẋ = M(q + ε e_k)⁻¹ p` (dual part: column `k` of `∂ẋ/∂q|_p`) and, if `with_gamma`, of the
+    /// gyroscopic recursion at `(q + ε e_k, ẋ)` (dual part: column `k` of `dγ/dq|_p`). No
+    /// `∂(M q̇)/∂q` and no matrix product.
+    pub(crate) fn hamiltonian_directional(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        buf: &mut KineticBuffers,
+        with_gamma: bool,
+        dxdx: &mut DMatrix<f64>,
+        dgamma: &mut DMatrix<f64>,
+    ) -> bool {
+        let nd = self.n_dofs();
+        let KineticBuffers {
+            qdot,
+            p: pd,
+            gamma,
+            scratch,
+            chain,
+            kin,
+            dir,
+            unit,
+        } = buf;
+        for i in 0..nd {
+            pd[i] = Dual64::from(p[i]);
+        }
+        unit.fill(0.0);
+        kin.update(q);
+        for col in 0..nd {
+            unit[col] = 1.0;
+            self.configure_along(kin, unit, dir, scratch);
+            unit[col] = 0.0;
+            if !self.solve_mass_configured(scratch, pd, chain, qdot) {
+                return false;
+            }
+            for i in 0..nd {
+                dxdx[(i, col)] = qdot[i].eps;
+            }
+            if with_gamma {
+                self.kinetic_terms_configured(qdot, scratch, None, Some(gamma));
+                for i in 0..nd {
+                    dgamma[(i, col)] = gamma[i].eps;
+                }
+            }
+        }
+        true
+    }
+}
+
+/// Dual-number buffers for [`FullModel::kinetic_directional`] and
+/// [`FullModel::hamiltonian_directional`].
 #[derive(Debug, Clone)]
 pub(crate) struct KineticBuffers {
-    q: Vec<Dual64>,
     qdot: Vec<Dual64>,
     p: Vec<Dual64>,
     gamma: Vec<Dual64>,
     scratch: KineticScratch<Dual64>,
+    chain: ChainScratch<Dual64>,
+    kin: Kinematics,
+    dir: Vec<f64>,
+    unit: Vec<f64>,
 }
 
 impl KineticBuffers {
@@ -268,11 +378,14 @@ impl KineticBuffers {
         let nd = model.n_dofs();
         let z = Dual64::from(0.0);
         Self {
-            q: vec![z; nd],
             qdot: vec![z; nd],
             p: vec![z; nd],
             gamma: vec![z; nd],
             scratch: KineticScratch::new(model.n_elements()),
+            chain: ChainScratch::new(model.n_elements()),
+            kin: Kinematics::new(model.n_elements()),
+            dir: vec![0.0; nd],
+            unit: vec![0.0; nd],
         }
     }
 }
@@ -284,6 +397,46 @@ mod tests {
         Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties,
         TorsionProperties,
     };
+
+    /// The O(n²) dual-number path of the Jacobian's kinetic part (used from 128 coordinates on)
+    /// against the dense path (`B`, velocity solves, a matrix product), whose Jacobian is
+    /// checked against finite differences in `solve::dynamics`.
+    #[test]
+    fn dual_velocity_solves_match_the_dense_hamiltonian_derivatives() {
+        use crate::model::StructuralModel;
+        for torsion in [false, true] {
+            let section = SectionProperties {
+                ei: Profile::Uniform(10.0),
+                mass_per_length: Profile::Uniform(0.4),
+                torsion: torsion.then_some(TorsionProperties {
+                    gj: Profile::Uniform(3.0),
+                    polar_inertia: Profile::Uniform(0.01),
+                    inertia_axis: InertiaAxis::MassCentre,
+                    offset: Profile::Uniform(0.1),
+                }),
+            };
+            let beam = Beam::new(
+                2.0,
+                &section,
+                &Discretization::Uniform(6),
+                Calibration::TipLoad,
+            )
+            .unwrap();
+            let model = FullModel::new(beam);
+            let nd = model.n_dofs();
+            let q: Vec<f64> = (0..nd).map(|i| 0.3 * (i as f64 + 1.0).sin()).collect();
+            let p: Vec<f64> = (0..nd).map(|i| 0.7 * (2.0 * i as f64).cos()).collect();
+            let mut ws = model.workspace();
+            let z = || DMatrix::zeros(nd, nd);
+            let (mut a, mut ga, mut b, mut gb) = (z(), z(), z(), z());
+            assert!(crate::model::hamiltonian_derivatives_dense(
+                &model, &q, &p, &mut ws, true, &mut a, &mut ga
+            ));
+            assert!(model.hamiltonian_directional(&q, &p, &mut ws.duals, true, &mut b, &mut gb));
+            assert!((&a - &b).amax() <= 1e-10 * a.amax());
+            assert!((&ga - &gb).amax() <= 1e-10 * ga.amax());
+        }
+    }
 
     #[test]
     fn dual_directional_derivatives_match_finite_differences() {

@@ -253,6 +253,12 @@ impl FullModel {
     }
 
     pub(super) fn forces_from(&self, kin: &Kinematics, r: &Resultants, out: &mut DVector<f64>) {
+        self.forces_abs_from(kin, r, out.as_mut_slice());
+        suffix_sum_in_blocks(out.as_mut_slice(), self.n);
+    }
+
+    /// Generalized forces conjugate to the absolute angles, `Q_abs` (`Q = Tᵀ Q_abs`).
+    pub(super) fn forces_abs_from(&self, kin: &Kinematics, r: &Resultants, out: &mut [f64]) {
         assert_eq!(
             out.len(),
             self.n_dofs(),
@@ -290,7 +296,6 @@ impl FullModel {
                 mass_out += mj;
             }
         }
-        suffix_sum_in_blocks(out.as_mut_slice(), n);
     }
 
     /// Load Jacobian `∂Q/∂q` at `kin`, into `out` (`n_dofs × n_dofs`). Symmetric for conservative

@@ -4,6 +4,7 @@
 //! `q_{n+1} … q_{2n}` the torsion joint rotations (absent in a bending-only model). Absolute angles
 //! are `θ = T q_b`, `ψ = T q_t` with `T` the lower-triangular matrix of ones.
 
+mod chain_solve;
 mod full;
 mod kinematics;
 mod kinetic;
@@ -70,6 +71,30 @@ pub trait StructuralModel {
     );
     /// Momentum `p = M(x) ẋ` into `out`.
     fn momentum_into(&self, x: &[f64], xdot: &[f64], ws: &mut Self::Workspace, out: &mut [f64]);
+    /// Velocities `ẋ = M(x)⁻¹ p` into `out`: O(n) for the full model (a Riccati sweep along the
+    /// chain, `model::chain_solve`), a dense `r × r` Cholesky factorization for the reduced one.
+    /// Returns false, leaving `out` unspecified, if `M(x)` is not numerically positive definite.
+    fn velocities_into(
+        &self,
+        x: &[f64],
+        p: &[f64],
+        ws: &mut Self::Workspace,
+        out: &mut [f64],
+    ) -> bool;
+    /// `M(x)⁻¹ P` for the columns of `p` into `out` (same shape), factoring `M(x)` once.
+    /// Returns false, leaving `out` unspecified, if `M(x)` is not positive definite.
+    fn velocities_block_into(
+        &self,
+        x: &[f64],
+        p: &DMatrix<f64>,
+        ws: &mut Self::Workspace,
+        out: &mut DMatrix<f64>,
+    ) -> bool {
+        (0..p.ncols()).all(|c| {
+            let col = out.column_mut(c).data.into_slice_mut();
+            self.velocities_into(x, p.column(c).as_slice(), ws, col)
+        })
+    }
     /// Gyroscopic term `γ = ∂T/∂x|_ẋ` into `out`.
     fn gyroscopic_into(&self, x: &[f64], xdot: &[f64], ws: &mut Self::Workspace, out: &mut [f64]);
     /// Exact derivatives with respect to `x` at fixed `ẋ` of the momentum, `∂(M ẋ)/∂x`, and of
@@ -83,8 +108,54 @@ pub trait StructuralModel {
         dp: &mut DMatrix<f64>,
         dgamma: &mut DMatrix<f64>,
     );
+    /// Derivatives at fixed momentum `p` of the velocities and of the gyroscopic term:
+    /// `dxdx = ∂ẋ/∂x|_p = −M⁻¹ B` and, if `with_gamma`, `dgamma = d γ(x, ẋ(x, p))/dx|_p =
+    /// ∂γ/∂x|_ẋ + Bᵀ dxdx`, with `B = ∂(M ẋ)/∂x|_ẋ` (`n_dofs × n_dofs` each; `dgamma` is
+    /// scratch otherwise). False if `M(x)` is not positive definite.
+    ///
+    /// The default forms `B` and the product `Bᵀ dxdx` (O(n_dofs³)); the full model, from 128
+    /// coordinates on, uses dual numbers through the O(n) velocity solve instead, O(n²) in all.
+    fn hamiltonian_derivatives_into(
+        &self,
+        x: &[f64],
+        p: &[f64],
+        ws: &mut Self::Workspace,
+        with_gamma: bool,
+        dxdx: &mut DMatrix<f64>,
+        dgamma: &mut DMatrix<f64>,
+    ) -> bool {
+        hamiltonian_derivatives_dense(self, x, p, ws, with_gamma, dxdx, dgamma)
+    }
     /// Joint rotations `q` of the full model for the model's coordinates `x`.
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64>;
     /// The full model underneath (itself for the full model).
     fn full_model(&self) -> &FullModel;
+}
+
+/// [`StructuralModel::hamiltonian_derivatives_into`] from `B = ∂(M ẋ)/∂x` and dense products:
+/// `∂ẋ/∂x = −M⁻¹ B` (velocity solves by column), `dγ/dx = G_x + Bᵀ ∂ẋ/∂x` (one matrix product).
+pub(crate) fn hamiltonian_derivatives_dense<M: StructuralModel + ?Sized>(
+    model: &M,
+    x: &[f64],
+    p: &[f64],
+    ws: &mut M::Workspace,
+    with_gamma: bool,
+    dxdx: &mut DMatrix<f64>,
+    dgamma: &mut DMatrix<f64>,
+) -> bool {
+    let n = model.n_dofs();
+    let mut xdot = vec![0.0; n];
+    if !model.velocities_into(x, p, ws, &mut xdot) {
+        return false;
+    }
+    let mut b = DMatrix::zeros(n, n);
+    model.kinetic_derivatives_into(x, &xdot, ws, &mut b, dgamma);
+    if !model.velocities_block_into(x, &b, ws, dxdx) {
+        return false;
+    }
+    dxdx.neg_mut();
+    if with_gamma {
+        dgamma.gemm_tr(1.0, &b, dxdx, 1.0);
+    }
+    true
 }

@@ -1,4 +1,13 @@
 //! The non-linear reduced-order model (model.md, "Reduced-order model"): `q ≈ Φ_r η`.
+//!
+//! Evaluation. Everything is done in absolute angles with the constant absolute mode shapes
+//! `Φ_abs = T Φ` (prefix sums, precomputed), so that no suffix sums are needed: `Φᵀ Tᵀ v =
+//! Φ_absᵀ v`. At a new `η` the workspace computes once, and caches for further evaluations at the
+//! same `η`: the sines and cosines of `q = Φ η` (shared with the loads), the mass-centre velocity
+//! of every element per unit modal rate, `G_i^c = ∂ġ_i/∂η̇_c` (one forward sweep per mode), the
+//! reduced mass matrix `M_r,ab = Σ_i m_i G_i^a · G_i^b + J_i ψ̇_i^a ψ̇_i^b` and its Cholesky
+//! factor. Then `p_r = M_r η̇`, `ġ_i = Σ_c η̇_c G_i^c` and `γ_r = Φ_absᵀ γ_abs` (one backward
+//! sweep) cost O(n r) each, and `Q_r = Φ_absᵀ Q_abs` reuses the trigonometry.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -14,6 +23,8 @@ pub struct ReducedModel {
     phi: DMatrix<f64>,
     indices: Vec<usize>,
     k_r: DMatrix<f64>,
+    /// `Φ_abs = T Φ`: absolute angle rates per unit modal rate.
+    phi_abs: DMatrix<f64>,
 }
 
 impl ReducedModel {
@@ -65,11 +76,20 @@ impl ReducedModel {
         let k_diag = DVector::from_column_slice(full.stiffness());
         let kphi = DMatrix::from_fn(nd, indices.len(), |r, c| k_diag[r] * phi[(r, c)]);
         let k_r = phi.transpose() * kphi;
+        let mut phi_abs = phi.clone();
+        for mut col in phi_abs.column_iter_mut() {
+            for block in col.as_mut_slice().chunks_mut(full.n_elements()) {
+                for i in 1..block.len() {
+                    block[i] += block[i - 1];
+                }
+            }
+        }
         Ok(Self {
             full: full.clone(),
             phi,
             indices: indices.to_vec(),
             k_r,
+            phi_abs,
         })
     }
 
@@ -129,7 +149,8 @@ impl ReducedModel {
     }
 }
 
-/// Scratch buffers of a reduced model: those of the full model plus full-size intermediates.
+/// Scratch buffers of a reduced model: those of the full model, full-size intermediates, and
+/// the cache of the last configuration `η` (module documentation).
 #[derive(Debug, Clone)]
 pub struct ReducedWorkspace {
     full: Workspace,
@@ -139,12 +160,23 @@ pub struct ReducedWorkspace {
     block: DMatrix<f64>,
     block2: DMatrix<f64>,
     column: Vec<f64>,
+    /// The `η` the cache below belongs to (NaN: none yet).
+    at: Vec<f64>,
+    /// `G_i^c = ∂ġ_i/∂η̇_c` at `element + n · mode`.
+    fields: Vec<[f64; 3]>,
+    /// Reduced mass matrix `M_r(η)`.
+    mass: DMatrix<f64>,
+    /// Its Cholesky factor (lower triangle), valid if `factored`.
+    factor: DMatrix<f64>,
+    factored: bool,
 }
 
-/// `out = Φᵀ v`.
+/// `out = Φ_absᵀ v` for the first `v.len()` rows of `phi`.
 fn project(phi: &DMatrix<f64>, v: &[f64], out: &mut [f64]) {
+    let rows = phi.nrows();
     for (c, o) in out.iter_mut().enumerate() {
-        *o = phi.column(c).iter().zip(v).map(|(a, b)| a * b).sum();
+        let col = &phi.as_slice()[c * rows..c * rows + v.len()];
+        *o = col.iter().zip(v).map(|(a, b)| a * b).sum();
     }
 }
 
@@ -157,6 +189,88 @@ impl ReducedModel {
             }
         }
     }
+
+    /// Bring the cache of `ws` to the configuration `eta` (no work if it is there already).
+    fn configure(&self, eta: &[f64], ws: &mut ReducedWorkspace) {
+        if ws.at.as_slice() == eta {
+            return;
+        }
+        let full = &self.full;
+        let n = full.n;
+        let r = eta.len();
+        self.expand(eta, &mut ws.q);
+        ws.full.configure(full, &ws.q);
+        let kin = &ws.full.kin;
+        let nd = full.n_dofs();
+        let pa = self.phi_abs.as_slice();
+        // Mass-centre velocity per unit modal rate (model::kinetic's forward sweep).
+        for c in 0..r {
+            let mut v = [0.0; 2];
+            for i in 0..n {
+                let (co, si) = (kin.cos_theta[i], kin.sin_theta[i]);
+                let (cp, sp) = (kin.cos_psi[i], kin.sin_psi[i]);
+                let td = pa[c * nd + i];
+                let pd = if full.torsion {
+                    pa[c * nd + n + i]
+                } else {
+                    0.0
+                };
+                let (l, d) = (full.ell[i], full.d0[i]);
+                let a_n = 0.5 * l * td + d * cp * pd;
+                let a_e = -d * sp * td;
+                ws.fields[c * n + i] = [
+                    v[0] + a_e * co - a_n * si,
+                    v[1] + a_e * si + a_n * co,
+                    -d * sp * pd,
+                ];
+                v[0] -= l * si * td;
+                v[1] += l * co * td;
+            }
+        }
+        for a in 0..r {
+            for b in a..r {
+                let mut m = 0.0;
+                for i in 0..n {
+                    let (ga, gb) = (ws.fields[a * n + i], ws.fields[b * n + i]);
+                    m += full.mass[i] * (ga[0] * gb[0] + ga[1] * gb[1] + ga[2] * gb[2]);
+                }
+                if full.torsion {
+                    for i in 0..n {
+                        m += full.inertia[i] * pa[a * nd + n + i] * pa[b * nd + n + i];
+                    }
+                }
+                ws.mass[(a, b)] = m;
+                ws.mass[(b, a)] = m;
+            }
+        }
+        ws.factor.copy_from(&ws.mass);
+        ws.factored = cholesky_in_place(&mut ws.factor);
+        ws.at.copy_from_slice(eta);
+    }
+
+    /// Rates and mass-centre velocities of the modal rates `etadot` into the kinetic scratch,
+    /// at the configuration of the last [`Self::configure`].
+    fn set_rates(&self, etadot: &[f64], ws: &mut ReducedWorkspace) {
+        let full = &self.full;
+        let n = full.n;
+        let nd = full.n_dofs();
+        let pa = self.phi_abs.as_slice();
+        let sc = &mut ws.full.kinetic;
+        for i in 0..n {
+            let (mut td, mut pd, mut g) = (0.0, 0.0, [0.0; 3]);
+            for (c, &e) in etadot.iter().enumerate() {
+                td += e * pa[c * nd + i];
+                if full.torsion {
+                    pd += e * pa[c * nd + n + i];
+                }
+                let f = ws.fields[c * n + i];
+                g = [g[0] + e * f[0], g[1] + e * f[1], g[2] + e * f[2]];
+            }
+            sc.theta_dot[i] = td;
+            sc.psi_dot[i] = pd;
+            sc.g_dot[i] = g;
+        }
+    }
 }
 
 impl StructuralModel for ReducedModel {
@@ -164,14 +278,20 @@ impl StructuralModel for ReducedModel {
 
     fn workspace(&self) -> ReducedWorkspace {
         let nd = self.full.n_dofs();
+        let r = self.phi.ncols();
         ReducedWorkspace {
             full: self.full.workspace(),
             q: vec![0.0; nd],
             qdot: vec![0.0; nd],
             f: DVector::zeros(nd),
-            block: DMatrix::zeros(nd, self.phi.ncols()),
-            block2: DMatrix::zeros(nd, self.phi.ncols()),
+            block: DMatrix::zeros(nd, r),
+            block2: DMatrix::zeros(nd, r),
             column: vec![0.0; nd],
+            at: vec![f64::NAN; r],
+            fields: vec![[0.0; 3]; self.full.n * r],
+            mass: DMatrix::zeros(r, r),
+            factor: DMatrix::zeros(r, r),
+            factored: false,
         }
     }
 
@@ -180,20 +300,8 @@ impl StructuralModel for ReducedModel {
     }
 
     fn mass_matrix_into(&self, eta: &[f64], ws: &mut ReducedWorkspace, out: &mut DMatrix<f64>) {
-        // Φᵀ M(q) Φ from the columns M(q) φ_c = p(q, φ_c): O(n r²), no full mass matrix, and
-        // the trigonometry of q computed once for all columns.
-        self.expand(eta, &mut ws.q);
-        ws.full.configure(&self.full, &ws.q);
-        for c in 0..self.phi.ncols() {
-            self.full.kinetic_terms_configured(
-                self.phi.column(c).as_slice(),
-                &mut ws.full.kinetic,
-                Some(&mut ws.column),
-                None,
-            );
-            ws.block.column_mut(c).copy_from_slice(&ws.column);
-        }
-        self.phi.tr_mul_to(&ws.block, out);
+        self.configure(eta, ws);
+        out.copy_from(&ws.mass);
     }
 
     fn momentum_into(
@@ -203,16 +311,25 @@ impl StructuralModel for ReducedModel {
         ws: &mut ReducedWorkspace,
         out: &mut [f64],
     ) {
-        self.expand(eta, &mut ws.q);
-        self.expand(etadot, &mut ws.qdot);
-        ws.full.configure(&self.full, &ws.q);
-        self.full.kinetic_terms_configured(
-            &ws.qdot,
-            &mut ws.full.kinetic,
-            Some(&mut ws.column),
-            None,
-        );
-        project(&self.phi, &ws.column, out);
+        self.configure(eta, ws);
+        for (a, o) in out.iter_mut().enumerate() {
+            *o = (0..etadot.len()).map(|b| ws.mass[(a, b)] * etadot[b]).sum();
+        }
+    }
+
+    fn velocities_into(
+        &self,
+        eta: &[f64],
+        p: &[f64],
+        ws: &mut ReducedWorkspace,
+        out: &mut [f64],
+    ) -> bool {
+        self.configure(eta, ws);
+        if ws.factored {
+            out.copy_from_slice(p);
+            cholesky_solve(&ws.factor, out);
+        }
+        ws.factored
     }
 
     fn gyroscopic_into(
@@ -222,16 +339,11 @@ impl StructuralModel for ReducedModel {
         ws: &mut ReducedWorkspace,
         out: &mut [f64],
     ) {
-        self.expand(eta, &mut ws.q);
-        self.expand(etadot, &mut ws.qdot);
-        ws.full.configure(&self.full, &ws.q);
-        self.full.kinetic_terms_configured(
-            &ws.qdot,
-            &mut ws.full.kinetic,
-            None,
-            Some(&mut ws.column),
-        );
-        project(&self.phi, &ws.column, out);
+        self.configure(eta, ws);
+        self.set_rates(etadot, ws);
+        self.full
+            .kinetic_backward(&ws.full.kinetic, None, Some(&mut ws.column));
+        project(&self.phi_abs, &ws.column, out);
     }
 
     fn kinetic_derivatives_into(
@@ -269,10 +381,12 @@ impl StructuralModel for ReducedModel {
         ws: &mut ReducedWorkspace,
         out: &mut DVector<f64>,
     ) {
-        self.expand(eta, &mut ws.q);
+        self.configure(eta, ws);
+        let full = &mut ws.full;
+        full.resultants.update(&self.full, &full.kin, loads, scales);
         self.full
-            .generalized_forces_into(&ws.q, loads, scales, &mut ws.full, &mut ws.f);
-        self.phi.tr_mul_to(&ws.f, out);
+            .forces_abs_from(&full.kin, &full.resultants, ws.f.as_mut_slice());
+        project(&self.phi_abs, ws.f.as_slice(), out.as_mut_slice());
     }
 
     fn load_jacobian_into(
@@ -284,9 +398,8 @@ impl StructuralModel for ReducedModel {
         out: &mut DMatrix<f64>,
     ) {
         // Φᵀ (∂Q/∂q Φ): the product is formed column by column in O(n r), never ∂Q/∂q itself.
-        self.expand(eta, &mut ws.q);
+        self.configure(eta, ws);
         let full = &mut ws.full;
-        full.kin.update(&ws.q);
         full.resultants.update(&self.full, &full.kin, loads, scales);
         self.full.jacobian_times_from(
             &full.kin,
@@ -306,5 +419,146 @@ impl StructuralModel for ReducedModel {
 
     fn full_model(&self) -> &FullModel {
         &self.full
+    }
+}
+
+/// In-place Cholesky factorization `A = L Lᵀ`: the lower triangle of `a` becomes `L`. Returns
+/// false if `a` is not (numerically) positive definite.
+fn cholesky_in_place(a: &mut DMatrix<f64>) -> bool {
+    let n = a.nrows();
+    for j in 0..n {
+        let mut d = a[(j, j)];
+        for k in 0..j {
+            d -= a[(j, k)] * a[(j, k)];
+        }
+        if !(d > 0.0) {
+            return false;
+        }
+        let d = d.sqrt();
+        a[(j, j)] = d;
+        for i in j + 1..n {
+            let mut v = a[(i, j)];
+            for k in 0..j {
+                v -= a[(i, k)] * a[(j, k)];
+            }
+            a[(i, j)] = v / d;
+        }
+    }
+    true
+}
+
+/// Solve `L Lᵀ x = b` in place with the factor of [`cholesky_in_place`].
+fn cholesky_solve(l: &DMatrix<f64>, b: &mut [f64]) {
+    let n = l.nrows();
+    for i in 0..n {
+        let mut v = b[i];
+        for k in 0..i {
+            v -= l[(i, k)] * b[k];
+        }
+        b[i] = v / l[(i, i)];
+    }
+    for i in (0..n).rev() {
+        let mut v = b[i];
+        for k in i + 1..n {
+            v -= l[(k, i)] * b[k];
+        }
+        b[i] = v / l[(i, i)];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::beam::{
+        Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties,
+        TorsionProperties,
+    };
+    use crate::model::{Force, Load};
+    use crate::solve::Modes;
+
+    /// The cached, absolute-angle evaluation of the reduced terms against the definitions
+    /// `Φᵀ (full-model term)(Φ η, Φ η̇)`, at alternating configurations (so that a stale cache
+    /// would show), with and without torsion.
+    #[test]
+    fn reduced_terms_are_the_projected_full_terms() {
+        for torsion in [false, true] {
+            let section = SectionProperties {
+                ei: Profile::Uniform(10.0),
+                mass_per_length: Profile::Table {
+                    x: vec![0.0, 2.0],
+                    value: vec![0.6, 0.2],
+                },
+                torsion: torsion.then_some(TorsionProperties {
+                    gj: Profile::Uniform(3.0),
+                    polar_inertia: Profile::Uniform(0.01),
+                    inertia_axis: InertiaAxis::MassCentre,
+                    offset: Profile::Uniform(0.1),
+                }),
+            };
+            let beam = Beam::new(
+                2.0,
+                &section,
+                &Discretization::Uniform(7),
+                Calibration::TipLoad,
+            )
+            .unwrap();
+            let full = FullModel::new(beam);
+            let loads = full
+                .apply(
+                    &[
+                        Load::PointForce {
+                            span: 1.3,
+                            force: Force::Follower {
+                                tangential: 0.4,
+                                normal: 2.0,
+                            },
+                        },
+                        Load::Gravity { g: 9.81 },
+                    ],
+                    "loads",
+                )
+                .unwrap();
+            let scales = [0.7, 1.0];
+            let rom =
+                ReducedModel::first(&full, Modes::undeformed(&full).unwrap().shapes(), 3).unwrap();
+            let (nd, r) = (full.n_dofs(), 3);
+            let mut ws = rom.workspace();
+            let mut fws = full.workspace();
+            for k in 0..4 {
+                let s = if k % 2 == 0 { 1.0 } else { -0.6 };
+                let eta = [0.4 * s, -0.2, 0.1 * s];
+                let etadot = [1.0, 0.5 * s, -2.0];
+                let q = rom.full_coordinates(&eta);
+                let qdot = rom.full_coordinates(&etadot);
+                let phi = rom.basis();
+                let mut m = DMatrix::zeros(nd, nd);
+                full.mass_matrix_into(&q, &mut fws, &mut m);
+                let m_r = phi.transpose() * &m * phi;
+                let mut got = DMatrix::zeros(r, r);
+                rom.mass_matrix_into(&eta, &mut ws, &mut got);
+                assert!((&got - &m_r).amax() < 1e-12 * m_r.amax());
+                let mut v = vec![0.0; nd];
+                StructuralModel::gyroscopic_into(&full, &q, &qdot, &mut fws, &mut v);
+                let gamma = phi.transpose() * DVector::from_column_slice(&v);
+                let mut g = vec![0.0; r];
+                rom.gyroscopic_into(&eta, &etadot, &mut ws, &mut g);
+                let mut f = DVector::zeros(nd);
+                full.generalized_forces_into(&q, &loads, &scales, &mut fws, &mut f);
+                let force = phi.transpose() * f;
+                let mut fr = DVector::zeros(r);
+                rom.generalized_forces_into(&eta, &loads, &scales, &mut ws, &mut fr);
+                let mut p = vec![0.0; r];
+                rom.momentum_into(&eta, &etadot, &mut ws, &mut p);
+                let mut back = vec![0.0; r];
+                assert!(rom.velocities_into(&eta, &p, &mut ws, &mut back));
+                for a in 0..r {
+                    assert!((g[a] - gamma[a]).abs() < 1e-12 * (1.0 + gamma.amax()));
+                    assert!((fr[a] - force[a]).abs() < 1e-12 * (1.0 + force.amax()));
+                    let pa: f64 = (0..r).map(|b| m_r[(a, b)] * etadot[b]).sum();
+                    assert!((p[a] - pa).abs() < 1e-12 * m_r.amax());
+                    assert!((back[a] - etadot[a]).abs() < 1e-10);
+                }
+            }
+        }
     }
 }
