@@ -212,7 +212,12 @@ impl ImplicitMidpoint {
                 let steps = stats.steps + stats.rejected_steps;
                 return fail(traj, stats, SolveError::TooManySteps { time: t, steps });
             }
-            let h_try = h.min(t_end - t);
+            let mut h_try = h.min(t_end - t);
+            if t_end - t - h_try <= 1e-8 * h_try {
+                // Reach the end exactly: fixed steps that add up to the interval in exact
+                // arithmetic leave a rounding-error remainder (5e-16 s) in floating point.
+                h_try = t_end - t;
+            }
             if h_try < 10.0 * f64::EPSILON * t.abs().max(1.0) || !h_try.is_finite() {
                 return fail(
                     traj,

@@ -207,6 +207,26 @@ mod tests {
     }
 
     #[test]
+    fn fixed_midpoint_steps_reach_the_end_of_windows_cut_by_rounding() {
+        // [0.25, 0.255] is 20 steps of 2.5e-4 in exact arithmetic; summing them in floating point
+        // stops 5e-16 s short, which once ended the run with "step size too small".
+        let mut y = vec![1.0, 0.0];
+        for k in 0..200 {
+            let t = [0.005 * k as f64, 0.005 * (k + 1) as f64];
+            let (traj, stats) = ImplicitMidpoint {
+                options: MidpointOptions {
+                    step: Some(2.5e-4),
+                    ..Default::default()
+                },
+            }
+            .integrate(&mut Oscillator(10.0), t[0], &y, &t, &mut |_| {})
+            .unwrap_or_else(|e| panic!("window {k}: {e}"));
+            assert_eq!(stats.steps, 20, "window {k}");
+            y.clone_from(traj.y.last().unwrap());
+        }
+    }
+
+    #[test]
     fn every_integrator_is_accurate_on_an_oscillator_and_respects_its_step_budget() {
         let w = 10.0;
         let exact = (w * 1.0f64).cos();

@@ -363,6 +363,13 @@ impl Radau {
                 let steps = stats.steps + stats.rejected_steps;
                 return fail(traj, stats, SolveError::TooManySteps { time: t, steps });
             }
+            if !last && t_end - (t + h) <= 1e-8 * h {
+                // A step that would stop a rounding error short of the end (after a kept or a
+                // rejected step) is stretched to it: the step after it would be too small.
+                h = t_end - t;
+                last = true;
+                need_lu = true;
+            }
             if !(0.1 * h.abs() > t.abs() * f64::EPSILON) || !h.is_finite() {
                 let e = if last_failure_non_finite {
                     SolveError::NonFinite { time: t }
@@ -605,17 +612,15 @@ impl Radau {
                     h_new = h_new.min(h);
                 }
                 reject = false;
-                let keep = theta <= thet && (quot1..=quot2).contains(&(h_new / h));
-                let h_next = if keep { h } else { h_new };
-                // A step that would stop a rounding error short of the end is stretched to it:
-                // otherwise the next step would be too small to take.
-                if t + h_new / quot1 >= t_end || t_end - (t + h_next) <= 1e-8 * h_next {
+                if t + h_new / quot1 >= t_end {
                     h = t_end - t;
                     last = true;
-                } else if keep {
-                    // Keep the step and the factorizations.
-                    continue;
                 } else {
+                    let qt = h_new / h;
+                    if theta <= thet && (quot1..=quot2).contains(&qt) {
+                        // Keep the step and the factorizations.
+                        continue;
+                    }
                     h = h_new;
                 }
                 need_lu = true;
