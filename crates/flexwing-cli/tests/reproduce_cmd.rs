@@ -47,7 +47,13 @@ fn reproduce_writes_every_table_and_figure_within_tolerance() {
     let out = dir.path().join("results");
     let o = flexwing_in(
         dir.path(),
-        &["reproduce", "--out", out.to_str().unwrap(), "--repeats", "1"],
+        &[
+            "reproduce",
+            "--out",
+            out.to_str().unwrap(),
+            "--repeats",
+            "1",
+        ],
     );
     assert_success(&o);
     assert!(stderr(&o).contains("[1/5]"), "no progress: {}", stderr(&o));

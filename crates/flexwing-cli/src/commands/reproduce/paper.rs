@@ -38,7 +38,12 @@ pub fn table4_beam(n: usize) -> Result<FullModel> {
         mass_per_length: Profile::Uniform(0.2),
         torsion: None,
     };
-    let beam = Beam::new(1.0, &section, &Discretization::Uniform(n), Calibration::TipLoad)?;
+    let beam = Beam::new(
+        1.0,
+        &section,
+        &Discretization::Uniform(n),
+        Calibration::TipLoad,
+    )?;
     Ok(FullModel::new(beam))
 }
 

@@ -5,8 +5,8 @@
 
 use flexwing::model::StructuralModel;
 use flexwing::solve::integrate::{
-    Dopri5, Dopri5Options, ImplicitMidpoint, IntegratorStats, MidpointOptions,
-    Radau, RadauOptions, Tolerances, Trajectory,
+    Dopri5, Dopri5Options, ImplicitMidpoint, IntegratorStats, MidpointOptions, Radau, RadauOptions,
+    Tolerances, Trajectory,
 };
 use flexwing::solve::EquationsOfMotion;
 

@@ -35,7 +35,10 @@ fn paper_ratio(ratios: &[(usize, f64)], r: Option<usize>) -> Cell {
 }
 
 fn label(r: Option<usize>) -> String {
-    r.map_or_else(|| "full".into(), |r| format!("reduced, {r} mode{}", if r == 1 { "" } else { "s" }))
+    r.map_or_else(
+        || "full".into(),
+        |r| format!("reduced, {r} mode{}", if r == 1 { "" } else { "s" }),
+    )
 }
 
 /// Table 3: one dead tip force of 150 N, n = 20.
@@ -303,7 +306,10 @@ pub fn table5(ctx: &Context) -> Result<(Section, Vec<AccuracyRow>)> {
             .map(|(_, nodes)| nodes)
             .collect(),
     });
-    let mut files = vec![table.write_csv(&ctx.out)?, points_table.write_csv(&ctx.out)?];
+    let mut files = vec![
+        table.write_csv(&ctx.out)?,
+        points_table.write_csv(&ctx.out)?,
+    ];
     files.extend(write_shapes(
         &ctx.out,
         "figure4",
