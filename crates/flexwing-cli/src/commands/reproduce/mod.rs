@@ -128,12 +128,11 @@ pub fn run(args: &ReproduceArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-/// Reduced-model accuracy against the number of modes, per case; returns the section and, per
-/// case, the fewest modes within 1 % of the largest tip displacement (`None`: none tried).
-fn accuracy_section(
-    ctx: &Context,
-    rows: &[AccuracyRow],
-) -> anyhow::Result<(Section, Vec<(String, Option<usize>)>)> {
+/// Per case, the fewest modes within 1 % of the largest tip displacement (`None`: none tried).
+type ModesNeeded = Vec<(String, Option<usize>)>;
+
+/// Reduced-model accuracy against the number of modes, per case, and the modes each case needs.
+fn accuracy_section(ctx: &Context, rows: &[AccuracyRow]) -> anyhow::Result<(Section, ModesNeeded)> {
     let mut table = Table::new(
         "reduced_accuracy",
         &[
@@ -144,7 +143,7 @@ fn accuracy_section(
             ("error_vs_reference_m", "max |Δtip| vs reference (m)"),
         ],
     );
-    let mut needed: Vec<(String, Option<usize>)> = Vec::new();
+    let mut needed: ModesNeeded = Vec::new();
     for row in rows {
         table.push(vec![
             Cell::text(&row.case),

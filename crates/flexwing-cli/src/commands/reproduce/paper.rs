@@ -140,9 +140,12 @@ pub fn elastica_two_loads() -> Result<Vec<TwoLoadsPoint>> {
         .collect())
 }
 
-/// Elastica shapes under the two forces: `(F1, node positions)` for the tabulated `F1`.
-pub fn elastica_two_loads_shapes() -> Result<Vec<(f64, Vec<(f64, f64)>)>> {
-    let mut shapes: Vec<(f64, Vec<(f64, f64)>)> = Vec::new();
+/// A deformed shape: `(F1, node positions (x, y))`.
+pub type Shape = (f64, Vec<(f64, f64)>);
+
+/// Elastica shapes under the two forces, for the tabulated `F1`.
+pub fn elastica_two_loads_shapes() -> Result<Vec<Shape>> {
+    let mut shapes: Vec<Shape> = Vec::new();
     for r in records("paper_two_loads_shapes.csv", ELASTICA_TWO_LOADS_SHAPES)? {
         match shapes.last_mut() {
             Some((f1, nodes)) if *f1 == r[0] => nodes.push((r[3], r[4])),
