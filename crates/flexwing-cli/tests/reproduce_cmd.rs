@@ -134,18 +134,30 @@ fn reproduce_writes_every_table_and_figure_within_tolerance() {
     assert_eq!(num(full30, "t_reached_s"), 30.0);
     assert!(num(full30, "max_energy_drift") < 1e-3);
 
-    // Table 8: the timed full run within 1e-3 m of the converged one (tip amplitude 0.1 m); the
-    // reduced models' errors of the dynamics issue (2.1 %, 0.32 %, 0.12 %, 0.05 % of the
-    // amplitude for r = 1…4) with margin, and decreasing with r.
+    // Table 8: every timed run within 2e-4 m of the same model integrated tightly (the speed
+    // goal's accuracy is 1e-4 m; measured 7.6e-5 m for the full model); the reduced models'
+    // model errors of the dynamics issue (2.1 %, 0.32 %, 0.12 %, 0.05 % of the amplitude for
+    // r = 1…4) with margin, and decreasing with r.
     let t8 = table(&out, "table8.csv");
-    assert!(num(find(&t8, "full (exact γ)"), "max_tip_difference_m") < 1e-3);
+    for row in &t8 {
+        assert!(
+            num(row, "integration_error_m") < 2e-4,
+            "{}: {}",
+            row["model"],
+            row["integration_error_m"]
+        );
+    }
+    assert_eq!(
+        num(find(&t8, "full (exact γ)"), "max_tip_difference_m"),
+        0.0
+    );
     let rel = |m: &str| num(find(&t8, m), "relative_pct");
     assert!(rel("reduced, 1 mode") < 3.0);
     assert!(rel("reduced, 2 modes") < 0.5);
     assert!(rel("reduced, 4 modes") < 0.1);
     assert!(rel("reduced, 6 modes") < rel("reduced, 4 modes"));
     assert!(rel("reduced, 4 modes") < rel("reduced, 2 modes"));
-    assert_eq!(table(&out, "figure6.csv").len(), 7 * 201);
+    assert_eq!(table(&out, "figure6.csv").len(), 8 * 201);
 
     // Accuracy table: one row per case and number of modes.
     assert_eq!(table(&out, "reduced_accuracy.csv").len(), 15);
