@@ -43,6 +43,9 @@ fn tip(full: &FullModel, q: &[f64]) -> (f64, f64) {
     (p[0], p[1])
 }
 
+/// Tip positions `(x, y)` (m) at the output times.
+type Tips = Vec<(f64, f64)>;
+
 fn tips<M: StructuralModel>(model: &M, run: &Run) -> Vec<(f64, f64)> {
     let full = model.full_model();
     let n = model.n_dofs();
@@ -100,7 +103,7 @@ fn run_sine<M: StructuralModel>(
     gyroscopic: Gyroscopic,
     method: Method,
     t_out: &[f64],
-) -> Result<(Run, Timing, Vec<(f64, f64)>)> {
+) -> Result<(Run, Timing, Tips)> {
     let tf = vec![TimeFunction::Sine {
         omega: 20.0,
         phase: 0.0,
