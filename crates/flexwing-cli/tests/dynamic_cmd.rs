@@ -117,7 +117,7 @@ fn check_complete_run(case: &Path, labels: &[&str], times: usize, nodes: usize) 
     for (k, m) in models.iter().enumerate() {
         let label = m["label"].as_str().unwrap();
         assert!(m["dofs"].as_u64().unwrap() >= 1);
-        assert!(["bdf", "dopri5", "midpoint"].contains(&m["integrator"].as_str().unwrap()));
+        assert!(["bdf", "dopri5", "midpoint", "radau"].contains(&m["integrator"].as_str().unwrap()));
         assert!(["exact", "finite-difference", "neglected"]
             .contains(&m["gyroscopic"].as_str().unwrap()));
         for key in [
@@ -239,8 +239,8 @@ fn paper_sine_reduced_models_approach_the_full_model() {
     ];
     let doc = check_complete_run(&example("paper_sine.toml"), &labels, 201, 21);
     let full = model(&doc, "full");
-    assert_eq!(full["integrator"], "bdf");
-    assert_eq!(model(&doc, "reduced-r1")["integrator"], "dopri5");
+    assert_eq!(full["integrator"], "radau");
+    assert_eq!(model(&doc, "reduced-r1")["integrator"], "radau");
     assert_eq!(
         model(&doc, "reduced-r4")["modes"],
         serde_json::json!([1, 2, 3, 4])
@@ -597,7 +597,7 @@ fn bad_input_names_the_field() {
         ),
         (format!("{CASE}atol = 0\n"), vec!["dynamic.atol: must be"]),
         (
-            format!("{CASE}max_order = 9\n"),
+            format!("{CASE}integrator = \"bdf\"\nmax_order = 9\n"),
             vec!["dynamic.max_order: must be between 1 and 5"],
         ),
         (
