@@ -58,6 +58,10 @@ fn reproduce_writes_every_table_and_figure_within_tolerance() {
     assert_success(&o);
     assert!(stderr(&o).contains("[1/5]"), "no progress: {}", stderr(&o));
 
+    assert_eq!(
+        fs::read_to_string(out.join("status.txt")).unwrap(),
+        "complete\n"
+    );
     let report = fs::read_to_string(out.join("report.md")).unwrap();
     for heading in [
         "## Conclusions checked by this run",

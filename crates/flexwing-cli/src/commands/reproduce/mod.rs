@@ -17,7 +17,7 @@ use std::time::Instant;
 
 use clap::Args;
 
-use super::Failure;
+use super::{status_text, Failure, Incomplete};
 use crate::output;
 use table::{Cell, Fmt, Table};
 
@@ -81,26 +81,63 @@ pub fn run(args: &ReproduceArgs) -> Result<(), Failure> {
             started.elapsed().as_secs_f64()
         );
     };
-    let run_err = |e: anyhow::Error| Failure::Run(e);
+    // A part that fails is reported (report.md, status.txt, stderr) and the others still run.
+    let mut failed: Vec<Incomplete> = Vec::new();
+    let mut check = |what: &str, e: anyhow::Error| {
+        let message = format!("{e:#}");
+        eprintln!("error: {what}: {message}");
+        failed.push(Incomplete {
+            what: what.into(),
+            message,
+        });
+    };
 
     progress("Table 2: natural frequencies");
-    let (section, modal) = modal::table2(&ctx).map_err(run_err)?;
-    sections.push(section);
+    let modal = match modal::table2(&ctx) {
+        Ok((section, modal)) => {
+            sections.push(section);
+            Some(modal)
+        }
+        Err(e) => {
+            check("Table 2", e);
+            None
+        }
+    };
 
     progress("Tables 3 and 5, Figure 4: static cases");
-    let (section, rows) = statics::table3(&ctx).map_err(run_err)?;
-    sections.push(section);
-    accuracy.extend(rows);
-    let (section, rows) = statics::table5(&ctx).map_err(run_err)?;
-    sections.push(section);
-    accuracy.extend(rows);
+    for (what, part) in [
+        ("Table 3", statics::table3 as fn(&Context) -> _),
+        ("Table 5 and Figure 4", statics::table5),
+    ] {
+        match part(&ctx) {
+            Ok((section, rows)) => {
+                sections.push(section);
+                accuracy.extend(rows);
+            }
+            Err(e) => check(what, e),
+        }
+    }
 
     progress("Tables 6 and 8, Figure 6: sinusoidal tip force");
-    let (sine_sections, rows, sine) = dynamics::table8(&ctx).map_err(run_err)?;
-    accuracy.extend(rows);
+    let (sine_sections, sine) = match dynamics::table8(&ctx) {
+        Ok((sine_sections, rows, sine)) => {
+            accuracy.extend(rows);
+            (sine_sections, Some(sine))
+        }
+        Err(e) => {
+            check("Tables 6 and 8, Figure 6", e);
+            (Vec::new(), None)
+        }
+    };
 
     progress("Table 7, Figure 5: free vibration, full against simplified");
-    let (release_sections, release) = dynamics::table7(&ctx).map_err(run_err)?;
+    let (release_sections, release) = match dynamics::table7(&ctx) {
+        Ok((release_sections, release)) => (release_sections, Some(release)),
+        Err(e) => {
+            check("Table 7 and Figure 5", e);
+            (Vec::new(), None)
+        }
+    };
     let mut sine_sections = sine_sections.into_iter();
     // Paper order: Table 6 (γ), Table 7 / Figure 5, Table 8 / Figure 6.
     sections.extend(sine_sections.next());
@@ -109,23 +146,53 @@ pub fn run(args: &ReproduceArgs) -> Result<(), Failure> {
     sections.extend(sine_sections);
 
     progress("accuracy of the reduced models, report");
-    let (section, needed) = accuracy_section(&ctx, &accuracy).map_err(run_err)?;
-    sections.push(section);
+    let needed = match accuracy_section(&ctx, &accuracy) {
+        Ok((section, needed)) => {
+            sections.push(section);
+            needed
+        }
+        Err(e) => {
+            check("reduced accuracy", e);
+            Vec::new()
+        }
+    };
     sections.extend(release_sections);
 
-    let conclusions = conclusions(&modal, &sine, &release, &needed);
+    let mut conclusions = conclusions(modal.as_ref(), sine.as_ref(), release.as_ref(), &needed);
+    for f in &failed {
+        conclusions.push_str(&format!(
+            "- **{} did not complete:** {} Its conclusions are missing above.\n",
+            f.what, f.message
+        ));
+    }
     let elapsed = started.elapsed().as_secs_f64();
     let report = report(&ctx, &sections, &conclusions, elapsed);
     let report_path = ctx.out.join("report.md");
     output::write_bytes(&report_path, report.as_bytes()).map_err(Failure::Run)?;
+    let status_path = ctx.out.join("status.txt");
+    output::write_bytes(&status_path, status_text(&failed).as_bytes()).map_err(Failure::Run)?;
     for s in &sections {
         for f in &s.files {
             println!("wrote {}", f.display());
         }
     }
     println!("wrote {}", report_path.display());
+    println!("wrote {}", status_path.display());
     println!("done in {elapsed:.1} s");
-    Ok(())
+    if failed.is_empty() {
+        Ok(())
+    } else {
+        Err(Failure::run(format!(
+            "{} part(s) did not complete: {}; the others are in {}",
+            failed.len(),
+            failed
+                .iter()
+                .map(|f| f.what.as_str())
+                .collect::<Vec<_>>()
+                .join(", "),
+            report_path.display()
+        )))
+    }
 }
 
 /// Per case, the fewest modes within 1 % of the largest tip displacement (`None`: none tried).
@@ -190,17 +257,52 @@ fn accuracy_section(ctx: &Context, rows: &[AccuracyRow]) -> anyhow::Result<(Sect
 }
 
 fn conclusions(
-    modal: &modal::ModalSummary,
-    sine: &dynamics::SineSummary,
-    release: &dynamics::ReleaseSummary,
+    modal: Option<&modal::ModalSummary>,
+    sine: Option<&dynamics::SineSummary>,
+    release: Option<&dynamics::ReleaseSummary>,
     needed: &[(String, Option<usize>)],
 ) -> String {
     let mut s = String::new();
-    s.push_str(&format!(
+    if let Some(modal) = modal {
+        s.push_str(&format!(
         "- **Modal analysis.** At n = 32 the nine coupled frequencies are within {:.2} % of the \
          continuous beam.\n",
         modal.max_error_n32
-    ));
+        ));
+    }
+    if let (Some(sine), Some(release)) = (sine, release) {
+        gyroscopic_conclusions(&mut s, sine, release);
+    }
+    if !needed.is_empty() {
+        s.push_str("- **Modes for 1 % accuracy:** ");
+        let parts: Vec<String> = needed
+            .iter()
+            .map(|(case, r)| {
+                format!(
+                    "{case}: {}",
+                    r.map_or_else(|| "more than tried".into(), |r| format!("{r}"))
+                )
+            })
+            .collect();
+        s.push_str(&parts.join("; "));
+        s.push_str(".\n");
+    }
+    if let Some(sine) = sine {
+        s.push_str(&format!(
+            "- **Reduced against full cost.** In the sinusoidal case the reduced model with 2 \
+             modes takes {:.3} of the full model's time (the paper: 0.146); the timed full run is \
+             {:.1e} m from the converged solution.\n",
+            sine.ratio_r2, sine.full_integration_error
+        ));
+    }
+    s
+}
+
+fn gyroscopic_conclusions(
+    s: &mut String,
+    sine: &dynamics::SineSummary,
+    release: &dynamics::ReleaseSummary,
+) {
     let released = match &release.simplified_stopped {
         Some(why) => format!(
             "Released from the 150 N deflection, the simplified model does not stay near the \
@@ -216,13 +318,25 @@ fn conclusions(
             100.0 * release.max_error_150.1
         ),
     };
+    let large = release.simplified_stopped.is_some()
+        || release.max_error_150.0.max(release.max_error_150.1) > 0.01;
+    let verdict = if large {
+        "Not at large amplitude (above 1 % or unstable)."
+    } else {
+        "Yes here: within 1 % at large amplitude."
+    };
+    let advice = if sine.exact_gamma_cost < 2.0 && sine.fd_cost_ratio > 1.0 {
+        "there is no reason to neglect or approximate it"
+    } else {
+        "weigh its cost against the error"
+    };
     s.push_str(&format!(
-        "- **Is the gyroscopic term negligible?** Not at large amplitude. {released}. Released \
+        "- **Is the gyroscopic term negligible?** {verdict} {released}. Released \
          from 10 N the differences are {:.2} % (x) and {:.2} % (y). Under the sinusoidal \
          10 N force the simplified model's tip is {:.1e} m ({:.2} % of the largest \
          displacement) from the full one. The exact term costs {:.2} times a right-hand side \
          without it (an O(n) recursion), and the paper's finite differences are {:.1e} off \
-         and {:.0} times slower: there is no reason to neglect or approximate it.\n",
+         and {:.0} times slower: {advice}.\n",
         100.0 * release.max_error_10.0,
         100.0 * release.max_error_10.1,
         sine.simplified_difference,
@@ -236,25 +350,6 @@ fn conclusions(
          {:.1e} (relative).\n",
         release.full_drift_30
     ));
-    s.push_str("- **Modes for 1 % accuracy:** ");
-    let parts: Vec<String> = needed
-        .iter()
-        .map(|(case, r)| {
-            format!(
-                "{case}: {}",
-                r.map_or_else(|| "more than tried".into(), |r| format!("{r}"))
-            )
-        })
-        .collect();
-    s.push_str(&parts.join("; "));
-    s.push_str(".\n");
-    s.push_str(&format!(
-        "- **Reduced against full cost.** In the sinusoidal case the reduced model with 2 modes \
-         takes {:.3} of the full model's time (the paper: 0.146); the timed full run is \
-         {:.1e} m from the converged solution.\n",
-        sine.ratio_r2, sine.full_integration_error
-    ));
-    s
 }
 
 fn machine() -> String {
