@@ -14,51 +14,17 @@ use std::time::Duration;
 mod common;
 use common::{fmt_time, measure};
 
-use flexwing::beam::{
-    Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties, TorsionProperties,
-};
 use flexwing::model::{Force, FullModel, Load, ReducedModel};
 use flexwing::solve::integrate::{Dopri5, Dopri5Options, OdeSystem, Tolerances};
 use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, Modes, TimeFunction};
 use nalgebra::DMatrix;
 
 fn table4(n: usize) -> FullModel {
-    let section = SectionProperties {
-        ei: Profile::Uniform(50.0),
-        mass_per_length: Profile::Uniform(0.2),
-        torsion: None,
-    };
-    FullModel::new(
-        Beam::new(
-            1.0,
-            &section,
-            &Discretization::Uniform(n),
-            Calibration::TipLoad,
-        )
-        .expect("valid beam"),
-    )
+    flexwing::paper::table4_beam(n).expect("valid beam")
 }
 
 fn table1(n: usize) -> FullModel {
-    let section = SectionProperties {
-        ei: Profile::Uniform(2e4),
-        mass_per_length: Profile::Uniform(0.75),
-        torsion: Some(TorsionProperties {
-            gj: Profile::Uniform(1e3),
-            polar_inertia: Profile::Uniform(0.1),
-            inertia_axis: InertiaAxis::MassCentre,
-            offset: Profile::Uniform(0.267),
-        }),
-    };
-    FullModel::new(
-        Beam::new(
-            16.0,
-            &section,
-            &Discretization::Uniform(n),
-            Calibration::TipLoad,
-        )
-        .expect("valid beam"),
-    )
+    flexwing::paper::table1_beam(n).expect("valid beam")
 }
 
 fn tip_force() -> Vec<Load> {

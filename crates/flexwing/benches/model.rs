@@ -14,32 +14,12 @@ use std::time::Duration;
 mod common;
 use common::{fmt_time, measure};
 
-use flexwing::beam::{
-    Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties, TorsionProperties,
-};
 use flexwing::model::{FullModel, Kinematics};
 use flexwing::solve::Modes;
 use nalgebra::DMatrix;
 
 fn table1(n: usize) -> FullModel {
-    let section = SectionProperties {
-        ei: Profile::Uniform(2e4),
-        mass_per_length: Profile::Uniform(0.75),
-        torsion: Some(TorsionProperties {
-            gj: Profile::Uniform(1e3),
-            polar_inertia: Profile::Uniform(0.1),
-            inertia_axis: InertiaAxis::MassCentre,
-            offset: Profile::Uniform(0.267),
-        }),
-    };
-    let beam = Beam::new(
-        16.0,
-        &section,
-        &Discretization::Uniform(n),
-        Calibration::TipLoad,
-    )
-    .expect("valid beam");
-    FullModel::new(beam)
+    flexwing::paper::table1_beam(n).expect("valid beam")
 }
 
 fn main() {

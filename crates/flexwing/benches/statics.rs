@@ -20,25 +20,11 @@ use std::time::Duration;
 mod common;
 use common::{fmt_time, measure};
 
-use flexwing::beam::{Beam, Calibration, Discretization, Profile, SectionProperties};
 use flexwing::model::{AppliedLoads, Force, FullModel, Load, ReducedModel, StructuralModel};
 use flexwing::solve::{solve_static, sweep_static, Modes, StaticOptions};
 
 fn table4(n: usize) -> FullModel {
-    let section = SectionProperties {
-        ei: Profile::Uniform(50.0),
-        mass_per_length: Profile::Uniform(0.2),
-        torsion: None,
-    };
-    FullModel::new(
-        Beam::new(
-            1.0,
-            &section,
-            &Discretization::Uniform(n),
-            Calibration::TipLoad,
-        )
-        .expect("valid beam"),
-    )
+    flexwing::paper::table4_beam(n).expect("valid beam")
 }
 
 fn run<M: StructuralModel>(model: &M, loads: &AppliedLoads, sweep: bool) {

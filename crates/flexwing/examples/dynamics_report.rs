@@ -7,7 +7,6 @@
 
 use std::time::Instant;
 
-use flexwing::beam::{Beam, Calibration, Discretization, Profile, SectionProperties};
 use flexwing::model::{Force, FullModel, Load, ReducedModel, StructuralModel};
 use flexwing::solve::integrate::{
     Bdf, BdfOptions, Dopri5, Dopri5Options, ImplicitMidpoint, MidpointOptions, OdeSystem,
@@ -16,20 +15,7 @@ use flexwing::solve::integrate::{
 use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, Modes, TimeFunction};
 
 fn table4(n: usize) -> FullModel {
-    let section = SectionProperties {
-        ei: Profile::Uniform(50.0),
-        mass_per_length: Profile::Uniform(0.2),
-        torsion: None,
-    };
-    FullModel::new(
-        Beam::new(
-            1.0,
-            &section,
-            &Discretization::Uniform(n),
-            Calibration::TipLoad,
-        )
-        .unwrap(),
-    )
+    flexwing::paper::table4_beam(n).expect("valid beam")
 }
 
 fn tip(full: &FullModel, q: &[f64]) -> [f64; 2] {

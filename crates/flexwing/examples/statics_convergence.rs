@@ -3,7 +3,7 @@
 //!
 //! Run: `cargo run --release -p flexwing --example statics_convergence`
 
-use flexwing::beam::{Beam, Calibration, Discretization, Profile, SectionProperties};
+use flexwing::beam::Profile;
 use flexwing::model::{DistributedForce, Force, FullModel, Load, ReducedModel, StructuralModel};
 use flexwing::solve::{sweep_static, Modes, StaticOptions, StaticSolution};
 
@@ -23,20 +23,7 @@ fn read(file: &str) -> Vec<Vec<f64>> {
 }
 
 fn table4(n: usize) -> FullModel {
-    let section = SectionProperties {
-        ei: Profile::Uniform(50.0),
-        mass_per_length: Profile::Uniform(0.2),
-        torsion: None,
-    };
-    FullModel::new(
-        Beam::new(
-            1.0,
-            &section,
-            &Discretization::Uniform(n),
-            Calibration::TipLoad,
-        )
-        .unwrap(),
-    )
+    flexwing::paper::table4_beam(n).expect("valid beam")
 }
 
 fn tip(full: &FullModel, sol: &StaticSolution) -> [f64; 2] {

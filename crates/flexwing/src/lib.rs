@@ -10,7 +10,8 @@
 //! structures* (COBEM 2021).
 //!
 //! The modules form a chain: [`beam`] (section properties, discretization, stiffness calibration)
-//! → [`model`] (kinematics, mass matrix, generalized forces) → [`solve`] (modes, statics).
+//! → [`model`] (kinematics, mass matrix, generalized forces) → [`solve`] (modes, statics,
+//! dynamics); [`paper`] holds the paper's beams.
 //!
 //! ```
 //! use flexwing::beam::{Beam, Calibration, Discretization, Profile, SectionProperties};
@@ -33,6 +34,7 @@
 pub mod beam;
 mod error;
 pub mod model;
+pub mod paper;
 pub mod solve;
 
 pub use error::{Error, InputError, Result, SolveError};

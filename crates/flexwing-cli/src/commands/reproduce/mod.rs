@@ -12,7 +12,7 @@ mod run;
 mod statics;
 mod table;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
@@ -412,10 +412,4 @@ fn report(ctx: &Context, sections: &[Section], conclusions: &str, elapsed: f64) 
         }
     }
     s
-}
-
-/// The default output directory, for the docs and tests.
-#[allow(dead_code)]
-pub fn default_out() -> &'static Path {
-    Path::new("results")
 }

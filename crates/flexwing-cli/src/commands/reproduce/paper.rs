@@ -3,48 +3,17 @@
 //! columns). Every other number of the report is computed by the run.
 
 use anyhow::{anyhow, Context, Result};
-use flexwing::beam::{
-    Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties, TorsionProperties,
-};
 use flexwing::model::FullModel;
 
-/// Table 1 beam (coupled bending–torsion, L = 16 m) with `n` elements. The polar inertia is the
-/// one of model.md item 6 (0.1 kg·m about the mass centre): Table 1's printed 0.75 does not give
-/// Table 2.
+/// Table 1 beam (coupled, L = 16 m) with `n` elements: the library's preset
+/// ([`flexwing::paper::table1_section`] documents its polar inertia).
 pub fn table1_beam(n: usize) -> Result<FullModel> {
-    let section = SectionProperties {
-        ei: Profile::Uniform(2e4),
-        mass_per_length: Profile::Uniform(0.75),
-        torsion: Some(TorsionProperties {
-            gj: Profile::Uniform(1e3),
-            polar_inertia: Profile::Uniform(0.1),
-            inertia_axis: InertiaAxis::MassCentre,
-            offset: Profile::Uniform(0.267),
-        }),
-    };
-    let beam = Beam::new(
-        16.0,
-        &section,
-        &Discretization::Uniform(n),
-        Calibration::TipLoad,
-    )?;
-    Ok(FullModel::new(beam))
+    Ok(flexwing::paper::table1_beam(n)?)
 }
 
-/// Table 4 beam (bending only, L = 1 m, EI = 50 N·m², m = 0.2 kg/m) with `n` elements.
+/// Table 4 beam (bending only, L = 1 m) with `n` elements: the library's preset.
 pub fn table4_beam(n: usize) -> Result<FullModel> {
-    let section = SectionProperties {
-        ei: Profile::Uniform(50.0),
-        mass_per_length: Profile::Uniform(0.2),
-        torsion: None,
-    };
-    let beam = Beam::new(
-        1.0,
-        &section,
-        &Discretization::Uniform(n),
-        Calibration::TipLoad,
-    )?;
-    Ok(FullModel::new(beam))
+    Ok(flexwing::paper::table4_beam(n)?)
 }
 
 /// Table 2 as printed: per mode, (lumped n = 16, semi-analytical, error %) and the same at n = 32.
