@@ -260,6 +260,31 @@ fn paper_sine_reduced_models_approach_the_full_model() {
 }
 
 #[test]
+fn a_step_cap_with_a_loose_tolerance_keeps_case_b_within_1e4_m() {
+    // The fast setting of docs/performance.md: Radau, rtol 1e-2, steps ≤ 6 ms. Against the same
+    // case at the example's rtol 1e-6 (its own error ~1e-6 m), the tip stays within 2e-4 m (the
+    // benchmark measures 7.6e-5 m against rtol 1e-9), and the cap sets at least 1 s / 6 ms steps.
+    let dir = TempDir::new("dynamic-max-step");
+    let text = fs::read_to_string(example("paper_sine.toml")).unwrap();
+    let fast = text
+        .replace("rtol = 1e-6", "rtol = 1e-2\nmax_step = 6e-3")
+        .replace("atol = 1e-8 ", "atol = 1e-2 ");
+    assert_ne!(fast, text, "the example's tolerance lines changed");
+    let (o, _) = run_dynamic(&dir, &dir.write("fast.toml", &fast), &["--json"]);
+    assert_success(&o);
+    let (o_ref, _) = run_dynamic(&dir, &example("paper_sine.toml"), &["--json"]);
+    assert_success(&o_ref);
+    let (doc, reference) = (json(&o), json(&o_ref));
+    for label in ["full", "reduced-r2"] {
+        let (m, r) = (model(&doc, label), model(&reference, label));
+        let steps = m["stats"]["steps"].as_u64().unwrap();
+        assert!(steps >= 167, "{label}: {steps} steps");
+        let d = max_tip_distance(m, r);
+        assert!(d < 2e-4, "{label}: {d} m from the tight run");
+    }
+}
+
+#[test]
 fn paper_free_vibration_full_conserves_energy_and_simplified_differs() {
     // The example runs 0.2 s; a tenth of a second shows the same and keeps the test quick.
     let dir = TempDir::new("free-vibration-copy");

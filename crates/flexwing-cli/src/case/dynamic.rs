@@ -112,6 +112,8 @@ pub struct IntegratorSettings {
     pub step: Option<f64>,
     /// Budget of integrator steps per model.
     pub max_steps: usize,
+    /// Largest step of the adaptive integrators (s); unlimited without it.
+    pub max_step: Option<f64>,
 }
 
 /// The state at `t = 0`.
@@ -447,6 +449,21 @@ fn settings(d: &DynamicSpec) -> Result<IntegratorSettings, InputError> {
             ));
         }
     }
+    if let Some(h) = d.max_step {
+        if !(h > 0.0 && h.is_finite()) {
+            return Err(InputError::new(
+                "dynamic.max_step",
+                format!("must be a finite positive number, got {}", short(h)),
+            ));
+        }
+        if d.step.is_some() {
+            return Err(InputError::new(
+                "dynamic.max_step",
+                "caps the steps of the adaptive integrators; it cannot be given with the fixed \
+                 step `step`",
+            ));
+        }
+    }
     if d.max_steps == Some(0) {
         return Err(InputError::new(
             "dynamic.max_steps",
@@ -459,6 +476,7 @@ fn settings(d: &DynamicSpec) -> Result<IntegratorSettings, InputError> {
         max_order: d.max_order.unwrap_or(DEFAULT_MAX_ORDER),
         step: d.step,
         max_steps: d.max_steps.unwrap_or(DEFAULT_MAX_STEPS),
+        max_step: d.max_step,
     })
 }
 
@@ -841,6 +859,16 @@ mod tests {
                 "",
                 format!("{d}step = 1e-3\n"),
                 "dynamic.step: is the fixed step",
+            ),
+            (
+                "",
+                format!("{d}max_step = -1\n"),
+                "dynamic.max_step: must be a finite positive number",
+            ),
+            (
+                "",
+                format!("{d}integrator = \"midpoint\"\nstep = 1e-3\nmax_step = 1e-2\n"),
+                "dynamic.max_step: caps the steps",
             ),
             (
                 "",

@@ -341,6 +341,9 @@ pub struct DynamicSpec {
     /// Budget of integrator steps (accepted and rejected) per model.
     #[serde(default)]
     pub max_steps: Option<usize>,
+    /// Largest step of the adaptive integrators (s).
+    #[serde(default)]
+    pub max_step: Option<f64>,
     /// Structural damping; none without it.
     #[serde(default)]
     pub damping: Option<DampingSpec>,

@@ -598,12 +598,14 @@ fn integrate<M: StructuralModel>(
     t_out: &[f64],
     progress: &mut dyn FnMut(f64),
 ) -> flexwing::solve::integrate::IntegrationResult {
+    let max_step = settings.max_step.unwrap_or(f64::INFINITY);
     match integrator {
         Integrator::Bdf => Bdf {
             options: BdfOptions {
                 tolerances,
                 max_order: settings.max_order,
                 max_steps: settings.max_steps,
+                max_step,
                 ..BdfOptions::default()
             },
         }
@@ -612,6 +614,7 @@ fn integrate<M: StructuralModel>(
             options: Dopri5Options {
                 tolerances,
                 max_steps: settings.max_steps,
+                max_step,
                 ..Dopri5Options::default()
             },
         }
@@ -621,6 +624,7 @@ fn integrate<M: StructuralModel>(
                 tolerances,
                 step: settings.step,
                 max_steps: settings.max_steps,
+                max_step,
                 ..MidpointOptions::default()
             },
         }
@@ -629,6 +633,7 @@ fn integrate<M: StructuralModel>(
             options: RadauOptions {
                 tolerances,
                 max_steps: settings.max_steps,
+                max_step,
                 ..RadauOptions::default()
             },
         }

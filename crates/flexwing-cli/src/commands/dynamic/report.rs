@@ -292,6 +292,9 @@ impl PlanLines {
         if let Some(h) = st.step {
             let _ = write!(tolerances, ", midpoint fixed step {} s", short(h));
         }
+        if let Some(h) = st.max_step {
+            let _ = write!(tolerances, ", steps at most {} s", short(h));
+        }
         if let Some(Gyroscopic::FiniteDifference { step }) = plan
             .models
             .iter()
