@@ -30,6 +30,21 @@ impl InputError {
     }
 }
 
+/// A time for messages: at most 10 decimals, trailing zeros dropped, so that the rounding of
+/// accumulated steps does not show (`0.8250000000000001` prints as `0.825`).
+fn seconds(t: &f64) -> String {
+    if !t.is_finite() {
+        return format!("{t}");
+    }
+    let s = format!("{t:.10}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.into()
+    }
+}
+
 /// Failure of a numerical algorithm.
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
@@ -57,7 +72,7 @@ pub enum SolveError {
     #[error(transparent)]
     InvalidInput(InputError),
     /// The adaptive step size fell below what floating point can resolve.
-    #[error("time integration stopped at t = {time} s: step size {step:.3e} s too small")]
+    #[error("time integration stopped at t = {} s: step size {step:.3e} s too small", seconds(.time))]
     StepSizeTooSmall {
         /// Time reached (s).
         time: f64,
@@ -65,7 +80,11 @@ pub enum SolveError {
         step: f64,
     },
     /// The run used up its budget of steps (`max_steps`), e.g. a solution that blows up.
-    #[error("time integration stopped at t = {time} s: {steps} steps (accepted and rejected) reached the limit max_steps")]
+    #[error(
+        "time integration stopped at t = {} s: {steps} steps (accepted and rejected) reached the \
+         limit max_steps",
+        seconds(.time)
+    )]
     TooManySteps {
         /// Time reached (s).
         time: f64,
@@ -73,7 +92,11 @@ pub enum SolveError {
         steps: usize,
     },
     /// Newton's method of an implicit step did not converge even on small sub-steps.
-    #[error("time integration stopped at t = {time} s: Newton's method did not converge with step {step:.3e} s")]
+    #[error(
+        "time integration stopped at t = {} s: Newton's method did not converge with step \
+         {step:.3e} s",
+        seconds(.time)
+    )]
     NewtonFailed {
         /// Time reached (s).
         time: f64,
@@ -82,7 +105,8 @@ pub enum SolveError {
     },
     /// The right-hand side produced a non-finite value (NaN or infinity).
     #[error(
-        "time integration stopped at t = {time} s: the state became non-finite (NaN or infinity)"
+        "time integration stopped at t = {} s: the state became non-finite (NaN or infinity)",
+        seconds(.time)
     )]
     NonFinite {
         /// Time reached (s).
@@ -133,3 +157,23 @@ pub enum Error {
 
 /// Result alias of the library.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn times_in_messages_hide_step_rounding() {
+        let e = SolveError::StepSizeTooSmall {
+            time: 0.825_000_000_000_000_1,
+            step: 5.551e-16,
+        };
+        assert_eq!(
+            e.to_string(),
+            "time integration stopped at t = 0.825 s: step size 5.551e-16 s too small"
+        );
+        assert_eq!(seconds(&30.0), "30");
+        assert_eq!(seconds(&1.5e-7), "0.00000015");
+        assert_eq!(seconds(&f64::NAN), "NaN");
+    }
+}

@@ -467,11 +467,11 @@ fn table6(
     let mut text = format!(
         "The state of the converged full run of case (b) at t = 1 s (n = 20), as in the paper. \
          γ = ∂T/∂q at fixed velocities; the largest component is {largest:.3e} N·m. Times are \
-         one evaluation of the whole right-hand side (mass matrix, its factorization, loads, γ), \
-         median of {} samples. The paper's exact γ came from automatic differentiation of the \
+         one evaluation of the whole right-hand side (the O(n) velocity solve, loads, γ), median \
+         of {} samples. The paper's exact γ came from automatic differentiation of the \
          symbolic inverse and was 12 times slower than its finite differences; ours is an O(n) \
          recursion, so the finite differences (2n evaluations of the kinetic energy, each \
-         with a factorization) are the slow option here.\n\n",
+         with its own O(n) velocity solve: O(n²)) are the slow option here.\n\n",
         ctx.repeats
     );
     text.push_str(&table.markdown());

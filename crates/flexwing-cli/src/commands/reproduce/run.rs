@@ -159,7 +159,7 @@ pub fn integrate<M: StructuralModel>(
                 run.stopped = Some(format!(
                     "stopped at t = {} s: the energy grew to {:.3} times its initial value \
                      (a blown-up run; limit {limit})",
-                    t_out[end],
+                    crate::output::short(t_out[end]),
                     h / h0
                 ));
                 break;
