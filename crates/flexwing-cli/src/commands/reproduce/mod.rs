@@ -294,6 +294,11 @@ fn conclusions(
              {:.1e} m from the converged solution.\n",
             sine.ratio_r2, sine.full_integration_error
         ));
+        s.push_str(&format!(
+            "- **Independent check of the dynamics.** The converged full model of the sinusoidal \
+             case is {:.1e} m from a separate Python implementation of the model (SciPy).\n",
+            sine.independent_difference
+        ));
     }
     s
 }

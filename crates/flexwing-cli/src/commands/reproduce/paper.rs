@@ -44,6 +44,8 @@ pub const FIGURE5_MAX_ERROR: f64 = 0.04;
 
 const CONTINUOUS_TABLE1: &str =
     include_str!("../../../../flexwing/tests/data/continuous_beam/table1_coupled.csv");
+const DYNAMICS_CASE_B: &str =
+    include_str!("../../../../flexwing/tests/data/dynamics_reference/case_b_tip.csv");
 const ELASTICA_DEAD_TIP: &str =
     include_str!("../../../../flexwing/tests/data/elastica/dead_tip.csv");
 const ELASTICA_TWO_LOADS: &str =
@@ -54,8 +56,10 @@ const ELASTICA_TWO_LOADS_SHAPES: &str =
 /// Where the references come from, for the report.
 pub const REFERENCE_NOTE: &str = "Continuous coupled beam: exact frequency equation solved to 40 \
 digits (crates/flexwing/tests/data/continuous_beam, mpmath). Elastica: the inextensible planar \
-elastica by shooting (crates/flexwing/tests/data/elastica, SciPy). Both were computed by scripts \
-independent of flexwing; their READMEs give the equations and checks.";
+elastica by shooting (crates/flexwing/tests/data/elastica, SciPy). Dynamics: the full model \
+written again in Python from docs/model.md and integrated by SciPy (crates/flexwing/tests/data/\
+dynamics_reference). All were computed by scripts independent of flexwing; their READMEs give the \
+equations and checks.";
 
 fn records(name: &str, text: &str) -> Result<Vec<Vec<f64>>> {
     let mut reader = csv::Reader::from_reader(text.as_bytes());
@@ -78,6 +82,15 @@ pub fn continuous_table1() -> Result<Vec<f64>> {
     Ok(records("table1_coupled.csv", CONTINUOUS_TABLE1)?
         .iter()
         .map(|r| r[1])
+        .collect())
+}
+
+/// Tip history `(t, x, y)` of case (b) from the independent Python implementation of the full
+/// model (SciPy Radau at rtol 1e-10, 6.4e-10 m from DOP853).
+pub fn independent_case_b() -> Result<Vec<[f64; 3]>> {
+    Ok(records("case_b_tip.csv", DYNAMICS_CASE_B)?
+        .iter()
+        .map(|r| [r[0], r[1], r[2]])
         .collect())
 }
 
@@ -139,5 +152,8 @@ mod tests {
         let shapes = elastica_two_loads_shapes().unwrap();
         assert_eq!(shapes.len(), 4);
         assert!(shapes.iter().all(|(_, nodes)| nodes.len() == 81));
+        let b = independent_case_b().unwrap();
+        assert_eq!(b.len(), 201);
+        assert!((b[200][0] - 1.0).abs() < 1e-12);
     }
 }
