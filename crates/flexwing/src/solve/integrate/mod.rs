@@ -188,8 +188,8 @@ impl Tolerances {
 mod tests {
     use super::*;
 
-    /// `y' = −ω² x`, `x' = y`: an undamped oscillator.
-    struct Oscillator(f64);
+    /// `y' = −ω² x`, `x' = y`: an undamped oscillator (shared by the integrators' tests).
+    pub(super) struct Oscillator(pub(super) f64);
 
     impl OdeSystem for Oscillator {
         fn dim(&self) -> usize {

@@ -642,23 +642,7 @@ impl Radau {
 mod tests {
     use super::*;
 
-    /// `x'' = −ω² x` as a first-order system.
-    struct Oscillator(f64);
-
-    impl OdeSystem for Oscillator {
-        fn dim(&self) -> usize {
-            2
-        }
-        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) {
-            dy[0] = y[1];
-            dy[1] = -self.0 * self.0 * y[0];
-        }
-        fn jacobian(&mut self, _t: f64, _y: &[f64], jac: &mut DMatrix<f64>) {
-            jac.fill(0.0);
-            jac[(0, 1)] = 1.0;
-            jac[(1, 0)] = -self.0 * self.0;
-        }
-    }
+    use crate::solve::integrate::tests::Oscillator;
 
     /// `y' = −2 t y²`, `y(0) = 1`: `y = 1/(1 + t²)`. Non-linear and non-autonomous.
     struct Riccati;
