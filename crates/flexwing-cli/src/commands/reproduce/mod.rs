@@ -59,6 +59,17 @@ pub struct AccuracyRow {
     pub reference_error: Option<f64>,
 }
 
+/// Tip position `(x, y)` (m) of the full model at joint rotations `q`.
+fn tip(full: &flexwing::model::FullModel, q: &[f64]) -> (f64, f64) {
+    let p = full.node_positions(&full.kinematics(q))[full.n_elements()];
+    (p[0], p[1])
+}
+
+/// Distance between two points `(x, y)` (m).
+fn distance(a: (f64, f64), b: (f64, f64)) -> f64 {
+    (a.0 - b.0).hypot(a.1 - b.1)
+}
+
 /// Run `flexwing reproduce`.
 pub fn run(args: &ReproduceArgs) -> Result<(), Failure> {
     if args.repeats == 0 {

@@ -8,21 +8,12 @@ use flexwing::solve::{solve_static, sweep_static, Modes, StaticOptions};
 
 use super::paper::{self, TABLE3_RATIOS, TABLE5_RATIOS};
 use super::table::{Cell, Fmt, Table, Timing};
-use super::{AccuracyRow, Context, Section};
+use super::{distance, tip, AccuracyRow, Context, Section};
 use crate::plot::{write_shapes, ModelShapes, ShapePlot};
 
 /// Reduced models of the static cases (the paper's 2 and 3, and the others for the accuracy
 /// study).
 const MODES: [usize; 5] = [1, 2, 3, 4, 6];
-
-fn tip(full: &FullModel, q: &[f64]) -> (f64, f64) {
-    let p = full.node_positions(&full.kinematics(q))[full.n_elements()];
-    (p[0], p[1])
-}
-
-fn dist(a: (f64, f64), b: (f64, f64)) -> f64 {
-    (a.0 - b.0).hypot(a.1 - b.1)
-}
 
 fn paper_ratio(ratios: &[(usize, f64)], r: Option<usize>) -> Cell {
     match r {
@@ -88,15 +79,15 @@ pub fn table3(ctx: &Context) -> Result<(Section, Vec<AccuracyRow>)> {
             full_tip = sol_tip;
             full_time = timing.median;
         }
-        let diff = dist(sol_tip, full_tip);
-        let displacement = dist(full_tip, (1.0, 0.0));
+        let diff = distance(sol_tip, full_tip);
+        let displacement = distance(full_tip, (1.0, 0.0));
         if let Some(r) = r {
             accuracy.push(AccuracyRow {
                 case: "static, tip force 150 N (n = 20)".into(),
                 modes: r,
                 difference: diff,
                 relative: diff / displacement,
-                reference_error: Some(dist(sol_tip, reference)),
+                reference_error: Some(distance(sol_tip, reference)),
             });
         }
         table.push(vec![
@@ -104,7 +95,7 @@ pub fn table3(ctx: &Context) -> Result<(Section, Vec<AccuracyRow>)> {
             Cell::Num(r.unwrap_or(full.n_dofs()) as f64, Fmt::Fixed(0)),
             Cell::fixed(sol_tip.0, 5),
             Cell::fixed(sol_tip.1, 5),
-            Cell::sci(dist(sol_tip, reference), 2),
+            Cell::sci(distance(sol_tip, reference), 2),
             if r.is_some() {
                 Cell::sci(diff, 2)
             } else {
@@ -229,16 +220,16 @@ pub fn table5(ctx: &Context) -> Result<(Section, Vec<AccuracyRow>)> {
         let error = tips
             .iter()
             .zip(&reference)
-            .map(|(t, e)| dist(*t, e.tip))
+            .map(|(t, e)| distance(*t, e.tip))
             .fold(0.0, f64::max);
         let diff = tips
             .iter()
             .zip(&full_tips)
-            .map(|(a, b)| dist(*a, *b))
+            .map(|(a, b)| distance(*a, *b))
             .fold(0.0, f64::max);
         let displacement = full_tips
             .iter()
-            .map(|t| dist(*t, (1.0, 0.0)))
+            .map(|t| distance(*t, (1.0, 0.0)))
             .fold(0.0, f64::max);
         if let Some(r) = r {
             accuracy.push(AccuracyRow {

@@ -201,6 +201,21 @@ impl Timing {
         }
     }
 
+    /// The result of `f` and its time, for a run too long to repeat (one sample of one run).
+    pub fn once<T>(f: impl FnOnce() -> T) -> (T, Self) {
+        let start = Instant::now();
+        let value = f();
+        let s = start.elapsed().as_secs_f64();
+        let timing = Self {
+            median: s,
+            min: s,
+            max: s,
+            samples: 1,
+            runs_per_sample: 1,
+        };
+        (value, timing)
+    }
+
     /// Spread `(max − min) / median`, in %.
     pub fn spread_percent(&self) -> f64 {
         100.0 * (self.max - self.min) / self.median

@@ -50,6 +50,18 @@ pub struct IntegratorStats {
     pub newton_iterations: usize,
 }
 
+impl std::ops::AddAssign for IntegratorStats {
+    /// Accumulate the counters of another run (a run continued in pieces).
+    fn add_assign(&mut self, b: Self) {
+        self.steps += b.steps;
+        self.rejected_steps += b.rejected_steps;
+        self.rhs_evaluations += b.rhs_evaluations;
+        self.jacobian_evaluations += b.jacobian_evaluations;
+        self.factorizations += b.factorizations;
+        self.newton_iterations += b.newton_iterations;
+    }
+}
+
 /// States at the output times.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Trajectory {
