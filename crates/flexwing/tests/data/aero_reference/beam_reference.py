@@ -276,7 +276,8 @@ def main(name):
     with open(os.path.join(HERE, "beam_%s_points.csv" % name), "w") as f:
         f.write("quantity,model,discretization,n,U_m_s,omega_rad_s,k,note\n")
         for r in rows:
-            f.write("%s,%s,%s,%d,%s,%s,%s,%s\n" % (r[0], r[1], r[2], r[3], fmt(r[4]), fmt(r[5]), fmt(r[6]), r[7]))
+            f.write("%s,%s,%s,%d,%s,%s,%s,%s\n" % (r[0], r[1], r[2], r[3], fmt(r[4]), fmt(r[5]), fmt(r[6]),
+                                                    r[7].replace(",", ";")))
     with open(os.path.join(HERE, "beam_%s_vg.csv" % name), "w") as f:
         f.write("model,U_m_s,branch,re_p_1_s,im_p_rad_s\n")
         for r in vg:

@@ -130,7 +130,7 @@ def main(name):
     with open(os.path.join(HERE, "chain_%s_points.csv" % name), "w") as f:
         f.write("quantity,model,n,U_m_s,omega_rad_s,k,note\n")
         for r in rows:
-            f.write("%s,%s,%d,%s,%s,%s,%s\n" % (r[0], r[1], r[2], fmt(r[3]), fmt(r[4]), fmt(r[5]), r[6]))
+            f.write("%s,%s,%d,%s,%s,%s,%s\n" % (r[0], r[1], r[2], fmt(r[3]), fmt(r[4]), fmt(r[5]), r[6].replace(",", ";")))
 
     # matrices and eigenvalues at n = 8 for element-level comparisons
     s = chain(cs, 8)

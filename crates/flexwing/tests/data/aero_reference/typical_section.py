@@ -247,7 +247,7 @@ with open(os.path.join(HERE, "typical_section_vg.csv"), "w") as f:
 with open(os.path.join(HERE, "typical_section_flutter.csv"), "w") as f:
     f.write("model,method,U_over_b_omega_theta,omega_over_omega_theta,k,note\n")
     for r in rows:
-        f.write("%s,%s,%s,%s,%s,%s\n" % (r[0], r[1], fmt(r[2]), fmt(r[3]), fmt(r[4]), r[5]))
+        f.write("%s,%s,%s,%s,%s,%s\n" % (r[0], r[1], fmt(r[2]), fmt(r[3]), fmt(r[4]), r[5].replace(",", ";")))
 
 # ------------------------------------------------------------------ C(k) table
 with open(os.path.join(HERE, "ck_table.csv"), "w") as f:
