@@ -18,8 +18,7 @@ use flexwing::solve::Modes;
 
 /// The `r` lowest modes (the path a user of the library takes).
 fn lowest(model: &FullModel, r: usize) -> Modes {
-    let _ = r;
-    Modes::undeformed(model).expect("modes")
+    Modes::lowest(model, r).expect("modes")
 }
 
 /// A tapered beam whose `EI` and mass are tables of `points` points (a smooth taper with a
@@ -153,8 +152,11 @@ fn modes(ns: &[usize], budget: Duration, batches: usize) {
         ),
     ] {
         println!("\n### Lowest modes and a reduced model with 4 modes, {name}\n");
-        println!("| n | 4 modes | slope | 10 modes | slope | reduced model r = 4 | slope |");
-        println!("|---|---|---|---|---|---|---|");
+        println!(
+            "| n | 4 modes | slope | 10 modes | slope | reduced model r = 4 | slope | \
+             solver (10 modes) | K_T⁻¹M products |"
+        );
+        println!("|---|---|---|---|---|---|---|---|---|");
         let mut prev: [Option<(usize, f64)>; 3] = [None; 3];
         for &n in ns {
             let full = build(n).expect("beam");
@@ -172,6 +174,8 @@ fn modes(ns: &[usize], budget: Duration, batches: usize) {
             });
             row += &format!("| {} | {} ", fmt_time(t), slope(t, prev[2], n));
             prev[2] = Some((n, t));
+            let stats = lowest(&full, 10).stats();
+            row += &format!("| {:?} | {} ", stats.method, stats.operator_applications);
             println!("{row}|");
         }
     }

@@ -65,12 +65,13 @@ pub(crate) struct NotConverged {
     pub(crate) converged: usize,
 }
 
-/// Relative residual a Ritz pair must reach, `‖A y − θ y‖_B ≤ RTOL θ + ATOL θ_max`: the first
-/// makes the eigenvalue exact to `RTOL² / gap` and the vector to `RTOL / gap`; the second is the
-/// floor set by the round-off of applying `A` (about `ε ‖A‖` times a small factor; measured
-/// residuals stall near `5e-15 θ_max`).
+/// Residual a Ritz pair must reach, `‖A y − θ y‖_B ≤ RTOL θ + ATOL θ_max`: the first makes the
+/// eigenvalue exact to `RTOL² / gap` and the vector to `RTOL / gap`; the second, below the
+/// round-off of applying `A` (about `ε θ_max`), only guarantees that the test can be met (the
+/// Krylov estimate of the residual keeps falling below that round-off: to 1e-18 θ_max on the
+/// beams).
 const RTOL: f64 = 1e-12;
-const ATOL: f64 = 1e-13;
+const ATOL: f64 = 1e-15;
 
 /// Thick restarts before giving up.
 const MAX_RESTARTS: usize = 200;
@@ -108,6 +109,14 @@ pub(crate) fn largest(op: &mut impl Pencil, count: usize) -> Result<Eigenpairs, 
         // coupling R to the last block gives every Ritz residual.
         let mut next = s.av.columns(last.start, last.len()).into_owned();
         let (coupling, b_next) = s.orthonormalize(op, &mut next, &mut rng);
+        if s.dim < count + 2 * BLOCK && s.dim + next.ncols() <= max_dim {
+            // Too few vectors for `count` converged pairs yet: grow without Rayleigh–Ritz,
+            // which costs O(dim³) and dominates below a few hundred coordinates.
+            block = next;
+            b_block = b_next;
+            s.append(op, &block, &b_block);
+            continue;
+        }
         let (theta, vecs) = s.rayleigh_ritz();
         let scale = theta[0].abs();
         let mut converged = 0;
@@ -278,7 +287,13 @@ impl State {
         self.stats.restarts += 1;
     }
 
-    /// The first `count` Ritz pairs, each vector scaled to unit `B`-norm.
+    /// The first `count` Ritz pairs, each vector purified and scaled to unit `B`-norm.
+    ///
+    /// Purification (Ericsson & Ruhe, Math. Comp. 35 (1980) 1251–1268, §3): a Ritz vector `y`
+    /// converges in the `B`-norm, which hardly sees round-off along the eigenvectors of tiny `μ`
+    /// (for modes: the zig-zags of the highest, whose mass is tiny); those components, ~1e-9 of
+    /// the vector at n = 60, would pollute the stiffness-weighted shape. `A y / θ` damps each of
+    /// them by `μ_k/θ`, and costs nothing: `A V` is stored.
     fn finish(
         &self,
         op: &mut impl Pencil,
@@ -287,7 +302,7 @@ impl State {
         count: usize,
     ) -> Eigenpairs {
         let m = self.dim;
-        let mut y = self.v.columns(0, m) * vecs.view((0, 0), (m, count));
+        let mut y = self.av.columns(0, m) * vecs.view((0, 0), (m, count));
         let mut by = vec![0.0; y.nrows()];
         for mut col in y.column_iter_mut() {
             op.apply_b(col.as_slice(), &mut by);
@@ -374,13 +389,14 @@ mod tests {
                 got.values[i],
                 want[i]
             );
-            // The residual in the B-norm meets the stopping test (within a factor 10 for the
-            // difference between the estimate and the true residual).
+            // The true residual in the B-norm: the stopping test's RTOL θ_i, or the round-off of
+            // applying A = K⁻¹ B (dense products, up to n ε κ(K) θ_1 = 3.6e-12 θ_1 here):
+            // measured ≤ 6.1e-13 θ_1 for this pencil, ≤ 3.6e-14 θ_1 for the diagonal ones.
             let x = got.vectors.column(i);
             let r = p.k.solve(&(b * x)) - x * got.values[i];
             let r = (r.transpose() * b * &r)[(0, 0)].sqrt();
-            let bound = RTOL * got.values[i] + ATOL * got.values[0];
-            assert!(r < 10.0 * bound, "residual {i}: {r:.2e} vs {bound:.2e}");
+            let bound = 10.0 * RTOL * got.values[i] + 3.6e-12 * got.values[0];
+            assert!(r < bound, "residual {i}: {r:.2e} vs {bound:.2e}");
         }
         got
     }
