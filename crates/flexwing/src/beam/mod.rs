@@ -228,9 +228,10 @@ impl Beam {
     }
 }
 
-/// Largest number of elements accepted: the model keeps dense `2n × 2n` matrices (3.2 GB at this
-/// size) and the modal analysis is O(n³), so a larger `n` would exhaust memory or time rather
-/// than give an answer.
+/// Largest number of elements accepted: the full model's implicit solvers keep dense `2n × 2n`
+/// matrices (3.2 GB at this size) and a modal analysis of every mode is O(n³), so a larger `n`
+/// would exhaust memory or time rather than give an answer. (Set-up and the lowest modes are
+/// O(n) and would go further.)
 pub const MAX_ELEMENTS: usize = 10_000;
 
 fn stations(length: f64, d: &Discretization) -> Result<Vec<f64>, InputError> {
