@@ -43,7 +43,7 @@ fn moments(r: f64) -> [f64; 5] {
     if r.abs() <= 0.5 {
         let mut out = [0.0; 5];
         let mut power = 1.0; // (−r)^m
-                             // |r|^m < 2⁻⁵³ by m = 53; the last terms are then below the sums' rounding.
+                             // |r|^m < 2⁻⁵³ by m = 53: the last terms are below the sums' rounding.
         for m in 0..SERIES_TERMS {
             // B(j + m + 1, 1) = 1/(j + m + 1); B(j + m + 1, 2) = 1/((j + m + 1)(j + m + 2)).
             let (i1, i2, i3) = (INV[m + 1], INV[m + 2], INV[m + 3]);

@@ -15,8 +15,8 @@
 //! their residuals all lie along the next block, `A V s − θ V s = F R s_last`, so
 //! `‖r_i‖_B = ‖R s_i,last‖` costs nothing (Parlett, *The Symmetric Eigenvalue Problem*, §13.2).
 //! When the basis reaches its largest size the best Ritz vectors are kept and the next block is
-//! added to them (thick restart: Wu & Simon, SIAM J. Matrix Anal. Appl. 22 (2000) 602–616; Stewart's
-//! Krylov–Schur, 2001). Blocks of two find eigenvalues of multiplicity two (for example a bending
+//! added to them (thick restart: Wu & Simon, SIAM J. Matrix Anal. Appl. 22 (2000) 602–616;
+//! Stewart's Krylov–Schur, 2001). Blocks of two find eigenvalues of multiplicity two (for example a bending
 //! and a torsion mode of equal frequency in an uncoupled beam), which a single-vector Lanczos
 //! would return once. Cost per basis vector: one `B x`, one `A` from `B x`, O(n m) for the
 //! reorthogonalization against the `m` stored vectors; O(n m²) in all.

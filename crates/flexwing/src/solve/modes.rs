@@ -15,7 +15,8 @@
 //!   (Cholesky of `K_T`, symmetric eigen-decomposition of `L⁻¹ M L⁻ᵀ`), O(n³).
 //!
 //! The former dense solver factored `M` instead; its first frequency was off by 3e-11 at n = 16,
-//! 1e-8 at n = 48, 1.6e-7 at n = 64 and 50 % at n = 1000 (Table 4 beam; docs/validation.md).
+//! 1e-8 at n = 48, 1.6e-7 at n = 64, and wrong from n ≈ 800 (0 rad/s at 800, 78.6 instead of
+//! 55.6 at 1000; Table 4 beam, docs/validation.md).
 
 use nalgebra::DMatrix;
 
@@ -106,8 +107,8 @@ impl Modes {
     /// The modes of `model` linearized about the configuration `q_star` with the dense tangent
     /// stiffness `k_tangent` (`K − ∂Q/∂q`, symmetric; `model.stiffness_matrix()` with no load),
     /// by the dense solver: every mode that double precision resolves (all of them for the paper's
-    /// beams up to 150 elements), O(n³). [`Modes::lowest`] and [`Modes::lowest_loaded`] build the tangent
-    /// themselves and choose the solver.
+    /// beams up to 150 elements), O(n³). [`Modes::lowest`] and [`Modes::lowest_loaded`] build
+    /// the tangent themselves and choose the solver.
     ///
     /// # Errors
     /// [`SolveError::IndefiniteTangent`] if `k_tangent` is not positive definite (an unstable

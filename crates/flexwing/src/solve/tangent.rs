@@ -12,8 +12,8 @@
 //!
 //! # Elimination from the tip
 //!
-//! `½ xᵀ K_T x − bᵀ x = ½ Σ_a x_aᵀ K_a x_a − ½ Σ_j y_jᵀ D_j y_j − Σ_a b_aᵀ x_a` with `x_a` the joint
-//! rotations at joint `a` and `y_j = Σ_{a ≤ j} x_a` the absolute angles. Eliminating the joints
+//! `½ xᵀ K_T x − bᵀ x = ½ Σ_a x_aᵀ K_a x_a − ½ Σ_j y_jᵀ D_j y_j − Σ_a b_aᵀ x_a` with `x_a` the
+//! joint rotations at joint `a` and `y_j = Σ_{a ≤ j} x_a` the absolute angles. Eliminating the joints
 //! from the tip, the quadratic form left after joint `a` is `−½ yᵀ P_a y − w_aᵀ y` in the absolute
 //! angles `y = y_{a−1}` inboard of it, `P_n = 0`, `w_n = 0`, and with `G_a = D_a + P_{a+1}`:
 //!
