@@ -102,4 +102,72 @@ fn main() {
             .collect();
         println!("| {n} | {} |", e.join(" | "));
     }
+
+    // Large n: the lowest ten modes by Lanczos (tests/modes_large_n.rs).
+    let bl10 = euler_bernoulli_roots(10);
+    let eb: Vec<f64> = bl10
+        .iter()
+        .map(|b| b * b * (ei / (m * l.powi(4))).sqrt())
+        .collect();
+    for (name, length, section, exact) in [
+        ("Table 4 beam against Euler–Bernoulli", l, &section, &eb[..]),
+        (
+            "Table 1 beam against the continuous coupled beam",
+            16.0,
+            &table1,
+            &reference[..10],
+        ),
+    ] {
+        println!("\n{name}: error of ω_k, and observed order against the previous row\n");
+        println!(
+            "| n | {} |",
+            [1, 2, 3, 4, 10]
+                .map(|k| format!("mode {k} | order"))
+                .join(" | ")
+        );
+        println!("|---|{}", "---|---|".repeat(5));
+        let mut prev: Option<(usize, Vec<f64>)> = None;
+        for n in [100, 300, 1000, 3000, 10_000] {
+            let beam = Beam::new(
+                length,
+                section,
+                &Discretization::Uniform(n),
+                Calibration::TipLoad,
+            )
+            .expect("valid beam");
+            let modes = Modes::lowest(&FullModel::new(beam), 10).expect("modes");
+            let e: Vec<f64> = (0..10).map(|k| modes.omega()[k] / exact[k] - 1.0).collect();
+            let cells: Vec<String> = [0, 1, 2, 3, 9]
+                .iter()
+                .map(|&k| {
+                    let order = prev.as_ref().map_or("–".to_string(), |(n0, e0)| {
+                        format!("{:.4}", (e0[k] / e[k]).ln() / (n as f64 / *n0 as f64).ln())
+                    });
+                    format!("{:+.3e} | {order}", e[k])
+                })
+                .collect();
+            println!("| {n} | {} |", cells.join(" | "));
+            prev = Some((n, e));
+        }
+    }
+}
+
+/// Roots of `1 + cos x cosh x = 0` by bisection in `[(k − 1)π, kπ]`.
+fn euler_bernoulli_roots(count: usize) -> Vec<f64> {
+    let f = |x: f64| 1.0 + x.cos() * x.cosh();
+    (1..=count)
+        .map(|k| {
+            let pi = std::f64::consts::PI;
+            let (mut a, mut b) = ((k as f64 - 1.0) * pi, k as f64 * pi);
+            for _ in 0..200 {
+                let mid = 0.5 * (a + b);
+                if f(a) * f(mid) <= 0.0 {
+                    b = mid;
+                } else {
+                    a = mid;
+                }
+            }
+            0.5 * (a + b)
+        })
+        .collect()
 }

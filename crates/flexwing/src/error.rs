@@ -121,6 +121,27 @@ pub enum SolveError {
         /// `max |K_T − K_Tᵀ| / max |K_T|`.
         asymmetry: f64,
     },
+    /// Modes were asked about a state whose tangent stiffness is not positive definite: an
+    /// unstable equilibrium (or one at a bifurcation), which has no natural modes.
+    #[error(
+        "modal analysis: the tangent stiffness K − ∂Q/∂q has {non_positive} non-positive \
+         eigenvalue(s): the equilibrium is unstable (or at a bifurcation) and has no natural modes"
+    )]
+    IndefiniteTangent {
+        /// Number of eigenvalues of the tangent stiffness that are not positive.
+        non_positive: usize,
+    },
+    /// The iterative eigensolver did not converge within its iteration budget.
+    #[error(
+        "modal analysis: the eigensolver converged {converged} of the {wanted} modes asked for \
+         within its iteration limit"
+    )]
+    ModesNotConverged {
+        /// Modes that converged (the lowest).
+        converged: usize,
+        /// Modes asked for.
+        wanted: usize,
+    },
     /// The symmetric eigensolver produced a non-finite or negative eigenvalue.
     #[error("modal analysis: eigenvalue {index} is {value} (stiffness not positive definite at this state?)")]
     BadEigenvalue {

@@ -1,4 +1,10 @@
-//! Section properties that vary along the span, and quadrature over them.
+//! Section properties that vary along the span, and exact integration over them.
+//!
+//! A tabulated property is piecewise linear, so every integral the beam needs is an integral of a
+//! polynomial (or of a polynomial over a linear function) on the pieces between consecutive
+//! stations. [`for_each_piece`] walks the pieces of a set of intervals and a set of profiles in
+//! one left-to-right sweep, O(intervals + stations), with the profiles' values at the ends of
+//! each piece; the integrals on a piece are then closed forms (here and in `calibration.rs`).
 
 use crate::error::InputError;
 
@@ -124,6 +130,18 @@ impl Profile {
         matches!(self, Profile::Uniform(_))
     }
 
+    /// A cursor for a left-to-right sweep over the profile.
+    fn cursor(&self) -> Cursor<'_> {
+        match self {
+            Profile::Uniform(v) => Cursor {
+                x: &[],
+                value: std::slice::from_ref(v),
+                k: 0,
+            },
+            Profile::Table { x, value } => Cursor { x, value, k: 0 },
+        }
+    }
+
     /// Stations where the profile has a kink, strictly inside `(a, b)`.
     fn kinks_in(&self, a: f64, b: f64) -> impl Iterator<Item = f64> + '_ {
         let xs: &[f64] = match self {
@@ -131,6 +149,96 @@ impl Profile {
             Profile::Table { x, .. } => x,
         };
         xs.iter().copied().filter(move |&s| s > a && s < b)
+    }
+}
+
+/// A position in a profile during a left-to-right sweep: `k` is the index of the first station
+/// strictly after the current position (`x.len()` past the last; `x` empty for a uniform profile).
+struct Cursor<'a> {
+    x: &'a [f64],
+    value: &'a [f64],
+    k: usize,
+}
+
+impl Cursor<'_> {
+    /// Move to `a` (never backwards) and return the first station strictly after it (∞ if none).
+    fn seek(&mut self, a: f64) -> f64 {
+        while self.k < self.x.len() && self.x[self.k] <= a {
+            self.k += 1;
+        }
+        self.x.get(self.k).copied().unwrap_or(f64::INFINITY)
+    }
+
+    /// Value at `x`, which must lie between the station before the current position and the
+    /// next one. The same arithmetic as [`Profile::at`], so the same value to the last bit.
+    fn at(&self, x: f64) -> f64 {
+        let (xs, vs, k) = (self.x, self.value, self.k);
+        let last = vs.len() - 1;
+        if xs.is_empty() || x <= xs[0] {
+            vs[0]
+        } else if k > last || x >= xs[last] {
+            vs[last]
+        } else if x == xs[k] {
+            vs[k]
+        } else {
+            let t = (x - xs[k - 1]) / (xs[k] - xs[k - 1]);
+            vs[k - 1] + t * (vs[k] - vs[k - 1])
+        }
+    }
+}
+
+/// One piece `[a, b]` of an interval on which every profile of the sweep is linear, with the
+/// profiles' values at both ends.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Piece<const N: usize> {
+    /// Start of the piece.
+    pub(crate) a: f64,
+    /// End of the piece.
+    pub(crate) b: f64,
+    /// Values of the profiles at `a`.
+    pub(crate) at_a: [f64; N],
+    /// Values of the profiles at `b`.
+    pub(crate) at_b: [f64; N],
+}
+
+impl<const N: usize> Piece<N> {
+    /// `∫_a^b f dx` for `f` a polynomial of degree ≤ 3 in `x` given through the values of the
+    /// profiles (Simpson's rule, exact to that degree; the midpoint values of linear profiles
+    /// are the means of the end values).
+    pub(crate) fn simpson(&self, f: impl Fn(&[f64; N]) -> f64) -> f64 {
+        let mid: [f64; N] = std::array::from_fn(|k| 0.5 * (self.at_a[k] + self.at_b[k]));
+        (self.b - self.a) / 6.0 * (f(&self.at_a) + 4.0 * f(&mid) + f(&self.at_b))
+    }
+}
+
+/// Call `f(i, piece)` for every piece of every interval `[bounds[i], bounds[i + 1]]`, in order,
+/// the intervals being split at every station of `profiles` inside them. One sweep: O(intervals +
+/// stations), no search. `bounds` must be strictly increasing.
+pub(crate) fn for_each_piece<const N: usize>(
+    bounds: &[f64],
+    profiles: [&Profile; N],
+    mut f: impl FnMut(usize, Piece<N>),
+) {
+    let mut cursors = profiles.map(Profile::cursor);
+    for (i, w) in bounds.windows(2).enumerate() {
+        let (mut a, end) = (w[0], w[1]);
+        loop {
+            let mut b = end;
+            for c in cursors.iter_mut() {
+                b = b.min(c.seek(a));
+            }
+            let piece = Piece {
+                a,
+                b,
+                at_a: std::array::from_fn(|k| cursors[k].at(a)),
+                at_b: std::array::from_fn(|k| cursors[k].at(b)),
+            };
+            f(i, piece);
+            if b >= end {
+                break;
+            }
+            a = b;
+        }
     }
 }
 

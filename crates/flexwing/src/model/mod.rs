@@ -14,6 +14,7 @@ mod reduced;
 
 pub use full::{FullModel, Workspace};
 pub use kinematics::Kinematics;
+pub(crate) use kinetic::KineticScratch;
 pub use loads::{AppliedLoads, DistributedForce, Force, Load};
 pub(crate) use mass::suffix_sum_blocks;
 

@@ -125,14 +125,14 @@ impl ReducedModel {
     }
 
     /// Modal coordinates `η = Φᵀ M(0) q` of joint rotations `q`: the mass-orthogonal projection,
-    /// exact when `q` lies in the span of the basis.
+    /// exact when `q` lies in the span of the basis. O(n r): `M(0) q` by the momentum recursion.
     pub fn reduce_coordinates(&self, q: &[f64]) -> Vec<f64> {
         let nd = self.full.n_dofs();
-        let mut m0 = DMatrix::zeros(nd, nd);
-        let mut ws = self.full.workspace();
-        self.full.mass_matrix_into(&vec![0.0; nd], &mut ws, &mut m0);
-        let mq = m0 * DVector::from_column_slice(q);
-        (self.phi.transpose() * mq).as_slice().to_vec()
+        let mut mq = vec![0.0; nd];
+        self.full.momentum_into(&vec![0.0; nd], q, &mut mq);
+        (self.phi.transpose() * DVector::from_column_slice(&mq))
+            .as_slice()
+            .to_vec()
     }
 
     /// Number of retained modes `r`.

@@ -3,12 +3,14 @@
 mod dynamics;
 mod eigen;
 pub mod integrate;
+mod lanczos;
 mod modes;
 mod statics;
+mod tangent;
 
 pub use dynamics::{Damping, EquationsOfMotion, Gyroscopic, TimeFunction};
 pub use eigen::generalized_symmetric_eigen;
-pub use modes::{ModeShape, Modes};
+pub use modes::{ModeShape, Modes, ModesMethod, ModesStats, DENSE_MAX_DOFS};
 pub use statics::{
     continue_static, linear_static, solve_static, sweep_static, StaticOptions, StaticSolution,
     StaticStats, SweepError,
