@@ -138,11 +138,29 @@ impl FullModel {
                 (p00 * nv[0] + p01 * nv[1]) * l,
                 (p01 * nv[0] + p11 * nv[1]) * l,
             ];
-            let h00 = (bt[0] * bt[0] + bt[1] * bt[1]) * m + (pa[0] * nv[0] + pa[1] * nv[1]) * l;
-            let h01 = (bt[0] * bp[0] + bt[1] * bp[1]) * m;
+            let mut h00 = (bt[0] * bt[0] + bt[1] * bt[1]) * m + (pa[0] * nv[0] + pa[1] * nv[1]) * l;
+            let mut h01 = (bt[0] * bp[0] + bt[1] * bp[1]) * m;
+            let mut h11 = h11;
             // G rows: m b_θ + P a, and m b_ψ.
-            let g0 = [bt[0] * m + pa[0], bt[1] * m + pa[1]];
-            let g1 = [bp[0] * m, bp[1] * m];
+            let mut g0 = [bt[0] * m + pa[0], bt[1] * m + pa[1]];
+            let mut g1 = [bp[0] * m, bp[1] * m];
+            // The fluid (model::aero::fluid): ½ m_a (rᵀV + βᵀu)², r = cos ψ n, β = ((ℓ/2) cos ψ, ζ_m).
+            let mut fluid_vv = [zero; 3];
+            if let Some(f) = &self.fluid {
+                let ma = f.mass[i];
+                let cp = if self.torsion { sc.cos_psi[i] } else { D::from(1.0) };
+                let r = [nv[0] * cp, nv[1] * cp];
+                let b0 = cp * h;
+                h00 += b0 * b0 * ma;
+                g0 = [g0[0] + b0 * r[0] * ma, g0[1] + b0 * r[1] * ma];
+                if self.torsion {
+                    let b1 = D::from(f.station[i]);
+                    h01 += b0 * b1 * ma;
+                    h11 += b1 * b1 * ma + D::from(f.inertia[i]);
+                    g1 = [g1[0] + b1 * r[0] * ma, g1[1] + b1 * r[1] * ma];
+                }
+                fluid_vv = [r[0] * r[0] * ma, r[0] * r[1] * ma, r[1] * r[1] * ma];
+            }
             if !(h00.re() > 0.0) {
                 return false;
             }
@@ -158,10 +176,10 @@ impl FullModel {
             chain.pivot[i] = f;
             chain.gain[i] = [kx[0], ky[0], kx[1], ky[1]];
             chain.coupling[i] = [g0[0], g0[1], g1[0], g1[1]];
-            // P ← m I + P − Gᵀ K, with Gᵀ = [g0 g1] (columns).
-            p00 += D::from(m) - (g0[0] * kx[0] + g1[0] * kx[1]);
-            p01 -= g0[0] * ky[0] + g1[0] * ky[1];
-            p11 += D::from(m) - (g0[1] * ky[0] + g1[1] * ky[1]);
+            // P ← m I + m_a r rᵀ + P − Gᵀ K, with Gᵀ = [g0 g1] (columns).
+            p00 += D::from(m) + fluid_vv[0] - (g0[0] * kx[0] + g1[0] * kx[1]);
+            p01 += fluid_vv[1] - (g0[0] * ky[0] + g1[0] * ky[1]);
+            p11 += D::from(m) + fluid_vv[2] - (g0[1] * ky[0] + g1[1] * ky[1]);
         }
         true
     }

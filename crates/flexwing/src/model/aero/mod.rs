@@ -1,0 +1,5 @@
+//! Strip-theory aerodynamics on the lumped chain (docs/aeroelastic-model.md).
+
+mod fluid;
+
+pub(crate) use fluid::FluidInertia;
