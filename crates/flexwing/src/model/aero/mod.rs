@@ -3,3 +3,8 @@
 mod fluid;
 
 pub(crate) use fluid::FluidInertia;
+mod lag;
+mod theodorsen;
+
+pub(crate) use lag::Lag;
+pub use theodorsen::theodorsen;
