@@ -148,7 +148,11 @@ impl FullModel {
             let mut fluid_vv = [zero; 3];
             if let Some(f) = &self.fluid {
                 let ma = f.mass[i];
-                let cp = if self.torsion { sc.cos_psi[i] } else { D::from(1.0) };
+                let cp = if self.torsion {
+                    sc.cos_psi[i]
+                } else {
+                    D::from(1.0)
+                };
                 let r = [nv[0] * cp, nv[1] * cp];
                 let b0 = cp * h;
                 h00 += b0 * b0 * ma;

@@ -88,13 +88,16 @@ impl FullModel {
                 let lj = self.ell[j];
                 let outboard = lj
                     * lk
-                    * (ct[j] * ct[k] * scc + (ct[j] * st[k] + st[j] * ct[k]) * scs + st[j] * st[k] * sss);
+                    * (ct[j] * ct[k] * scc
+                        + (ct[j] * st[k] + st[j] * ct[k]) * scs
+                        + st[j] * st[k] * sss);
                 let own = wk * lj * 0.5 * lk * (ct[k] * ct[j] + st[k] * st[j]);
                 out[(j, k)] += outboard + own;
                 out[(k, j)] += outboard + own;
             }
-            out[(k, k)] += lk * lk * (ct[k] * ct[k] * scc + 2.0 * ct[k] * st[k] * scs + st[k] * st[k] * sss)
-                + wk * 0.25 * lk * lk;
+            out[(k, k)] +=
+                lk * lk * (ct[k] * ct[k] * scc + 2.0 * ct[k] * st[k] * scs + st[k] * st[k] * sss)
+                    + wk * 0.25 * lk * lk;
             if self.torsion {
                 // (θ_j, ψ_k), j ≤ k: m_a,k ζ_k cos ψ_k a_kj cos(θ_k − θ_j).
                 let z = f.mass[k] * f.station[k] * cp;

@@ -134,7 +134,10 @@ mod tests {
             model.mass_matrix_into(&q, &mut ws, &mut m);
             let qv = DVector::from_column_slice(&qd);
             let t_matrix = 0.5 * qv.dot(&(&m * &qv));
-            assert!((t_matrix - energy(&q)).abs() < 1e-12 * energy(&q), "{torsion}");
+            assert!(
+                (t_matrix - energy(&q)).abs() < 1e-12 * energy(&q),
+                "{torsion}"
+            );
             let mut p = vec![0.0; nd];
             StructuralModel::momentum_into(&model, &q, &qd, &mut ws, &mut p);
             let mq = &m * &qv;
@@ -154,7 +157,11 @@ mod tests {
                 qp[i] += h;
                 qm[i] -= h;
                 let fd = (energy(&qp) - energy(&qm)) / (2.0 * h);
-                assert!((fd - gamma[i]).abs() < 1e-7, "{torsion} {i}: {fd} vs {}", gamma[i]);
+                assert!(
+                    (fd - gamma[i]).abs() < 1e-7,
+                    "{torsion} {i}: {fd} vs {}",
+                    gamma[i]
+                );
             }
         }
     }
@@ -164,7 +171,8 @@ mod tests {
     #[test]
     fn reduced_wet_model_projects_the_fluid_terms() {
         let full = wet(true);
-        let rom = ReducedModel::first(&full, Modes::undeformed(&full).unwrap().shapes(), 4).unwrap();
+        let rom =
+            ReducedModel::first(&full, Modes::undeformed(&full).unwrap().shapes(), 4).unwrap();
         let nd = full.n_dofs();
         let eta = [0.3, -0.2, 0.1, 0.05];
         let etad = [1.0, 0.4, -2.0, 0.3];

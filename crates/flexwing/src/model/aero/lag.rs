@@ -68,7 +68,10 @@ impl Lag {
             }
         });
         let rhs = self.b.map(|v| Complex::new(v, 0.0));
-        let x = m.lu().solve(&rhs).unwrap_or_else(|| DVector::from_element(n, Complex::new(f64::NAN, 0.0)));
+        let x = m
+            .lu()
+            .solve(&rhs)
+            .unwrap_or_else(|| DVector::from_element(n, Complex::new(f64::NAN, 0.0)));
         let cx: Complex<f64> = (0..n).map(|i| x[i] * self.c[i]).sum();
         cx + self.d
     }
@@ -152,7 +155,10 @@ mod tests {
         };
         let jones = err(&Lag::jones(), 0.02);
         assert!(jones < 0.02, "Jones {jones}");
-        let e: Vec<f64> = [2, 4, 6, 8].iter().map(|&n| err(&Lag::peters(n), 0.2)).collect();
+        let e: Vec<f64> = [2, 4, 6, 8]
+            .iter()
+            .map(|&n| err(&Lag::peters(n), 0.2))
+            .collect();
         println!("Jones {jones:.3e}; Peters N = 2, 4, 6, 8 over k in [0.2, 2]: {e:?}");
         assert!(e.windows(2).all(|w| w[1] < w[0]), "{e:?}");
         assert!(e[2] < 0.015 && e[3] < 0.008, "{e:?}");
