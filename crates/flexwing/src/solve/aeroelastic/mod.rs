@@ -1,0 +1,10 @@
+//! Aeroelastic analyses (docs/aeroelastic-model.md §5): the equations of motion with strip
+//! aerodynamics, static aeroelastic equilibrium and divergence, stability and flutter, the
+//! frequency-domain (p-k) check, and time responses to gusts and manoeuvres.
+
+mod equations;
+mod evaluator;
+mod flight;
+
+pub use equations::AeroelasticEquations;
+pub use flight::{FlightHistory, Gust, GustShape};
