@@ -8,3 +8,9 @@ mod flight;
 
 pub use equations::AeroelasticEquations;
 pub use flight::{FlightHistory, Gust, GustShape};
+mod statics;
+
+pub use statics::{
+    static_sweep, AeroEquilibrium, Divergence, StaticAeroOutcome, StaticAeroPlan, SteadyAeroModel,
+    SteadyAeroWorkspace,
+};
