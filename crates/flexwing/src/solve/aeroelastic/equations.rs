@@ -21,6 +21,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::evaluator::{AeroDerivatives, AeroEvaluator};
 use super::flight::FlightHistory;
+use super::linear::Linearization;
 use crate::error::InputError;
 use crate::model::aero::{AeroStructure, Aeroelastic};
 use crate::model::{AppliedLoads, Load};
@@ -32,6 +33,10 @@ use crate::solve::{Damping, EquationsOfMotion, Gyroscopic, TimeFunction};
 pub struct AeroelasticEquations<'a, M: AeroStructure> {
     aero: &'a Aeroelastic<M>,
     structural: EquationsOfMotion<'a, M>,
+    loads: &'a AppliedLoads,
+    time_functions: Vec<TimeFunction>,
+    /// The structural damping matrix `C` (constant), `None` without damping.
+    damping: Option<DMatrix<f64>>,
     eval: AeroEvaluator<'a, M>,
     flight: FlightHistory,
     gravity: Option<AppliedLoads>,
@@ -65,17 +70,33 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     ) -> Result<Self, InputError> {
         flight.initial.validate(field)?;
         let model = aero.structure();
-        let structural =
-            EquationsOfMotion::new(model, loads, time_functions, Gyroscopic::Exact, damping)?;
+        let mut structural = EquationsOfMotion::new(
+            model,
+            loads,
+            time_functions.clone(),
+            Gyroscopic::Exact,
+            damping,
+        )?;
+        let n = model.n_dofs();
+        // C from the structural Jacobian at rest: ∂ṗ/∂p = −C M⁻¹ there.
+        let damping_matrix = (*damping != Damping::None).then(|| {
+            let mut jac = DMatrix::zeros(2 * n, 2 * n);
+            structural.jacobian(0.0, &vec![0.0; 2 * n], &mut jac);
+            let mut m0 = DMatrix::zeros(n, n);
+            model.mass_matrix_into(&vec![0.0; n], &mut model.workspace(), &mut m0);
+            -(jac.view((n, n), (n, n)) * m0)
+        });
         let gravity = match flight.initial.gravity {
             Some(g) => Some(aero.full().apply(&[Load::Gravity { g }], field)?),
             None => None,
         };
-        let n = model.n_dofs();
         let na = aero.n_aero_states();
         Ok(Self {
             aero,
             structural,
+            loads,
+            time_functions,
+            damping: damping_matrix,
             eval: AeroEvaluator::new(aero),
             flight,
             gravity,
@@ -145,6 +166,59 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
             }
         }
         a
+    }
+
+    /// Replace the flight history (same gravity loads: the gravitational acceleration of the
+    /// history given at construction is kept, its root-angle factor follows the new history).
+    pub(crate) fn set_flight(&mut self, flight: FlightHistory) {
+        self.flight = flight;
+    }
+
+    /// The system linearized at the static equilibrium `(x, p = 0, a)` at time 0
+    /// (`linear.rs`): `M`, `C̃ = C − Q_v`, `K̃ = K − ∂Q_other/∂x − Q_x`, `G`, `W_x`, `W_v`, `r_i`.
+    pub(crate) fn linearize(&mut self, x: &[f64], a: &[f64]) -> Linearization {
+        // At p = 0 the momentum and gyroscopic derivatives vanish: ∂ṗ/∂x = −K + ∂Q_o/∂x,
+        // ∂ṗ/∂ẋ = −C. O(n²) but for the products of `Linearization::new`.
+        let n = self.n;
+        let model = self.aero.structure();
+        let mut mass = DMatrix::zeros(n, n);
+        model.mass_matrix_into(x, &mut self.ws, &mut mass);
+        let mut stiffness = model.stiffness_matrix();
+        let scales: Vec<f64> = self.time_functions.iter().map(|f| f.at(0.0)).collect();
+        model.load_jacobian_into(x, self.loads, &scales, &mut self.ws, &mut self.gravity_jac);
+        stiffness -= &self.gravity_jac;
+        let mut damping = self.damping.clone().unwrap_or_else(|| DMatrix::zeros(n, n));
+        if let Some(g) = &self.gravity {
+            let s = self.gravity_scale(0.0);
+            model.load_jacobian_into(x, g, &s, &mut self.ws, &mut self.gravity_jac);
+            stiffness -= &self.gravity_jac;
+        }
+        self.set_air(0.0);
+        let zeros = vec![0.0; n];
+        let mut f = vec![0.0; n];
+        let mut adot = vec![0.0; self.na];
+        self.eval.evaluate(x, &zeros, a, &mut f, false, &mut adot);
+        self.eval.derivatives(&mut self.derivatives);
+        let d = &self.derivatives;
+        stiffness -= &d.qx;
+        damping -= &d.qv;
+        let rates: Vec<f64> = self
+            .aero
+            .strips
+            .iter()
+            .zip(&self.eval.air)
+            .map(|(s, air)| air.speed / s.b)
+            .collect();
+        Linearization::new(
+            mass,
+            damping,
+            stiffness,
+            &d.g,
+            &d.wx,
+            &d.wv,
+            &rates,
+            self.eval.lag().cloned(),
+        )
     }
 
     fn set_air(&mut self, t: f64) {

@@ -2,9 +2,11 @@
 //! aerodynamics, static aeroelastic equilibrium and divergence, stability and flutter, the
 //! frequency-domain (p-k) check, and time responses to gusts and manoeuvres.
 
+mod clu;
 mod equations;
 mod evaluator;
 mod flight;
+mod linear;
 
 pub use equations::AeroelasticEquations;
 pub use flight::{FlightHistory, Gust, GustShape};
@@ -13,4 +15,10 @@ mod statics;
 pub use statics::{
     static_sweep, AeroEquilibrium, Divergence, StaticAeroOutcome, StaticAeroPlan, SteadyAeroModel,
     SteadyAeroWorkspace,
+};
+mod flutter;
+
+pub use flutter::{
+    flutter, stability_eigenvalues, Branch, Crossing, CrossingKind, FlutterOutcome, FlutterPlan,
+    FlutterStats, FlutterStop, MAC_MIN,
 };

@@ -139,7 +139,7 @@ pub struct SteadyAeroWorkspace<'a, M: AeroStructure> {
 impl<'a, M: AeroStructure> SteadyAeroModel<'a, M> {
     /// The steady aerodynamics of `aero` (its model must be [`Aerodynamics::Steady`]) at root
     /// angle `root_angle`.
-    fn new(aero: &'a Aeroelastic<M>, root_angle: f64) -> Self {
+    pub(crate) fn new(aero: &'a Aeroelastic<M>, root_angle: f64) -> Self {
         assert_eq!(aero.aerodynamics(), Aerodynamics::Steady);
         Self { aero, root_angle }
     }

@@ -1,0 +1,602 @@
+//! Stability about the static equilibrium, V-g/V-ω data with modes tracked across speeds, and
+//! the flutter speeds (onset and offset of every unstable branch) (docs/aeroelastic-model.md §5).
+//!
+//! Branches start at `U = 0` from the wet natural modes (structure plus fluid inertia, the exact
+//! eigenvalues there) and are continued in `U` by Newton's method on the rational eigenproblem of
+//! `linear.rs`, with a secant predictor. A step is accepted when every branch converges, keeps its
+//! shape (modal assurance criterion against the previous step at least [`MAC_MIN`]) and no two
+//! branches meet; otherwise the speed step is halved. A sign change of `Re s` between two accepted
+//! steps is refined by the Illinois (regula falsi) method on `Re s(U)` to the plan's tolerance.
+//! The equilibrium is recomputed at every speed (static solver, load stepping in dynamic
+//! pressure, continued from the previous speed), so deflected wings are linearized about their
+//! deflected shape.
+
+use nalgebra::{Complex, DMatrix, DVector};
+
+use super::equations::AeroelasticEquations;
+use super::flight::FlightHistory;
+use super::linear::{mac, Linearization, NewtonWorkspace, Transfer};
+use super::statics::SteadyAeroModel;
+use crate::error::{InputError, SolveError};
+use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCondition};
+use crate::model::{AppliedLoads, Load, StructuralModel};
+use crate::solve::integrate::OdeSystem;
+use crate::solve::{continue_static, Damping, StaticOptions};
+
+type C64 = Complex<f64>;
+
+/// Smallest modal assurance criterion between a branch's eigenvectors at consecutive accepted
+/// steps.
+pub const MAC_MIN: f64 = 0.8;
+
+/// A flutter analysis, validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlutterPlan {
+    /// Speeds of the V-g data (m/s), positive and strictly increasing. Branches are continued
+    /// from `U = 0` through them (with smaller steps where needed).
+    pub speeds: Vec<f64>,
+    /// Root angle of attack (rad).
+    pub root_angle: f64,
+    /// Gravity (m/s²), or none.
+    pub gravity: Option<f64>,
+    /// Other loads at full value.
+    pub loads: Vec<Load>,
+    /// Structural damping.
+    pub damping: Damping,
+    /// Number of branches tracked: the lowest wet modes at `U = 0`.
+    pub modes: usize,
+    /// Relative tolerance of the flutter speeds (e.g. 1e-6).
+    pub tolerance: f64,
+    /// Options of the static solver for the equilibria.
+    pub static_options: StaticOptions,
+}
+
+impl FlutterPlan {
+    /// A plan with no root angle, gravity, loads or damping, tracking `modes` branches through
+    /// `speeds`, flutter speeds to 1e-6.
+    pub fn new(speeds: Vec<f64>, modes: usize) -> Self {
+        Self {
+            speeds,
+            root_angle: 0.0,
+            gravity: None,
+            loads: vec![],
+            damping: Damping::None,
+            modes,
+            tolerance: 1e-6,
+            static_options: StaticOptions::default(),
+        }
+    }
+
+    /// Check the plan against a model with `n_dofs` coordinates; `field` prefixes the fields.
+    pub fn validate(&self, field: &str, n_dofs: usize) -> Result<(), InputError> {
+        if self.speeds.is_empty() {
+            return Err(InputError::new(
+                format!("{field}.speeds"),
+                "needs at least one speed",
+            ));
+        }
+        for (i, &u) in self.speeds.iter().enumerate() {
+            if !(u.is_finite() && u > 0.0) || (i > 0 && u <= self.speeds[i - 1]) {
+                return Err(InputError::new(
+                    format!("{field}.speeds[{i}]"),
+                    format!("speeds must be finite, positive and strictly increasing, got {u}"),
+                ));
+            }
+        }
+        FlightCondition {
+            speed: self.speeds[0],
+            root_angle: self.root_angle,
+            gravity: self.gravity,
+        }
+        .validate(field)?;
+        if self.modes == 0 || self.modes > n_dofs {
+            return Err(InputError::new(
+                format!("{field}.modes"),
+                format!(
+                    "must be between 1 and {n_dofs} (the model's coordinates), got {}",
+                    self.modes
+                ),
+            ));
+        }
+        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
+            return Err(InputError::new(
+                format!("{field}.tolerance"),
+                format!("must be in (0, 1), got {}", self.tolerance),
+            ));
+        }
+        self.static_options.validate()
+    }
+}
+
+/// One tracked branch: the eigenvalue `s = σ + iω` (Im ≥ 0) at every speed of the plan.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Branch {
+    /// Index of the wet mode it starts from at `U = 0` (0-based, by frequency).
+    pub mode: usize,
+    /// Its wet natural frequency at `U = 0` (rad/s).
+    pub wet_frequency: f64,
+    /// Eigenvalue at each speed reached (1/s).
+    pub eigenvalues: Vec<C64>,
+    /// Some step had to be accepted at the smallest speed step without passing the shape check
+    /// (a coalescence, or two branches very close): the tracking there is uncertain.
+    pub uncertain: bool,
+}
+
+impl Branch {
+    /// Frequencies `ω = Im s` (rad/s) at the speeds reached.
+    pub fn frequencies(&self) -> Vec<f64> {
+        self.eigenvalues.iter().map(|s| s.im).collect()
+    }
+    /// Damping ratios `ζ = −σ/|s|`.
+    pub fn damping_ratios(&self) -> Vec<f64> {
+        self.eigenvalues.iter().map(|s| -s.re / s.norm()).collect()
+    }
+    /// The V-g "structural damping required", `g = 2σ/ω` (positive: unstable; infinite for a
+    /// real root).
+    pub fn g(&self) -> Vec<f64> {
+        self.eigenvalues.iter().map(|s| 2.0 * s.re / s.im).collect()
+    }
+}
+
+/// Whether a branch becomes unstable or stable again with increasing speed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CrossingKind {
+    /// `Re s` goes from negative to positive: flutter (or divergence, at zero frequency) onset.
+    Onset,
+    /// `Re s` goes from positive to negative: the branch is stable again.
+    Offset,
+}
+
+/// A crossing of the imaginary axis, refined.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Crossing {
+    /// Branch index (into [`FlutterOutcome::branches`]).
+    pub branch: usize,
+    /// Onset or offset.
+    pub kind: CrossingKind,
+    /// Speed (m/s).
+    pub speed: f64,
+    /// Frequency `Im s` at the crossing (rad/s); 0 for a divergence-type (real) root.
+    pub frequency: f64,
+}
+
+/// Counters of a flutter analysis.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct FlutterStats {
+    /// Linearizations (equilibrium plus derivatives) computed.
+    pub linearizations: usize,
+    /// Newton iterations on the rational eigenproblem (each one complex LU of `n_dofs`).
+    pub newton_iterations: usize,
+    /// Speed steps halved.
+    pub halvings: usize,
+    /// Static equilibria solved.
+    pub static_solves: usize,
+}
+
+/// Why a flutter analysis stopped before its last speed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FlutterStop {
+    /// The static equilibrium could not be found (e.g. past divergence).
+    Equilibrium {
+        /// Speed attempted (m/s).
+        speed: f64,
+        /// The static solver's error.
+        error: SolveError,
+    },
+    /// Newton's method lost a branch even at the smallest speed step.
+    BranchLost {
+        /// Branch index.
+        branch: usize,
+        /// Speed attempted (m/s).
+        speed: f64,
+    },
+}
+
+/// What a flutter analysis produced.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlutterOutcome {
+    /// The plan's speeds reached (m/s).
+    pub speeds: Vec<f64>,
+    /// The tracked branches (V-g / V-ω data).
+    pub branches: Vec<Branch>,
+    /// Every crossing found, by speed.
+    pub crossings: Vec<Crossing>,
+    /// The flutter (or dynamic divergence) point: the lowest onset.
+    pub flutter: Option<Crossing>,
+    /// Branches already unstable at the first speed of the plan: no onset can be given for them
+    /// (e.g. the quasi-steady model with the elastic axis at mid-chord).
+    pub unstable_at_start: Vec<usize>,
+    /// Why the analysis stopped early, if it did (the data above are kept).
+    pub stopped: Option<FlutterStop>,
+    /// Counters.
+    pub stats: FlutterStats,
+}
+
+/// The steady equilibrium along the speeds: continued from the closest speed solved below.
+struct EquilibriumPath<'a, M: AeroStructure> {
+    model: SteadyAeroModel<'a, M>,
+    loads: AppliedLoads,
+    options: StaticOptions,
+    rho: f64,
+    solved: Vec<(f64, Vec<f64>)>,
+}
+
+impl<M: AeroStructure> EquilibriumPath<'_, M> {
+    fn at(&mut self, u: f64, stats: &mut FlutterStats) -> Result<Vec<f64>, SolveError> {
+        let k = self.loads.n_loads();
+        let scales = |u: f64| {
+            let mut s = vec![1.0; k];
+            s.push(0.5 * self.rho * u * u);
+            s
+        };
+        let from = self
+            .solved
+            .iter()
+            .filter(|(v, _)| *v <= u)
+            .max_by(|a, b| a.0.total_cmp(&b.0));
+        let (x0, s0) = match from {
+            Some((v, x)) => (x.clone(), scales(*v)),
+            None => (vec![0.0; self.model.n_dofs()], vec![0.0; k + 1]),
+        };
+        stats.static_solves += 1;
+        let sol = continue_static(
+            &self.model,
+            &self.loads,
+            (&x0, &s0),
+            &scales(u),
+            &self.options,
+        )?;
+        self.solved.push((u, sol.x.clone()));
+        Ok(sol.x)
+    }
+}
+
+/// The flutter analysis of `aero` (any aerodynamic model; `Steady` gives coupled-mode flutter
+/// without aerodynamic damping) along `plan.speeds`. `progress` is called with the fraction of
+/// the speed range covered.
+///
+/// # Errors
+/// An invalid plan or loads. Failures of the analysis itself are reported in
+/// [`FlutterOutcome::stopped`] with the data up to there.
+pub fn flutter<M: AeroStructure>(
+    aero: &Aeroelastic<M>,
+    plan: &FlutterPlan,
+    field: &str,
+    progress: &mut dyn FnMut(f64),
+) -> Result<FlutterOutcome, InputError> {
+    let n = aero.structure().n_dofs();
+    plan.validate(field, n)?;
+    let steady = aero.with_aerodynamics(Aerodynamics::Steady, field)?;
+    let mut loads = plan.loads.clone();
+    if let Some(g) = plan.gravity {
+        loads.push(Load::Gravity {
+            g: g * plan.root_angle.cos(),
+        });
+    }
+    let applied = aero.full().apply(&loads, &format!("{field}.loads"))?;
+    let mut path = EquilibriumPath {
+        model: SteadyAeroModel::new(&steady, plan.root_angle),
+        loads: applied,
+        options: plan.static_options.clone(),
+        rho: aero.density(),
+        solved: Vec::new(),
+    };
+    // The equations carry the other loads only through the linearization's K̃, which comes from
+    // the structural Jacobian: give them the same loads (gravity is handled by the flight).
+    let other = aero.full().apply(&plan.loads, &format!("{field}.loads"))?;
+    let condition = |u: f64| FlightCondition {
+        speed: u,
+        root_angle: plan.root_angle,
+        gravity: plan.gravity,
+    };
+    let mut eqs = AeroelasticEquations::new(
+        aero,
+        &other,
+        vec![crate::solve::TimeFunction::Constant; plan.loads.len()],
+        FlightHistory::steady(condition(0.0)),
+        &plan.damping,
+        field,
+    )?;
+    let mut stats = FlutterStats::default();
+    let linearize = |u: f64,
+                     path: &mut EquilibriumPath<'_, M>,
+                     eqs: &mut AeroelasticEquations<'_, M>,
+                     stats: &mut FlutterStats|
+     -> Result<Linearization, SolveError> {
+        let x = path.at(u, stats)?;
+        eqs.set_flight(FlightHistory::steady(condition(u)));
+        let a = eqs.steady_states(0.0, &x);
+        stats.linearizations += 1;
+        Ok(eqs.linearize(&x, &a))
+    };
+    let mut outcome = FlutterOutcome {
+        speeds: vec![],
+        branches: vec![],
+        crossings: vec![],
+        flutter: None,
+        unstable_at_start: vec![],
+        stopped: None,
+        stats,
+    };
+    // Seeds: the wet modes at U = 0.
+    let lin0 = match linearize(0.0, &mut path, &mut eqs, &mut stats) {
+        Ok(l) => l,
+        Err(error) => {
+            outcome.stopped = Some(FlutterStop::Equilibrium { speed: 0.0, error });
+            outcome.stats = stats;
+            return Ok(outcome);
+        }
+    };
+    let seeds = wet_modes(&lin0, plan.modes);
+    let mut nws = NewtonWorkspace::new(n);
+    let tol = 1e-11;
+    let mut current: Vec<(C64, DVector<C64>)> = Vec::with_capacity(plan.modes);
+    for (k, (s, v)) in seeds.iter().enumerate() {
+        let pair = lin0.newton(*s, v, Transfer::Model, tol, 30, &mut nws);
+        stats.newton_iterations += pair.as_ref().map_or(30, |p| p.iterations);
+        let (s, v) = pair.map_or((*s, v.clone()), |p| (p.s, p.v));
+        current.push((s, v));
+        outcome.branches.push(Branch {
+            mode: k,
+            wet_frequency: seeds[k].0.im,
+            eigenvalues: vec![],
+            uncertain: false,
+        });
+    }
+    // March in speed. `history` keeps every accepted step for the crossing refinement.
+    let u_max = *plan.speeds.last().expect("validated");
+    let h_min = 1e-7 * u_max;
+    let mut history: Vec<(f64, Vec<(C64, DVector<C64>)>)> = vec![(0.0, current.clone())];
+    let mut u_prev = 0.0;
+    let mut slope: Option<Vec<C64>> = None; // ds/dU of the last step
+    'speeds: for &target in &plan.speeds {
+        while u_prev < target {
+            let mut h = target - u_prev;
+            let accepted = loop {
+                let u = u_prev + h;
+                let lin = match linearize(u, &mut path, &mut eqs, &mut stats) {
+                    Ok(l) => l,
+                    Err(error) => {
+                        if h > h_min {
+                            h *= 0.5;
+                            stats.halvings += 1;
+                            continue;
+                        }
+                        outcome.stopped = Some(FlutterStop::Equilibrium { speed: u, error });
+                        break 'speeds;
+                    }
+                };
+                let mut next = Vec::with_capacity(current.len());
+                let mut ok = true;
+                let mut lost = None;
+                for (b, (s, v)) in current.iter().enumerate() {
+                    let pred = *s + slope.as_ref().map_or(C64::new(0.0, 0.0), |d| d[b] * h);
+                    match lin.newton(pred, v, Transfer::Model, tol, 12, &mut nws) {
+                        Some(p) => {
+                            stats.newton_iterations += p.iterations;
+                            if mac(&p.v, v) < MAC_MIN {
+                                ok = false;
+                            }
+                            next.push((p.s, p.v));
+                        }
+                        None => {
+                            stats.newton_iterations += 12;
+                            ok = false;
+                            lost = Some(b);
+                            next.push((*s, v.clone()));
+                        }
+                    }
+                }
+                // Two branches converged to the same root?
+                for a in 0..next.len() {
+                    for b in 0..a {
+                        if (next[a].0 - next[b].0).norm() <= 1e-7 * next[a].0.norm().max(1e-6) {
+                            ok = false;
+                        }
+                    }
+                }
+                if ok {
+                    break (u, next);
+                }
+                if h > h_min {
+                    h *= 0.5;
+                    stats.halvings += 1;
+                    continue;
+                }
+                if let Some(branch) = lost {
+                    outcome.stopped = Some(FlutterStop::BranchLost { branch, speed: u });
+                    break 'speeds;
+                }
+                for br in outcome.branches.iter_mut() {
+                    br.uncertain = true;
+                }
+                break (u, next);
+            };
+            let (u, next) = accepted;
+            slope = Some(
+                next.iter()
+                    .zip(&current)
+                    .map(|(a, b)| (a.0 - b.0) / (u - u_prev))
+                    .collect(),
+            );
+            current = next;
+            u_prev = u;
+            history.push((u, current.clone()));
+            progress(u / u_max);
+        }
+        outcome.speeds.push(target);
+        for (br, (s, _)) in outcome.branches.iter_mut().zip(&current) {
+            br.eigenvalues.push(*s);
+        }
+    }
+    // Branches unstable at the first speed of the plan.
+    outcome.unstable_at_start = outcome
+        .branches
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| b.eigenvalues.first().is_some_and(|s| s.re > 0.0))
+        .map(|(i, _)| i)
+        .collect();
+    // Crossings after the first speed of the plan.
+    let first = plan.speeds[0];
+    for w in history.windows(2) {
+        let ((ua, sa), (ub, sb)) = (&w[0], &w[1]);
+        if *ub <= first {
+            continue;
+        }
+        for b in 0..sa.len() {
+            let (ra, rb) = (sa[b].0.re, sb[b].0.re);
+            if (ra < 0.0) == (rb < 0.0) {
+                continue;
+            }
+            let kind = if ra < 0.0 {
+                CrossingKind::Onset
+            } else {
+                CrossingKind::Offset
+            };
+            let (speed, frequency) = refine(
+                (*ua, &sa[b]),
+                (*ub, &sb[b]),
+                plan.tolerance,
+                &mut |u| linearize(u, &mut path, &mut eqs, &mut stats),
+                &mut nws,
+            );
+            outcome.crossings.push(Crossing {
+                branch: b,
+                kind,
+                speed,
+                frequency: frequency.abs(),
+            });
+        }
+    }
+    outcome
+        .crossings
+        .sort_by(|a, b| a.speed.total_cmp(&b.speed));
+    outcome.flutter = outcome
+        .crossings
+        .iter()
+        .find(|c| c.kind == CrossingKind::Onset)
+        .copied();
+    outcome.stats = stats;
+    Ok(outcome)
+}
+
+/// The root of `Re s(U)` between `a` and `b` (opposite signs) by the Illinois method, each trial
+/// speed linearized by `linearize` and its eigenvalue found by Newton from the linear
+/// interpolation of the bracket. Returns `(U, Im s)`.
+fn refine(
+    a: (f64, &(C64, DVector<C64>)),
+    b: (f64, &(C64, DVector<C64>)),
+    tolerance: f64,
+    linearize: &mut dyn FnMut(f64) -> Result<Linearization, SolveError>,
+    ws: &mut NewtonWorkspace,
+) -> (f64, f64) {
+    let (mut ua, mut fa) = (a.0, a.1 .0.re);
+    let (mut ub, mut fb) = (b.0, b.1 .0.re);
+    let (mut sa, mut sb) = (a.1 .0, b.1 .0);
+    let v = a.1 .1.clone();
+    let mut best = (ub, sb.im);
+    for _ in 0..100 {
+        if (ub - ua).abs() <= tolerance * ub {
+            break;
+        }
+        let u = ub - fb * (ub - ua) / (fb - fa);
+        let u = if u.is_finite() && u > ua.min(ub) && u < ua.max(ub) {
+            u
+        } else {
+            0.5 * (ua + ub)
+        };
+        let Ok(lin) = linearize(u) else { break };
+        let w = (u - ua) / (ub - ua);
+        let guess = sa + (sb - sa) * w;
+        let Some(p) = lin.newton(guess, &v, Transfer::Model, 1e-12, 20, ws) else {
+            break;
+        };
+        let f = p.s.re;
+        best = (u, p.s.im);
+        if f.abs() <= 1e-14 * p.s.norm() {
+            break;
+        }
+        if (f < 0.0) == (fa < 0.0) {
+            ua = u;
+            fa = f;
+            sa = p.s;
+            fb *= 0.5;
+        } else {
+            ub = u;
+            fb = f;
+            sb = p.s;
+            fa *= 0.5;
+        }
+    }
+    best
+}
+
+/// The `count` lowest wet modes of the linearization at `U = 0`: `(iω_k, φ_k)`, from the
+/// symmetric part of `K̃` and `M` (exact when the other loads are conservative; Newton then
+/// refines the seeds with the damping and any non-symmetric load).
+fn wet_modes(lin: &Linearization, count: usize) -> Vec<(C64, DVector<C64>)> {
+    let k = (&lin.stiffness + lin.stiffness.transpose()) * 0.5;
+    match crate::solve::generalized_symmetric_eigen(&k, &lin.mass) {
+        Ok((lambda, phi)) => (0..count)
+            .map(|i| {
+                let w = lambda[i].max(0.0).sqrt();
+                (C64::new(0.0, w), phi.column(i).map(|x| C64::new(x, 0.0)))
+            })
+            .collect(),
+        Err(_) => Vec::new(),
+    }
+}
+
+/// Eigenvalues of the exact Jacobian of the first-order aeroelastic system `(x, p, a)` at the
+/// static equilibrium in the flight condition `flight` with other loads `loads`: a dense
+/// eigen-decomposition of the whole system (lag states included), O((2n + n_a)³). The tracked
+/// branches of [`flutter`] are a subset of these (tested).
+///
+/// # Errors
+/// Invalid input, or the static equilibrium not found.
+pub fn stability_eigenvalues<M: AeroStructure>(
+    aero: &Aeroelastic<M>,
+    flight: &FlightCondition,
+    loads: &[Load],
+    damping: &Damping,
+    options: &StaticOptions,
+    field: &str,
+) -> Result<Vec<C64>, crate::Error> {
+    flight.validate(field)?;
+    let steady = aero.with_aerodynamics(Aerodynamics::Steady, field)?;
+    let mut all = loads.to_vec();
+    if let Some(g) = flight.gravity {
+        all.push(Load::Gravity {
+            g: g * flight.root_angle.cos(),
+        });
+    }
+    let applied = aero.full().apply(&all, &format!("{field}.loads"))?;
+    let model = SteadyAeroModel::new(&steady, flight.root_angle);
+    let k = applied.n_loads();
+    let n = model.n_dofs();
+    let mut scales = vec![1.0; k];
+    scales.push(0.5 * aero.density() * flight.speed * flight.speed);
+    let sol = continue_static(
+        &model,
+        &applied,
+        (&vec![0.0; n], &vec![0.0; k + 1]),
+        &scales,
+        options,
+    )?;
+    let other = aero.full().apply(loads, &format!("{field}.loads"))?;
+    let mut eqs = AeroelasticEquations::new(
+        aero,
+        &other,
+        vec![crate::solve::TimeFunction::Constant; loads.len()],
+        FlightHistory::steady(*flight),
+        damping,
+        field,
+    )?;
+    let a = eqs.steady_states(0.0, &sol.x);
+    let y = eqs.state(&sol.x, &vec![0.0; n], &a);
+    let dim = eqs.dim();
+    let mut jac = DMatrix::zeros(dim, dim);
+    eqs.jacobian(0.0, &y, &mut jac);
+    Ok(jac.complex_eigenvalues().iter().copied().collect())
+}
