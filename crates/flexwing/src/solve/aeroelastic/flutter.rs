@@ -201,7 +201,8 @@ pub struct FlutterOutcome {
     pub branches: Vec<Branch>,
     /// Every crossing found, by speed.
     pub crossings: Vec<Crossing>,
-    /// The flutter (or dynamic divergence) point: the lowest onset.
+    /// The flutter (or dynamic divergence) point: the lowest onset; `None` if there is none, or
+    /// if some branch is already unstable at the first speed (see `unstable_at_start`).
     pub flutter: Option<Crossing>,
     /// Branches already unstable at the first speed of the plan: no onset can be given for them
     /// (e.g. the quasi-steady model with the elastic axis at mid-chord).
@@ -308,6 +309,50 @@ pub fn flutter<M: AeroStructure>(
         let a = eqs.steady_states(0.0, &x);
         stats.linearizations += 1;
         Ok(eqs.linearize(&x, &a))
+    };
+    // A wing that stays undeformed at every speed (no root angle, gravity or loads, and no
+    // aerodynamic load at rest: a symmetric section with c_m0 = 0) has a linearization
+    // polynomial in U: two linearizations serve every speed, once checked against a third.
+    let mut scaled: Option<(Linearization, Linearization)> = None;
+    if plan.loads.is_empty() && plan.gravity.is_none() && plan.root_angle == 0.0 {
+        let model = SteadyAeroModel::new(&steady, 0.0);
+        let mut ws = model.workspace();
+        let mut f = DVector::zeros(n);
+        model.generalized_forces_into(
+            &vec![0.0; n],
+            &AppliedLoads::none(),
+            &[1.0],
+            &mut ws,
+            &mut f,
+        );
+        if f.amax() == 0.0 {
+            let u_max = *plan.speeds.last().expect("validated");
+            let lin = |u: f64, eqs: &mut AeroelasticEquations<'_, M>, stats: &mut FlutterStats| {
+                eqs.set_flight(FlightHistory::steady(condition(u)));
+                let x = vec![0.0; n];
+                let a = eqs.steady_states(0.0, &x);
+                stats.linearizations += 1;
+                eqs.linearize(&x, &a)
+            };
+            let (l0, l1) = (
+                lin(0.0, &mut eqs, &mut stats),
+                lin(1.0, &mut eqs, &mut stats),
+            );
+            let check = lin(0.61 * u_max, &mut eqs, &mut stats);
+            if Linearization::scaled(&l0, &l1, 0.61 * u_max).distance(&check) < 1e-9 {
+                scaled = Some((l0, l1));
+            }
+        }
+    }
+    let linearize = |u: f64,
+                     path: &mut EquilibriumPath<'_, M>,
+                     eqs: &mut AeroelasticEquations<'_, M>,
+                     stats: &mut FlutterStats|
+     -> Result<Linearization, SolveError> {
+        match &scaled {
+            Some((l0, l1)) => Ok(Linearization::scaled(l0, l1, u)),
+            None => linearize(u, path, eqs, stats),
+        }
     };
     let mut outcome = FlutterOutcome {
         speeds: vec![],
@@ -465,25 +510,37 @@ pub fn flutter<M: AeroStructure>(
                 branch: b,
                 kind,
                 speed,
-                frequency: frequency.abs(),
+                // A real root (divergence) has no frequency; below 1e-9 |s| it is round-off.
+                frequency: if frequency.abs() <= 1e-9 * sb[b].0.norm() {
+                    0.0
+                } else {
+                    frequency.abs()
+                },
             });
         }
     }
     outcome
         .crossings
         .sort_by(|a, b| a.speed.total_cmp(&b.speed));
-    outcome.flutter = outcome
-        .crossings
-        .iter()
-        .find(|c| c.kind == CrossingKind::Onset)
-        .copied();
+    // A branch unstable from the first speed means the wing is unstable below any onset found:
+    // no flutter speed then (the caller reads `unstable_at_start`).
+    outcome.flutter = if outcome.unstable_at_start.is_empty() {
+        outcome
+            .crossings
+            .iter()
+            .find(|c| c.kind == CrossingKind::Onset)
+            .copied()
+    } else {
+        None
+    };
     outcome.stats = stats;
     Ok(outcome)
 }
 
-/// The root of `Re s(U)` between `a` and `b` (opposite signs) by the Illinois method, each trial
-/// speed linearized by `linearize` and its eigenvalue found by Newton from the linear
-/// interpolation of the bracket. Returns `(U, Im s)`.
+/// The root of `Re s(U)` between `a` and `b` (opposite signs): secant steps on the two latest
+/// points, kept inside the bracket (bisection otherwise), each trial speed linearized by
+/// `linearize` and its eigenvalue found by Newton from the linear interpolation of the latest two.
+/// Returns `(U, Im s)`.
 fn refine(
     a: (f64, &(C64, DVector<C64>)),
     b: (f64, &(C64, DVector<C64>)),
@@ -491,42 +548,36 @@ fn refine(
     linearize: &mut dyn FnMut(f64) -> Result<Linearization, SolveError>,
     ws: &mut NewtonWorkspace,
 ) -> (f64, f64) {
-    let (mut ua, mut fa) = (a.0, a.1 .0.re);
-    let (mut ub, mut fb) = (b.0, b.1 .0.re);
-    let (mut sa, mut sb) = (a.1 .0, b.1 .0);
-    let v = a.1 .1.clone();
-    let mut best = (ub, sb.im);
-    for _ in 0..100 {
-        if (ub - ua).abs() <= tolerance * ub {
-            break;
+    let (mut lo, mut hi) = (a.0, b.0);
+    let f_lo_negative = a.1 .0.re < 0.0;
+    let mut p1 = (a.0, a.1 .0);
+    let mut p2 = (b.0, b.1 .0);
+    let mut v = b.1 .1.clone();
+    let mut best = (b.0, b.1 .0.im);
+    for _ in 0..60 {
+        let (u1, s1) = p1;
+        let (u2, s2) = p2;
+        let mut u = u2 - s2.re * (u2 - u1) / (s2.re - s1.re);
+        if !(u.is_finite() && u > lo && u < hi) {
+            u = 0.5 * (lo + hi);
         }
-        let u = ub - fb * (ub - ua) / (fb - fa);
-        let u = if u.is_finite() && u > ua.min(ub) && u < ua.max(ub) {
-            u
-        } else {
-            0.5 * (ua + ub)
-        };
         let Ok(lin) = linearize(u) else { break };
-        let w = (u - ua) / (ub - ua);
-        let guess = sa + (sb - sa) * w;
+        let guess = s1 + (s2 - s1) * ((u - u1) / (u2 - u1));
         let Some(p) = lin.newton(guess, &v, Transfer::Model, 1e-12, 20, ws) else {
             break;
         };
-        let f = p.s.re;
         best = (u, p.s.im);
-        if f.abs() <= 1e-14 * p.s.norm() {
-            break;
-        }
-        if (f < 0.0) == (fa < 0.0) {
-            ua = u;
-            fa = f;
-            sa = p.s;
-            fb *= 0.5;
+        let step = (u - u2).abs();
+        if (p.s.re < 0.0) == f_lo_negative {
+            lo = u;
         } else {
-            ub = u;
-            fb = f;
-            sb = p.s;
-            fa *= 0.5;
+            hi = u;
+        }
+        v = p.v;
+        p1 = p2;
+        p2 = (u, p.s);
+        if step <= tolerance * u || hi - lo <= tolerance * u || p.s.re == 0.0 {
+            break;
         }
     }
     best

@@ -128,6 +128,51 @@ impl Linearization {
         self.mass.nrows()
     }
 
+    /// The linearization at speed `u` of a wing whose equilibrium is the undeformed state at
+    /// every speed, from those at `U = 0` (`at0`) and `U = 1` (`at1`): every term is then
+    /// homogeneous in `U` — `K̃ = K̃₀ + U² K̃₂`, `C̃ = C̃₀ + U C̃₁`, `G W_x ∝ U²`, `G W_v ∝ U`,
+    /// `r ∝ U` (the loads scale with `q = ½ρU²`, the upwash with `U`, the lag rate with `U/b`;
+    /// the flutter analysis checks this against a direct linearization before it relies on it).
+    pub(crate) fn scaled(at0: &Self, at1: &Self, u: f64) -> Self {
+        let groups = at1
+            .groups
+            .iter()
+            .map(|g| Group {
+                rate: g.rate * u,
+                px: &g.px * (u * u),
+                pv: &g.pv * u,
+            })
+            .collect();
+        Self {
+            mass: at0.mass.clone(),
+            damping: &at0.damping + (&at1.damping - &at0.damping) * u,
+            stiffness: &at0.stiffness + (&at1.stiffness - &at0.stiffness) * (u * u),
+            groups,
+            lag: at1.lag.clone(),
+        }
+    }
+
+    /// Largest relative difference between two linearizations of the same model (their
+    /// matrices and groups), for the check of [`Self::scaled`].
+    pub(crate) fn distance(&self, other: &Self) -> f64 {
+        let rel = |a: &DMatrix<f64>, b: &DMatrix<f64>| {
+            (a - b).amax() / a.amax().max(b.amax()).max(1e-300)
+        };
+        let mut d = rel(&self.mass, &other.mass)
+            .max(rel(&self.stiffness, &other.stiffness))
+            .max(rel(&self.damping, &other.damping));
+        if self.groups.len() != other.groups.len() {
+            return f64::INFINITY;
+        }
+        for (a, b) in self.groups.iter().zip(&other.groups) {
+            d = d
+                .max((a.rate - b.rate).abs() / a.rate.abs().max(1e-300))
+                .max(rel(&a.px, &b.px))
+                .max(rel(&a.pv, &b.pv));
+        }
+        d
+    }
+
     /// `T(s/r)` and `dT/ds` of every group into `out`.
     fn transfers(&self, s: C64, how: Transfer, out: &mut Vec<(C64, C64)>) {
         out.clear();
@@ -224,6 +269,7 @@ impl Linearization {
         let mut s = s0;
         let mut transfers = std::mem::take(&mut ws.transfers);
         let mut result = None;
+        let mut prev_step: Option<f64> = None;
         for it in 1..=max_iterations {
             self.transfers(s, how, &mut transfers);
             let rhs = self.derivative_times(s, &v, &transfers);
@@ -249,7 +295,13 @@ impl Linearization {
             if !s.re.is_finite() || !s.im.is_finite() {
                 break;
             }
-            if step.norm() <= tol * s.norm().max(1e-3) {
+            // Converged: the step is below the tolerance, or it fell quadratically and the next
+            // one (about its square over |s|) would be.
+            let scale = s.norm().max(1e-3);
+            let quadratic = prev_step.is_some_and(|p: f64| step.norm() < 0.1 * p)
+                && step.norm() * step.norm() <= 0.01 * tol * scale * scale;
+            prev_step = Some(step.norm());
+            if step.norm() <= tol * scale || quadratic {
                 result = Some(EigenPair {
                     s,
                     v: v.clone(),
