@@ -29,6 +29,20 @@ type C64 = Complex<f64>;
 /// steps.
 pub const MAC_MIN: f64 = 0.8;
 
+/// How the eigenvalues of the linearized system are computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FlutterMethod {
+    /// The eigenvalues of the model with its own lag (finite states, quasi-steady or steady):
+    /// exact for the model.
+    #[default]
+    Eigenvalues,
+    /// The p-k method with Theodorsen's `C(k)` in place of the model's lag (Hodges & Pierce
+    /// §5.4): `C` evaluated at the branch's own frequency, iterated to a fixed point. Exact
+    /// Theodorsen flutter where `Re s = 0`; elsewhere an approximation of the damping. Needs an
+    /// unsteady model (for its apparent mass and rate terms).
+    PkTheodorsen,
+}
+
 /// A flutter analysis, validated.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FlutterPlan {
@@ -49,6 +63,8 @@ pub struct FlutterPlan {
     pub tolerance: f64,
     /// Options of the static solver for the equilibria.
     pub static_options: StaticOptions,
+    /// Eigenvalues of the model, or the p-k method with Theodorsen's function.
+    pub method: FlutterMethod,
 }
 
 impl FlutterPlan {
@@ -64,6 +80,7 @@ impl FlutterPlan {
             modes,
             tolerance: 1e-6,
             static_options: StaticOptions::default(),
+            method: FlutterMethod::Eigenvalues,
         }
     }
 
@@ -267,6 +284,14 @@ pub fn flutter<M: AeroStructure>(
 ) -> Result<FlutterOutcome, InputError> {
     let n = aero.structure().n_dofs();
     plan.validate(field, n)?;
+    if plan.method == FlutterMethod::PkTheodorsen && !aero.aerodynamics().is_unsteady() {
+        return Err(InputError::new(
+            format!("{field}.method"),
+            "the p-k method replaces an unsteady model's lag by Theodorsen's function: choose \
+             a quasi-steady, Wagner or Peters model",
+        ));
+    }
+    let method = plan.method;
     let steady = aero.with_aerodynamics(Aerodynamics::Steady, field)?;
     let mut loads = plan.loads.clone();
     if let Some(g) = plan.gravity {
@@ -377,7 +402,7 @@ pub fn flutter<M: AeroStructure>(
     let tol = 1e-11;
     let mut current: Vec<(C64, DVector<C64>)> = Vec::with_capacity(plan.modes);
     for (k, (s, v)) in seeds.iter().enumerate() {
-        let pair = lin0.newton(*s, v, Transfer::Model, tol, 30, &mut nws);
+        let pair = solve_branch(&lin0, *s, v, method, tol, 30, &mut nws);
         stats.newton_iterations += pair.as_ref().map_or(30, |p| p.iterations);
         let (s, v) = pair.map_or((*s, v.clone()), |p| (p.s, p.v));
         current.push((s, v));
@@ -416,7 +441,7 @@ pub fn flutter<M: AeroStructure>(
                 let mut lost = None;
                 for (b, (s, v)) in current.iter().enumerate() {
                     let pred = *s + slope.as_ref().map_or(C64::new(0.0, 0.0), |d| d[b] * h);
-                    match lin.newton(pred, v, Transfer::Model, tol, 12, &mut nws) {
+                    match solve_branch(&lin, pred, v, method, tol, 12, &mut nws) {
                         Some(p) => {
                             stats.newton_iterations += p.iterations;
                             if mac(&p.v, v) < MAC_MIN {
@@ -504,6 +529,7 @@ pub fn flutter<M: AeroStructure>(
                 (*ub, &sb[b]),
                 plan.tolerance,
                 &mut |u| linearize(u, &mut path, &mut eqs, &mut stats),
+                method,
                 &mut nws,
             );
             outcome.crossings.push(Crossing {
@@ -546,6 +572,7 @@ fn refine(
     b: (f64, &(C64, DVector<C64>)),
     tolerance: f64,
     linearize: &mut dyn FnMut(f64) -> Result<Linearization, SolveError>,
+    method: FlutterMethod,
     ws: &mut NewtonWorkspace,
 ) -> (f64, f64) {
     let (mut lo, mut hi) = (a.0, b.0);
@@ -563,7 +590,7 @@ fn refine(
         }
         let Ok(lin) = linearize(u) else { break };
         let guess = s1 + (s2 - s1) * ((u - u1) / (u2 - u1));
-        let Some(p) = lin.newton(guess, &v, Transfer::Model, 1e-12, 20, ws) else {
+        let Some(p) = solve_branch(&lin, guess, &v, method, 1e-12, 20, ws) else {
             break;
         };
         best = (u, p.s.im);
@@ -581,6 +608,46 @@ fn refine(
         }
     }
     best
+}
+
+/// One eigenpair near `(s, v)`: Newton on the model's rational eigenproblem, or the p-k fixed
+/// point (Newton at `C(k)` frozen at the current frequency, then the frequency updated, until it
+/// stops moving).
+fn solve_branch(
+    lin: &Linearization,
+    s: C64,
+    v: &DVector<C64>,
+    method: FlutterMethod,
+    tol: f64,
+    max_iterations: usize,
+    ws: &mut NewtonWorkspace,
+) -> Option<super::linear::EigenPair> {
+    match method {
+        FlutterMethod::Eigenvalues => lin.newton(s, v, Transfer::Model, tol, max_iterations, ws),
+        FlutterMethod::PkTheodorsen => {
+            let (mut s, mut v) = (s, v.clone());
+            let mut iterations = 0;
+            for _ in 0..50 {
+                let omega = s.im.abs();
+                let p = lin.newton(
+                    s,
+                    &v,
+                    Transfer::Theodorsen { omega },
+                    tol,
+                    max_iterations,
+                    ws,
+                )?;
+                iterations += p.iterations;
+                let moved = (p.s.im.abs() - omega).abs();
+                s = p.s;
+                v = p.v;
+                if moved <= tol * s.norm().max(1e-3) {
+                    return Some(super::linear::EigenPair { s, v, iterations });
+                }
+            }
+            None
+        }
+    }
 }
 
 /// The `count` lowest wet modes of the linearization at `U = 0`: `(iω_k, φ_k)`, from the

@@ -225,17 +225,6 @@ impl Linearization {
         }
     }
 
-    /// `S(s)` as a complex matrix (tests and diagnostics).
-    pub(crate) fn matrix(&self, s: C64, how: Transfer) -> DMatrix<C64> {
-        let n = self.n();
-        let mut ws = NewtonWorkspace::new(n);
-        self.transfers(s, how, &mut ws.transfers);
-        self.fill(s, &mut ws);
-        DMatrix::from_fn(n, n, |i, j| {
-            C64::new(ws.lu.re[j * n + i], ws.lu.im[j * n + i])
-        })
-    }
-
     /// `S'(s) v = 2s M v + C̃ v − Σ_g [T'_g (P_g + s Q_g) v + T_g Q_g v]`.
     fn derivative_times(&self, s: C64, v: &DVector<C64>, transfers: &[(C64, C64)]) -> DVector<C64> {
         let vc = |m: &DMatrix<f64>| -> DVector<C64> {

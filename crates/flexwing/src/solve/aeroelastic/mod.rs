@@ -19,6 +19,6 @@ pub use statics::{
 mod flutter;
 
 pub use flutter::{
-    flutter, stability_eigenvalues, Branch, Crossing, CrossingKind, FlutterOutcome, FlutterPlan,
-    FlutterStats, FlutterStop, MAC_MIN,
+    flutter, stability_eigenvalues, Branch, Crossing, CrossingKind, FlutterMethod, FlutterOutcome,
+    FlutterPlan, FlutterStats, FlutterStop, MAC_MIN,
 };
