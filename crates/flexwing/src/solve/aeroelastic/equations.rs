@@ -168,6 +168,19 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         a
     }
 
+    /// Total aerodynamic force along the ground's vertical (N) of the last right-hand side
+    /// evaluated at time `t`.
+    pub(crate) fn vertical_aerodynamic_force(&self, t: f64) -> f64 {
+        let (sa, ca) = self.flight.root_angle(t).sin_cos();
+        self.eval
+            .sc
+            .force
+            .iter()
+            .zip(&self.aero.strips)
+            .map(|(f, s)| s.width * (ca * f[1] + sa * f[2]))
+            .sum()
+    }
+
     /// Replace the flight history (same gravity loads: the gravitational acceleration of the
     /// history given at construction is kept, its root-angle factor follows the new history).
     pub(crate) fn set_flight(&mut self, flight: FlightHistory) {

@@ -22,3 +22,6 @@ pub use flutter::{
     flutter, stability_eigenvalues, Branch, Crossing, CrossingKind, FlutterMethod, FlutterOutcome,
     FlutterPlan, FlutterStats, FlutterStop, MAC_MIN,
 };
+mod response;
+
+pub use response::{response, ResponseOutcome, ResponsePlan, ResponseSample};
