@@ -146,7 +146,7 @@ mod tests {
         let mut bi: Vec<f64> = b.iter().map(|c| c.im).collect();
         lu.solve(&mut br, &mut bi);
         for i in 0..n {
-            assert!((Complex::new(br[i], bi[i]) - want[i]).norm() < 1e-12 * want.amax());
+            assert!((Complex::new(br[i], bi[i]) - want[i]).norm() < 1e-12 * want.norm());
         }
     }
 }

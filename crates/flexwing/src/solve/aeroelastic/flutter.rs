@@ -24,6 +24,8 @@ use crate::solve::integrate::OdeSystem;
 use crate::solve::{continue_static, Damping, StaticOptions};
 
 type C64 = Complex<f64>;
+/// The tracked eigenpairs of every branch at one accepted speed.
+type Step = (f64, Vec<(C64, DVector<C64>)>);
 
 /// Smallest modal assurance criterion between a branch's eigenvectors at consecutive accepted
 /// steps.
@@ -416,7 +418,7 @@ pub fn flutter<M: AeroStructure>(
     // March in speed. `history` keeps every accepted step for the crossing refinement.
     let u_max = *plan.speeds.last().expect("validated");
     let h_min = 1e-7 * u_max;
-    let mut history: Vec<(f64, Vec<(C64, DVector<C64>)>)> = vec![(0.0, current.clone())];
+    let mut history: Vec<Step> = vec![(0.0, current.clone())];
     let mut u_prev = 0.0;
     let mut slope: Option<Vec<C64>> = None; // ds/dU of the last step
     'speeds: for &target in &plan.speeds {
