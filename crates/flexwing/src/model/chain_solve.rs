@@ -145,7 +145,6 @@ impl FullModel {
             let mut g0 = [bt[0] * m + pa[0], bt[1] * m + pa[1]];
             let mut g1 = [bp[0] * m, bp[1] * m];
             // The fluid (model::aero::fluid): ½ m_a (rᵀV + βᵀu)², r = cos ψ n, β = ((ℓ/2) cos ψ, ζ_m).
-            let mut fluid_vv = [zero; 3];
             if let Some(f) = &self.fluid {
                 let ma = f.mass[i];
                 let cp = if self.torsion {
@@ -163,7 +162,10 @@ impl FullModel {
                     h11 += b1 * b1 * ma + D::from(f.inertia[i]);
                     g1 = [g1[0] + b1 * r[0] * ma, g1[1] + b1 * r[1] * ma];
                 }
-                fluid_vv = [r[0] * r[0] * ma, r[0] * r[1] * ma, r[1] * r[1] * ma];
+                // P += m_a r rᵀ (the rest of the P update below).
+                p00 += r[0] * r[0] * ma;
+                p01 += r[0] * r[1] * ma;
+                p11 += r[1] * r[1] * ma;
             }
             if !(h00.re() > 0.0) {
                 return false;
@@ -180,10 +182,10 @@ impl FullModel {
             chain.pivot[i] = f;
             chain.gain[i] = [kx[0], ky[0], kx[1], ky[1]];
             chain.coupling[i] = [g0[0], g0[1], g1[0], g1[1]];
-            // P ← m I + m_a r rᵀ + P − Gᵀ K, with Gᵀ = [g0 g1] (columns).
-            p00 += D::from(m) + fluid_vv[0] - (g0[0] * kx[0] + g1[0] * kx[1]);
-            p01 += fluid_vv[1] - (g0[0] * ky[0] + g1[0] * ky[1]);
-            p11 += D::from(m) + fluid_vv[2] - (g0[1] * ky[0] + g1[1] * ky[1]);
+            // P ← m I + P − Gᵀ K, with Gᵀ = [g0 g1] (columns).
+            p00 += D::from(m) - (g0[0] * kx[0] + g1[0] * kx[1]);
+            p01 -= g0[0] * ky[0] + g1[0] * ky[1];
+            p11 += D::from(m) - (g0[1] * ky[0] + g1[1] * ky[1]);
         }
         true
     }
