@@ -115,6 +115,19 @@ impl FullModel {
         sc: &KineticScratch<D>,
         chain: &mut ChainScratch<D>,
     ) -> bool {
+        // Two monomorphic versions: in vacuo, exactly the arithmetic of the dry chain.
+        if self.fluid.is_some() {
+            self.factor_impl::<D, true>(sc, chain)
+        } else {
+            self.factor_impl::<D, false>(sc, chain)
+        }
+    }
+
+    fn factor_impl<D: DualNum<Primitive = f64> + Copy, const FLUID: bool>(
+        &self,
+        sc: &KineticScratch<D>,
+        chain: &mut ChainScratch<D>,
+    ) -> bool {
         let zero = D::from(0.0);
         // P = [p00 p01; p01 p11].
         let (mut p00, mut p01, mut p11) = (zero, zero, zero);
@@ -145,7 +158,7 @@ impl FullModel {
             let mut g0 = [bt[0] * m + pa[0], bt[1] * m + pa[1]];
             let mut g1 = [bp[0] * m, bp[1] * m];
             // The fluid (model::aero::fluid): ½ m_a (rᵀV + βᵀu)², r = cos ψ n, β = ((ℓ/2) cos ψ, ζ_m).
-            if let Some(f) = &self.fluid {
+            if let (true, Some(f)) = (FLUID, &self.fluid) {
                 let ma = f.mass[i];
                 let cp = if self.torsion {
                     sc.cos_psi[i]

@@ -147,6 +147,22 @@ impl FullModel {
         &self,
         qdot: &[D],
         sc: &mut KineticScratch<D>,
+        p: Option<&mut [D]>,
+        gamma: Option<&mut [D]>,
+    ) {
+        // Two monomorphic versions: the model in vacuo runs exactly the code it ran before the
+        // fluid's inertia existed.
+        if self.fluid.is_some() {
+            self.kinetic_terms_impl::<D, true>(qdot, sc, p, gamma)
+        } else {
+            self.kinetic_terms_impl::<D, false>(qdot, sc, p, gamma)
+        }
+    }
+
+    fn kinetic_terms_impl<D: DualNum<Primitive = f64> + Copy, const FLUID: bool>(
+        &self,
+        qdot: &[D],
+        sc: &mut KineticScratch<D>,
         mut p: Option<&mut [D]>,
         mut gamma: Option<&mut [D]>,
     ) {
@@ -180,7 +196,7 @@ impl FullModel {
                 v[1] + a_e * s + a_n * c,
                 -(sp * pd * d),
             ];
-            if let Some(f) = &self.fluid {
+            if let (true, Some(f)) = (FLUID, &self.fluid) {
                 // u = cos ψ (n·V) + (ℓ/2) cos ψ θ̇ + ζ_m ψ̇.
                 sc.node_v[i] = v;
                 sc.fluid_u[i] = cp * (c * v[1] - s * v[0] + td * h) + pd * f.station[i];
@@ -188,7 +204,7 @@ impl FullModel {
             v[0] -= s * td * self.ell[i];
             v[1] += c * td * self.ell[i];
         }
-        self.kinetic_backward(sc, p.as_deref_mut(), gamma.as_deref_mut());
+        self.kinetic_backward_impl::<D, FLUID>(sc, p.as_deref_mut(), gamma.as_deref_mut());
         if let Some(p) = p {
             suffix_sum_in_blocks(p, n);
         }
@@ -201,6 +217,19 @@ impl FullModel {
     /// mass-centre velocities `sc.g_dot`, the momenta `∂T/∂(θ̇, ψ̇)` (into `p`) and the
     /// gyroscopic term `∂T/∂(θ, ψ)` (into `gamma`) in absolute angles (no suffix sums).
     pub(crate) fn kinetic_backward<D: DualNum<Primitive = f64> + Copy>(
+        &self,
+        sc: &KineticScratch<D>,
+        p: Option<&mut [D]>,
+        gamma: Option<&mut [D]>,
+    ) {
+        if self.fluid.is_some() {
+            self.kinetic_backward_impl::<D, true>(sc, p, gamma)
+        } else {
+            self.kinetic_backward_impl::<D, false>(sc, p, gamma)
+        }
+    }
+
+    fn kinetic_backward_impl<D: DualNum<Primitive = f64> + Copy, const FLUID: bool>(
         &self,
         sc: &KineticScratch<D>,
         p: Option<&mut [D]>,
@@ -253,7 +282,7 @@ impl FullModel {
             for a in 0..3 {
                 outboard[a] += g[a] * m;
             }
-            if let Some(f) = &self.fluid {
+            if let (true, Some(f)) = (FLUID, &self.fluid) {
                 // model::aero::fluid: the terms of T_f = ½ Σ m_a u² + ½ Σ J_a ψ̇².
                 let (ma, u, v) = (f.mass[j], sc.fluid_u[j], sc.node_v[j]);
                 let mu = u * ma;
