@@ -36,5 +36,6 @@ mod error;
 pub mod model;
 pub mod paper;
 pub mod solve;
+pub mod wings;
 
 pub use error::{Error, InputError, Result, SolveError};

@@ -115,6 +115,19 @@ impl FullModel {
         sc: &KineticScratch<D>,
         chain: &mut ChainScratch<D>,
     ) -> bool {
+        // Two monomorphic versions: in vacuo, exactly the arithmetic of the dry chain.
+        if self.fluid.is_some() {
+            self.factor_impl::<D, true>(sc, chain)
+        } else {
+            self.factor_impl::<D, false>(sc, chain)
+        }
+    }
+
+    fn factor_impl<D: DualNum<Primitive = f64> + Copy, const FLUID: bool>(
+        &self,
+        sc: &KineticScratch<D>,
+        chain: &mut ChainScratch<D>,
+    ) -> bool {
         let zero = D::from(0.0);
         // P = [p00 p01; p01 p11].
         let (mut p00, mut p01, mut p11) = (zero, zero, zero);
@@ -138,11 +151,35 @@ impl FullModel {
                 (p00 * nv[0] + p01 * nv[1]) * l,
                 (p01 * nv[0] + p11 * nv[1]) * l,
             ];
-            let h00 = (bt[0] * bt[0] + bt[1] * bt[1]) * m + (pa[0] * nv[0] + pa[1] * nv[1]) * l;
-            let h01 = (bt[0] * bp[0] + bt[1] * bp[1]) * m;
+            let mut h00 = (bt[0] * bt[0] + bt[1] * bt[1]) * m + (pa[0] * nv[0] + pa[1] * nv[1]) * l;
+            let mut h01 = (bt[0] * bp[0] + bt[1] * bp[1]) * m;
+            let mut h11 = h11;
             // G rows: m b_θ + P a, and m b_ψ.
-            let g0 = [bt[0] * m + pa[0], bt[1] * m + pa[1]];
-            let g1 = [bp[0] * m, bp[1] * m];
+            let mut g0 = [bt[0] * m + pa[0], bt[1] * m + pa[1]];
+            let mut g1 = [bp[0] * m, bp[1] * m];
+            // The fluid (model::aero::fluid): ½ m_a (rᵀV + βᵀu)², r = cos ψ n, β = ((ℓ/2) cos ψ, ζ_m).
+            if let (true, Some(f)) = (FLUID, &self.fluid) {
+                let ma = f.mass[i];
+                let cp = if self.torsion {
+                    sc.cos_psi[i]
+                } else {
+                    D::from(1.0)
+                };
+                let r = [nv[0] * cp, nv[1] * cp];
+                let b0 = cp * h;
+                h00 += b0 * b0 * ma;
+                g0 = [g0[0] + b0 * r[0] * ma, g0[1] + b0 * r[1] * ma];
+                if self.torsion {
+                    let b1 = D::from(f.station[i]);
+                    h01 += b0 * b1 * ma;
+                    h11 += b1 * b1 * ma + D::from(f.inertia[i]);
+                    g1 = [g1[0] + b1 * r[0] * ma, g1[1] + b1 * r[1] * ma];
+                }
+                // P += m_a r rᵀ (the rest of the P update below).
+                p00 += r[0] * r[0] * ma;
+                p01 += r[0] * r[1] * ma;
+                p11 += r[1] * r[1] * ma;
+            }
             if !(h00.re() > 0.0) {
                 return false;
             }

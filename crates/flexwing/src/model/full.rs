@@ -29,6 +29,9 @@ pub struct FullModel {
     pub(super) a_diag: Vec<f64>,
     /// Diagonal of `K`.
     pub(super) stiffness: Vec<f64>,
+    /// The fluid's inertia (apparent mass) of an aeroelastic model, `None` in vacuo
+    /// (`model::aero::fluid`).
+    pub(crate) fluid: Option<super::aero::FluidInertia>,
 }
 
 impl FullModel {
@@ -74,7 +77,27 @@ impl FullModel {
             a_diag,
             stiffness,
             beam,
+            fluid: None,
         }
+    }
+
+    /// The same model with the fluid's inertia added to its kinetic energy (`model::aero::fluid`).
+    ///
+    /// # Panics
+    /// If the vectors of `fluid` do not have one entry per element.
+    pub(crate) fn with_fluid(mut self, fluid: super::aero::FluidInertia) -> Self {
+        let n = self.n;
+        assert!(
+            fluid.mass.len() == n && fluid.station.len() == n && fluid.inertia.len() == n,
+            "fluid inertia needs one entry per element"
+        );
+        self.fluid = Some(fluid);
+        self
+    }
+
+    /// Whether the model carries the fluid's inertia (an aeroelastic model's structure).
+    pub fn has_fluid_inertia(&self) -> bool {
+        self.fluid.is_some()
     }
 
     /// The beam this model was built from.

@@ -37,6 +37,10 @@ pub(crate) struct KineticScratch<D> {
     pub(super) theta_dot: Vec<D>,
     pub(super) psi_dot: Vec<D>,
     pub(super) g_dot: Vec<[D; 3]>,
+    /// Node velocities `V_{i−1}` (in plane), kept only for the fluid terms.
+    pub(super) node_v: Vec<[D; 2]>,
+    /// The fluid's normal velocity at mid-chord `u_i` (`model::aero::fluid`).
+    pub(super) fluid_u: Vec<D>,
 }
 
 impl<D: DualNum<Primitive = f64> + Copy> KineticScratch<D> {
@@ -50,6 +54,8 @@ impl<D: DualNum<Primitive = f64> + Copy> KineticScratch<D> {
             theta_dot: vec![z; n],
             psi_dot: vec![z; n],
             g_dot: vec![[z; 3]; n],
+            node_v: vec![[z; 2]; n],
+            fluid_u: vec![z; n],
         }
     }
 }
@@ -141,6 +147,22 @@ impl FullModel {
         &self,
         qdot: &[D],
         sc: &mut KineticScratch<D>,
+        p: Option<&mut [D]>,
+        gamma: Option<&mut [D]>,
+    ) {
+        // Two monomorphic versions: the model in vacuo runs exactly the code it ran before the
+        // fluid's inertia existed.
+        if self.fluid.is_some() {
+            self.kinetic_terms_impl::<D, true>(qdot, sc, p, gamma)
+        } else {
+            self.kinetic_terms_impl::<D, false>(qdot, sc, p, gamma)
+        }
+    }
+
+    fn kinetic_terms_impl<D: DualNum<Primitive = f64> + Copy, const FLUID: bool>(
+        &self,
+        qdot: &[D],
+        sc: &mut KineticScratch<D>,
         mut p: Option<&mut [D]>,
         mut gamma: Option<&mut [D]>,
     ) {
@@ -174,10 +196,15 @@ impl FullModel {
                 v[1] + a_e * s + a_n * c,
                 -(sp * pd * d),
             ];
+            if let (true, Some(f)) = (FLUID, &self.fluid) {
+                // u = cos ψ (n·V) + (ℓ/2) cos ψ θ̇ + ζ_m ψ̇.
+                sc.node_v[i] = v;
+                sc.fluid_u[i] = cp * (c * v[1] - s * v[0] + td * h) + pd * f.station[i];
+            }
             v[0] -= s * td * self.ell[i];
             v[1] += c * td * self.ell[i];
         }
-        self.kinetic_backward(sc, p.as_deref_mut(), gamma.as_deref_mut());
+        self.kinetic_backward_impl::<D, FLUID>(sc, p.as_deref_mut(), gamma.as_deref_mut());
         if let Some(p) = p {
             suffix_sum_in_blocks(p, n);
         }
@@ -195,9 +222,23 @@ impl FullModel {
         p: Option<&mut [D]>,
         gamma: Option<&mut [D]>,
     ) {
+        if self.fluid.is_some() {
+            self.kinetic_backward_impl::<D, true>(sc, p, gamma)
+        } else {
+            self.kinetic_backward_impl::<D, false>(sc, p, gamma)
+        }
+    }
+
+    fn kinetic_backward_impl<D: DualNum<Primitive = f64> + Copy, const FLUID: bool>(
+        &self,
+        sc: &KineticScratch<D>,
+        p: Option<&mut [D]>,
+        gamma: Option<&mut [D]>,
+    ) {
         let n = self.n;
         let zero = D::from(0.0);
         let mut outboard = [zero; 3]; // S_j = Σ_{i>j} m_i ġ_i
+        let mut fluid_out = [zero; 2]; // S^f_j = Σ_{i>j} m_a,i u_i cos ψ_i n_i
         let mut p = p;
         let mut gamma = gamma;
         for j in (0..n).rev() {
@@ -240,6 +281,28 @@ impl FullModel {
             }
             for a in 0..3 {
                 outboard[a] += g[a] * m;
+            }
+            if let (true, Some(f)) = (FLUID, &self.fluid) {
+                // model::aero::fluid: the terms of T_f = ½ Σ m_a u² + ½ Σ J_a ψ̇².
+                let (ma, u, v) = (f.mass[j], sc.fluid_u[j], sc.node_v[j]);
+                let mu = u * ma;
+                if let Some(p) = p.as_deref_mut() {
+                    p[j] += (nv[0] * fluid_out[0] + nv[1] * fluid_out[1]) * l + mu * cp * h;
+                    if self.torsion {
+                        p[n + j] += mu * f.station[j] + pd * f.inertia[j];
+                    }
+                }
+                if let Some(gm) = gamma.as_deref_mut() {
+                    let e_s = e[0] * fluid_out[0] + e[1] * fluid_out[1];
+                    let e_v = e[0] * v[0] + e[1] * v[1];
+                    gm[j] -= e_s * td * l + mu * cp * e_v;
+                    if self.torsion {
+                        let n_v = nv[0] * v[0] + nv[1] * v[1];
+                        gm[n + j] -= mu * sp * (n_v + td * h);
+                    }
+                }
+                fluid_out[0] += mu * cp * nv[0];
+                fluid_out[1] += mu * cp * nv[1];
             }
         }
     }

@@ -17,6 +17,7 @@
 
 use nalgebra::DMatrix;
 
+use super::aero::FluidInertia;
 use super::{suffix_sum_in_blocks, FullModel, Kinematics};
 
 impl FullModel {
@@ -66,7 +67,52 @@ impl FullModel {
                 out[(n + k, n + k)] = self.mass[k] * self.d0[k] * self.d0[k] + self.inertia[k];
             }
         }
+        if let Some(f) = &self.fluid {
+            self.add_fluid_mass(kin, f, out);
+        }
         suffix_sum_blocks(out, n);
+    }
+
+    /// The fluid's `Σ_i m_a,i r_i r_iᵀ + J_a,i` in absolute angles (`model::aero::fluid`), in
+    /// O(n²): for `j ≤ k`, `Σ_{i>k} w_i cos(θ_i − θ_j) cos(θ_i − θ_k)` with `w_i = m_a,i cos²ψ_i`
+    /// expands into suffix sums of `w_i (cos²θ_i, cos θ_i sin θ_i, sin²θ_i)`.
+    fn add_fluid_mass(&self, kin: &Kinematics, f: &FluidInertia, out: &mut DMatrix<f64>) {
+        let n = self.n;
+        let (ct, st) = (&kin.cos_theta, &kin.sin_theta);
+        let (mut scc, mut scs, mut sss) = (0.0, 0.0, 0.0); // Σ_{i>k}
+        for k in (0..n).rev() {
+            let cp = kin.cos_psi[k];
+            let wk = f.mass[k] * cp * cp;
+            let lk = self.ell[k];
+            for j in 0..k {
+                let lj = self.ell[j];
+                let outboard = lj
+                    * lk
+                    * (ct[j] * ct[k] * scc
+                        + (ct[j] * st[k] + st[j] * ct[k]) * scs
+                        + st[j] * st[k] * sss);
+                let own = wk * lj * 0.5 * lk * (ct[k] * ct[j] + st[k] * st[j]);
+                out[(j, k)] += outboard + own;
+                out[(k, j)] += outboard + own;
+            }
+            out[(k, k)] +=
+                lk * lk * (ct[k] * ct[k] * scc + 2.0 * ct[k] * st[k] * scs + st[k] * st[k] * sss)
+                    + wk * 0.25 * lk * lk;
+            if self.torsion {
+                // (θ_j, ψ_k), j ≤ k: m_a,k ζ_k cos ψ_k a_kj cos(θ_k − θ_j).
+                let z = f.mass[k] * f.station[k] * cp;
+                for j in 0..=k {
+                    let a = if j < k { self.ell[j] } else { 0.5 * lk };
+                    let v = z * a * (ct[k] * ct[j] + st[k] * st[j]);
+                    out[(j, n + k)] += v;
+                    out[(n + k, j)] += v;
+                }
+                out[(n + k, n + k)] += f.mass[k] * f.station[k] * f.station[k] + f.inertia[k];
+            }
+            scc += wk * ct[k] * ct[k];
+            scs += wk * ct[k] * st[k];
+            sss += wk * st[k] * st[k];
+        }
     }
 }
 

@@ -4,6 +4,7 @@
 //! `q_{n+1} … q_{2n}` the torsion joint rotations (absent in a bending-only model). Absolute angles
 //! are `θ = T q_b`, `ψ = T q_t` with `T` the lower-triangular matrix of ones.
 
+pub mod aero;
 mod chain_solve;
 mod full;
 mod kinematics;

@@ -164,6 +164,9 @@ pub struct ReducedWorkspace {
     at: Vec<f64>,
     /// `G_i^c = ∂ġ_i/∂η̇_c` at `element + n · mode`.
     fields: Vec<[f64; 3]>,
+    /// Fluid terms per unit modal rate: node velocity `V_{i−1}` and normal velocity `u_i`
+    /// (`model::aero::fluid`), same layout; empty in vacuo.
+    fluid_fields: Vec<[f64; 3]>,
     /// Reduced mass matrix `M_r(η)`.
     mass: DMatrix<f64>,
     /// Its Cholesky factor (lower triangle), valid if `factored`.
@@ -223,6 +226,10 @@ impl ReducedModel {
                     v[1] + a_e * si + a_n * co,
                     -d * sp * pd,
                 ];
+                if let Some(f) = &full.fluid {
+                    let u = cp * (co * v[1] - si * v[0] + 0.5 * l * td) + f.station[i] * pd;
+                    ws.fluid_fields[c * n + i] = [v[0], v[1], u];
+                }
                 v[0] -= l * si * td;
                 v[1] += l * co * td;
             }
@@ -237,6 +244,15 @@ impl ReducedModel {
                 if full.torsion {
                     for i in 0..n {
                         m += full.inertia[i] * pa[a * nd + n + i] * pa[b * nd + n + i];
+                    }
+                }
+                if let Some(f) = &full.fluid {
+                    for i in 0..n {
+                        let (fa, fb) = (ws.fluid_fields[a * n + i], ws.fluid_fields[b * n + i]);
+                        m += f.mass[i] * fa[2] * fb[2];
+                        if full.torsion {
+                            m += f.inertia[i] * pa[a * nd + n + i] * pa[b * nd + n + i];
+                        }
                     }
                 }
                 ws.mass[(a, b)] = m;
@@ -269,6 +285,15 @@ impl ReducedModel {
             sc.theta_dot[i] = td;
             sc.psi_dot[i] = pd;
             sc.g_dot[i] = g;
+            if full.fluid.is_some() {
+                let mut w = [0.0; 3];
+                for (c, &e) in etadot.iter().enumerate() {
+                    let f = ws.fluid_fields[c * n + i];
+                    w = [w[0] + e * f[0], w[1] + e * f[1], w[2] + e * f[2]];
+                }
+                sc.node_v[i] = [w[0], w[1]];
+                sc.fluid_u[i] = w[2];
+            }
         }
     }
 }
@@ -289,6 +314,11 @@ impl StructuralModel for ReducedModel {
             column: vec![0.0; nd],
             at: vec![f64::NAN; r],
             fields: vec![[0.0; 3]; self.full.n * r],
+            fluid_fields: if self.full.fluid.is_some() {
+                vec![[0.0; 3]; self.full.n * r]
+            } else {
+                Vec::new()
+            },
             mass: DMatrix::zeros(r, r),
             factor: DMatrix::zeros(r, r),
             factored: false,

@@ -1,5 +1,6 @@
 //! Solvers: modal analysis, non-linear statics, and time integration.
 
+pub mod aeroelastic;
 mod dynamics;
 mod eigen;
 pub mod integrate;

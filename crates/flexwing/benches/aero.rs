@@ -1,0 +1,194 @@
+//! Benchmarks of the aeroelastic analyses on Patil's HALE wing (semi-span 16 m, chord 1 m, elastic
+//! axis and mass centre at mid-chord, m = 0.75 kg/m, I = 0.1 kg·m, GJ = 1e4, EI = 2e4, ρ = 0.0889,
+//! c_lα = 2π) with Peters' inflow (6 states per strip): the flutter speed of the full model against
+//! n, the reduced model (r = 6), a V-g sweep of 100 speeds, and a 1−cos gust response of 2 s.
+//! Prints Markdown tables for docs/performance.md.
+//!
+//! Run: `cargo bench -p flexwing --bench aero` (add `-- --quick` for a short run).
+
+use std::hint::black_box;
+use std::time::Duration;
+
+mod common;
+use common::{fmt_time, measure};
+
+use flexwing::beam::Profile;
+use flexwing::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCondition};
+use flexwing::solve::aeroelastic::{
+    flutter, response, FlightHistory, FlutterPlan, Gust, GustShape, ResponsePlan,
+};
+
+fn patil(n: usize) -> Aeroelastic {
+    flexwing::wings::patil_wing(n, Aerodynamics::Peters { states: 6 }).expect("valid wing")
+}
+
+/// The flutter-speed plan: `modes` branches through `speeds` equal steps to 40 m/s, flutter
+/// speed to 1e-6.
+fn flutter_plan(modes: usize, speeds: usize) -> FlutterPlan {
+    FlutterPlan::new(
+        (1..=speeds)
+            .map(|k| 40.0 * k as f64 / speeds as f64)
+            .collect(),
+        modes,
+    )
+}
+
+fn gust_plan(rtol: f64) -> ResponsePlan {
+    let flight = FlightHistory {
+        initial: FlightCondition::at_speed(25.0),
+        speed_change: None,
+        root_angle_change: None,
+        gust: Some(Gust {
+            shape: GustShape::OneMinusCosine { length: 10.0 },
+            amplitude: 1.0,
+            start: 0.05,
+            spanwise: Profile::Uniform(1.0),
+        }),
+    };
+    let mut plan = ResponsePlan::new(flight, 2.0, 0.02);
+    plan.rtol = rtol;
+    plan
+}
+
+fn slope(t: f64, prev: Option<(usize, f64)>, n: usize) -> String {
+    match prev {
+        Some((n0, t0)) => format!("{:.2}", (t / t0).ln() / (n as f64 / n0 as f64).ln()),
+        None => "–".into(),
+    }
+}
+
+/// Flutter speed, its time and its spread for `aero` with `plan`.
+fn time_flutter<M: AeroStructure>(
+    aero: &Aeroelastic<M>,
+    plan: &FlutterPlan,
+    budget: Duration,
+    batches: usize,
+) -> (f64, f64, f64, f64, usize) {
+    let out = flutter(aero, plan, "flutter", &mut |_| {}).expect("plan");
+    let f = out.flutter.expect("flutters");
+    let (t, spread) = measure(budget, batches, || {
+        black_box(flutter(aero, plan, "flutter", &mut |_| {}).expect("plan"));
+    });
+    (f.speed, f.frequency, t, spread, out.stats.newton_iterations)
+}
+
+fn main() {
+    let quick = std::env::args().any(|a| a == "--quick");
+    let (budget, batches) = if quick {
+        (Duration::from_millis(300), 3)
+    } else {
+        (Duration::from_millis(1500), 5)
+    };
+
+    println!("\nFlutter speed, full model, 6 branches through 10 speeds to 40 m/s\n");
+    println!("| n | dofs | lag states | flutter speed (m/s) | frequency (rad/s) | Newton iterations | time | spread | slope |");
+    println!("|---|---|---|---|---|---|---|---|---|");
+    let mut prev = None;
+    for n in [8, 16, 32, 64] {
+        let wing = patil(n);
+        let (u, w, t, spread, it) = time_flutter(&wing, &flutter_plan(6, 10), budget, batches);
+        println!(
+            "| {n} | {} | {} | {u:.4} | {w:.4} | {it} | {} | {:.0} % | {} |",
+            2 * n,
+            wing.n_aero_states(),
+            fmt_time(t),
+            spread * 100.0,
+            slope(t, prev, n)
+        );
+        prev = Some((n, t));
+    }
+
+    println!("\nFlutter speed at n = 32: plans, and the reduced model (first r wet modes)\n");
+    println!("| model | branches × speeds | flutter speed (m/s) | error | Newton iterations | time | spread | ratio to full |");
+    println!("|---|---|---|---|---|---|---|---|");
+    let wing = patil(32);
+    let (u_full, _, t_full, s_full, it_full) =
+        time_flutter(&wing, &flutter_plan(6, 10), budget, batches);
+    println!(
+        "| full | 6 × 10 | {u_full:.4} | – | {it_full} | {} | {:.0} % | 1 |",
+        fmt_time(t_full),
+        s_full * 100.0
+    );
+    let (u, _, t, s, it) = time_flutter(&wing, &flutter_plan(4, 8), budget, batches);
+    println!(
+        "| full | 4 × 8 | {u:.4} | {:.1e} | {it} | {} | {:.0} % | {:.3} |",
+        (u - u_full) / u_full,
+        fmt_time(t),
+        s * 100.0,
+        t / t_full
+    );
+    for r in [4, 6, 8] {
+        let rom = wing.reduced(&(0..r).collect::<Vec<_>>()).expect("rom");
+        let (u, _, t, s, it) = time_flutter(&rom, &flutter_plan(4, 10), budget, batches);
+        println!(
+            "| reduced r = {r} | 4 × 10 | {u:.4} | {:.1e} | {it} | {} | {:.0} % | {:.3} |",
+            (u - u_full) / u_full,
+            fmt_time(t),
+            s * 100.0,
+            t / t_full
+        );
+    }
+
+    println!("\nV-g sweep: 100 speeds from 0.4 to 40 m/s, 6 branches, n = 32\n");
+    println!("| model | Newton iterations | time | spread |");
+    println!("|---|---|---|---|");
+    let sweep = flutter_plan(6, 100);
+    let rom6 = wing.reduced(&(0..6).collect::<Vec<_>>()).expect("rom");
+    for (name, t) in [
+        ("full", {
+            let (_, _, t, s, it) = time_flutter(&wing, &sweep, budget, batches);
+            (t, s, it)
+        }),
+        ("reduced r = 6", {
+            let (_, _, t, s, it) = time_flutter(&rom6, &sweep, budget, batches);
+            (t, s, it)
+        }),
+    ] {
+        println!(
+            "| {name} | {} | {} | {:.0} % |",
+            t.2,
+            fmt_time(t.0),
+            t.1 * 100.0
+        );
+    }
+
+    println!(
+        "\n1−cos gust (1 m/s, 10 m, at 25 m/s), 2 s, Radau, n = 32: tip error against rtol 1e-9\n"
+    );
+    println!("| model | states | rtol | steps | Jacobians | LU | tip error (m) | time | spread |");
+    println!("|---|---|---|---|---|---|---|---|---|");
+    let reference = response(&wing, &gust_plan(1e-9), "response", &mut |_| {}).expect("plan");
+    for (name, rtol) in [
+        ("full", 1e-4),
+        ("full", 1e-3),
+        ("reduced r = 6", 1e-4),
+        ("reduced r = 6", 1e-3),
+    ] {
+        let run = || {
+            if name == "full" {
+                response(&wing, &gust_plan(rtol), "response", &mut |_| {}).expect("plan")
+            } else {
+                response(&rom6, &gust_plan(rtol), "response", &mut |_| {}).expect("plan")
+            }
+        };
+        let out = run();
+        let err = out
+            .samples
+            .iter()
+            .zip(&reference.samples)
+            .map(|(a, b)| (a.tip[1] - b.tip[1]).abs())
+            .fold(0.0, f64::max);
+        let states = out.states[0].len();
+        let (t, s) = measure(budget, batches, || {
+            black_box(run());
+        });
+        println!(
+            "| {name} | {states} | {rtol:.0e} | {} | {} | {} | {err:.1e} | {} | {:.0} % |",
+            out.stats.steps,
+            out.stats.jacobian_evaluations,
+            out.stats.factorizations,
+            fmt_time(t),
+            s * 100.0
+        );
+    }
+}

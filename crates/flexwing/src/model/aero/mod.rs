@@ -1,0 +1,497 @@
+//! Strip-theory aerodynamics on the lumped chain (docs/aeroelastic-model.md): section data, the
+//! aerodynamic models, the fluid's inertia, and [`Aeroelastic`], a structural model (full or
+//! reduced) with its strips.
+//!
+//! One strip per element, at the element's midpoint, in the deformed geometry. The conventions
+//! (leading edge on `+z`, twist nose-up, `d0 > 0` toward the leading edge, the free stream tilted
+//! by the root angle) are fixed in docs/aeroelastic-model.md §1 and checked by hand in
+//! `strip.rs`'s tests.
+
+mod chain;
+mod fluid;
+mod lag;
+mod strip;
+mod theodorsen;
+
+pub(crate) use chain::AeroScratch;
+pub(crate) use fluid::FluidInertia;
+pub(crate) use lag::Lag;
+pub(crate) use strip::{Air, StripData};
+pub use theodorsen::theodorsen;
+
+use nalgebra::DMatrix;
+
+use crate::beam::profile::Sign;
+use crate::beam::Profile;
+use crate::error::{Error, InputError};
+use crate::model::{FullModel, ReducedModel, StructuralModel};
+
+/// Aerodynamic section data along the span, each a number or a spanwise table (like the beam's
+/// section properties). Angles in radians.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AeroSection {
+    /// Chord `c` (m), positive.
+    pub chord: Profile,
+    /// Elastic-axis position as a fraction of the chord from the leading edge, in `[0, 1]`
+    /// (Theodorsen's `a = 2 x_ea − 1`).
+    pub elastic_axis: Profile,
+    /// Lift slope `c_lα` (1/rad), positive; `2π` for thin-airfoil theory.
+    pub lift_slope: Profile,
+    /// Zero-lift angle of attack `α0` (rad).
+    pub zero_lift_angle: Profile,
+    /// Pitching-moment coefficient about the aerodynamic centre `c_m0` (nose-up positive).
+    pub cm0: Profile,
+    /// Drag coefficient `c_d0`, non-negative (its force is chordwise, reacted by the clamp).
+    pub cd0: Profile,
+}
+
+impl AeroSection {
+    /// A thin symmetric airfoil: the given chord and elastic axis, `c_lα = 2π`, `α0 = 0`,
+    /// `c_m0 = 0`, `c_d0 = 0`.
+    pub fn new(chord: Profile, elastic_axis: Profile) -> Self {
+        Self {
+            chord,
+            elastic_axis,
+            lift_slope: Profile::Uniform(2.0 * std::f64::consts::PI),
+            zero_lift_angle: Profile::Uniform(0.0),
+            cm0: Profile::Uniform(0.0),
+            cd0: Profile::Uniform(0.0),
+        }
+    }
+}
+
+/// The aerodynamic model (docs/aeroelastic-model.md §4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Aerodynamics {
+    /// Steady strip theory: the angle of attack from the geometry only. For statics and
+    /// divergence; it gives no aerodynamic damping.
+    Steady,
+    /// Quasi-steady (`C(k) = 1`) with the section's velocity in the upwash and the apparent mass.
+    /// Not a flutter model for an elastic axis at or aft of mid-chord.
+    QuasiSteady,
+    /// Wagner's function by R. T. Jones' two-state approximation, with the apparent mass.
+    Wagner,
+    /// Peters' finite-state inflow with `states` states per strip (1 to 16; 4–8 are usual), with
+    /// the apparent mass.
+    Peters {
+        /// Number of inflow states per strip.
+        states: usize,
+    },
+}
+
+impl Aerodynamics {
+    /// Whether the model has the section's velocity and the apparent mass (all but `Steady`).
+    pub fn is_unsteady(&self) -> bool {
+        !matches!(self, Aerodynamics::Steady)
+    }
+    /// Lag states per strip.
+    pub fn states_per_strip(&self) -> usize {
+        match self {
+            Aerodynamics::Steady | Aerodynamics::QuasiSteady => 0,
+            Aerodynamics::Wagner => 2,
+            Aerodynamics::Peters { states } => *states,
+        }
+    }
+    fn lag(&self) -> Option<Lag> {
+        match self {
+            Aerodynamics::Steady | Aerodynamics::QuasiSteady => None,
+            Aerodynamics::Wagner => Some(Lag::jones()),
+            Aerodynamics::Peters { states } => Some(Lag::peters(*states)),
+        }
+    }
+}
+
+/// Largest number of Peters states accepted (the fit deteriorates beyond ~10 in double
+/// precision, `model/aero/lag.rs`).
+const MAX_PETERS_STATES: usize = 16;
+
+/// The flight condition: free-stream speed, root angle of attack and gravity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlightCondition {
+    /// Free-stream speed `U` (m/s), finite and non-negative.
+    pub speed: f64,
+    /// Root angle of attack `α_r` (rad): a rigid nose-up rotation of the clamp, `|α_r| < π/2`.
+    pub root_angle: f64,
+    /// Gravitational acceleration `g` (m/s²) along the ground's vertical, or `None`.
+    pub gravity: Option<f64>,
+}
+
+impl FlightCondition {
+    /// Flight at speed `speed`, zero root angle, no gravity.
+    pub fn at_speed(speed: f64) -> Self {
+        Self {
+            speed,
+            root_angle: 0.0,
+            gravity: None,
+        }
+    }
+
+    /// Check the condition; `field` prefixes the error fields (`{field}.speed`, …).
+    pub fn validate(&self, field: &str) -> Result<(), InputError> {
+        if !(self.speed.is_finite() && self.speed >= 0.0) {
+            return Err(InputError::new(
+                format!("{field}.speed"),
+                format!("must be a finite non-negative speed, got {}", self.speed),
+            ));
+        }
+        if !(self.root_angle.is_finite() && self.root_angle.abs() < 0.5 * std::f64::consts::PI) {
+            return Err(InputError::new(
+                format!("{field}.root_angle"),
+                format!(
+                    "must be finite and below π/2 in magnitude (rad), got {}",
+                    self.root_angle
+                ),
+            ));
+        }
+        if let Some(g) = self.gravity {
+            if !g.is_finite() {
+                return Err(InputError::new(
+                    format!("{field}.gravity"),
+                    format!("must be finite, got {g}"),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A structural model the aerodynamics can act on: the full model, or a reduced model whose
+/// coordinates map linearly to the full model's (`q = Φ η`).
+pub trait AeroStructure: StructuralModel + Clone {
+    /// The basis `Φ` (`n_dofs(full) × n_dofs`), or `None` for the full model (`Φ = I`).
+    fn basis(&self) -> Option<&DMatrix<f64>>;
+}
+
+impl AeroStructure for FullModel {
+    fn basis(&self) -> Option<&DMatrix<f64>> {
+        None
+    }
+}
+
+impl AeroStructure for ReducedModel {
+    fn basis(&self) -> Option<&DMatrix<f64>> {
+        Some(ReducedModel::basis(self))
+    }
+}
+
+/// A structural model with its aerodynamic strips: the structure carries the fluid's inertia
+/// (its mass matrix is the wet one), and every aeroelastic analysis takes this type.
+#[derive(Debug, Clone)]
+pub struct Aeroelastic<M: AeroStructure = FullModel> {
+    structure: M,
+    pub(crate) strips: Vec<StripData>,
+    density: f64,
+    aerodynamics: Aerodynamics,
+    pub(crate) lag: Option<Lag>,
+}
+
+impl Aeroelastic<FullModel> {
+    /// The full model `structure` (in vacuo; its fluid inertia, if any, is replaced) with the
+    /// section data `section`, air density `density` and aerodynamic model `aerodynamics`.
+    /// `field` prefixes the error fields (`{field}.chord`, `{field}.density`, …).
+    ///
+    /// # Errors
+    /// A section profile that is not finite, a chord or lift slope that is not positive, an
+    /// elastic axis outside `[0, 1]`, a negative drag coefficient, a density that is not positive,
+    /// a number of Peters states outside `1..=16`.
+    pub fn new(
+        structure: &FullModel,
+        section: &AeroSection,
+        density: f64,
+        aerodynamics: Aerodynamics,
+        field: &str,
+    ) -> Result<Self, InputError> {
+        let beam = structure.beam();
+        let length = beam.length();
+        let f = |name: &str| format!("{field}.{name}");
+        section
+            .chord
+            .validate(&f("chord"), length, Sign::Positive)?;
+        section
+            .elastic_axis
+            .validate(&f("elastic_axis"), length, Sign::Any)?;
+        let values: Vec<f64> = match &section.elastic_axis {
+            Profile::Uniform(v) => vec![*v],
+            Profile::Table { value, .. } => value.clone(),
+        };
+        if let Some(v) = values.iter().find(|v| !(0.0..=1.0).contains(*v)) {
+            return Err(InputError::new(
+                f("elastic_axis"),
+                format!(
+                    "must lie on the chord, a fraction in [0, 1] from the leading edge, got {v}"
+                ),
+            ));
+        }
+        section
+            .lift_slope
+            .validate(&f("lift_slope"), length, Sign::Positive)?;
+        section
+            .zero_lift_angle
+            .validate(&f("zero_lift_angle"), length, Sign::Any)?;
+        section.cm0.validate(&f("cm0"), length, Sign::Any)?;
+        section.cd0.validate(&f("cd0"), length, Sign::NonNegative)?;
+        if !(density.is_finite() && density > 0.0) {
+            return Err(InputError::new(
+                f("density"),
+                format!("must be a finite positive number (kg/m³), got {density}"),
+            ));
+        }
+        if let Aerodynamics::Peters { states } = aerodynamics {
+            if !(1..=MAX_PETERS_STATES).contains(&states) {
+                return Err(InputError::new(
+                    f("aerodynamics.states"),
+                    format!("Peters' inflow needs 1 to {MAX_PETERS_STATES} states, got {states}"),
+                ));
+            }
+        }
+        let nodes = beam.nodes();
+        let strips: Vec<StripData> = nodes
+            .windows(2)
+            .map(|w| {
+                let x = 0.5 * (w[0] + w[1]);
+                StripData {
+                    b: 0.5 * section.chord.at(x),
+                    a: 2.0 * section.elastic_axis.at(x) - 1.0,
+                    lift_slope: section.lift_slope.at(x),
+                    alpha0: section.zero_lift_angle.at(x),
+                    cm0: section.cm0.at(x),
+                    cd0: section.cd0.at(x),
+                    width: w[1] - w[0],
+                    station: x,
+                }
+            })
+            .collect();
+        let pi = std::f64::consts::PI;
+        let fluid = FluidInertia {
+            mass: strips
+                .iter()
+                .map(|s| pi * density * s.b * s.b * s.width)
+                .collect(),
+            station: strips.iter().map(|s| s.a * s.b).collect(),
+            inertia: strips
+                .iter()
+                .map(|s| pi * density * s.b.powi(4) * s.width / 8.0)
+                .collect(),
+        };
+        let mut dry = structure.clone();
+        dry.fluid = None;
+        Ok(Self {
+            structure: dry.with_fluid(fluid),
+            strips,
+            density,
+            aerodynamics,
+            lag: aerodynamics.lag(),
+        })
+    }
+
+    /// The reduced aeroelastic model on the wet natural modes `indices` (0-based) of the full
+    /// model about the undeformed state at rest (`U = 0`: structure plus fluid inertia). The
+    /// strips and the aerodynamic model are the same; aerodynamic loads are projected on the modes.
+    ///
+    /// # Errors
+    /// The errors of [`crate::solve::Modes::undeformed`] and [`ReducedModel::new`].
+    pub fn reduced(&self, indices: &[usize]) -> Result<Aeroelastic<ReducedModel>, Error> {
+        let modes = crate::solve::Modes::undeformed(&self.structure)?;
+        let rom = ReducedModel::new(&self.structure, modes.shapes(), indices)?;
+        Ok(Aeroelastic {
+            structure: rom,
+            strips: self.strips.clone(),
+            density: self.density,
+            aerodynamics: self.aerodynamics,
+            lag: self.lag.clone(),
+        })
+    }
+}
+
+impl<M: AeroStructure> Aeroelastic<M> {
+    /// The structural model (with the fluid's inertia).
+    pub fn structure(&self) -> &M {
+        &self.structure
+    }
+    /// The full model underneath (itself for a full aeroelastic model).
+    pub fn full(&self) -> &FullModel {
+        self.structure.full_model()
+    }
+    /// Air density `ρ` (kg/m³).
+    pub fn density(&self) -> f64 {
+        self.density
+    }
+    /// The aerodynamic model.
+    pub fn aerodynamics(&self) -> Aerodynamics {
+        self.aerodynamics
+    }
+    /// The same structure and strips with another aerodynamic model.
+    ///
+    /// # Errors
+    /// A number of Peters states outside `1..=16` (field `{field}.states`).
+    pub fn with_aerodynamics(
+        &self,
+        aerodynamics: Aerodynamics,
+        field: &str,
+    ) -> Result<Self, InputError> {
+        if let Aerodynamics::Peters { states } = aerodynamics {
+            if !(1..=MAX_PETERS_STATES).contains(&states) {
+                return Err(InputError::new(
+                    format!("{field}.states"),
+                    format!("Peters' inflow needs 1 to {MAX_PETERS_STATES} states, got {states}"),
+                ));
+            }
+        }
+        Ok(Self {
+            structure: self.structure.clone(),
+            strips: self.strips.clone(),
+            density: self.density,
+            aerodynamics,
+            lag: aerodynamics.lag(),
+        })
+    }
+    /// Number of strips (one per element).
+    pub fn n_strips(&self) -> usize {
+        self.strips.len()
+    }
+    /// Number of aerodynamic states (strips × lag states per strip).
+    pub fn n_aero_states(&self) -> usize {
+        self.strips.len() * self.aerodynamics.states_per_strip()
+    }
+    /// Span stations of the strips' midpoints (m).
+    pub fn strip_stations(&self) -> Vec<f64> {
+        self.strips.iter().map(|s| s.station).collect()
+    }
+
+    /// The air at every strip for free-stream speed `speed`, root angle `root_angle` and gust
+    /// velocities `gust[i]` (m/s, up, ground frame), into `out` (docs/aeroelastic-model.md §1).
+    pub(crate) fn air_into(&self, speed: f64, root_angle: f64, gust: &[f64], out: &mut [Air]) {
+        let (sa, ca) = root_angle.sin_cos();
+        for ((o, &g), _) in out.iter_mut().zip(gust).zip(&self.strips) {
+            let wind = [0.0, speed * sa + g * ca, -speed * ca + g * sa];
+            let v2 = wind[1] * wind[1] + wind[2] * wind[2];
+            *o = Air {
+                wind,
+                speed: v2.sqrt(),
+                pressure: 0.5 * self.density * v2,
+            };
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::beam::{
+        Beam, Calibration, Discretization, InertiaAxis, SectionProperties, TorsionProperties,
+    };
+
+    fn wing() -> FullModel {
+        let section = SectionProperties {
+            ei: Profile::Uniform(2e4),
+            mass_per_length: Profile::Uniform(0.75),
+            torsion: Some(TorsionProperties {
+                gj: Profile::Uniform(1e4),
+                polar_inertia: Profile::Uniform(0.1),
+                inertia_axis: InertiaAxis::ElasticAxis,
+                offset: Profile::Uniform(0.0),
+            }),
+        };
+        FullModel::new(
+            Beam::new(
+                16.0,
+                &section,
+                &Discretization::Uniform(4),
+                Calibration::TipLoad,
+            )
+            .unwrap(),
+        )
+    }
+
+    /// Bad section data and flight conditions name the caller's field.
+    #[test]
+    fn bad_input_names_the_field() {
+        let full = wing();
+        let ok = AeroSection::new(Profile::Uniform(1.0), Profile::Uniform(0.5));
+        let cases: Vec<(AeroSection, f64, Aerodynamics, &str)> = vec![
+            (
+                AeroSection {
+                    chord: Profile::Uniform(-1.0),
+                    ..ok.clone()
+                },
+                1.0,
+                Aerodynamics::Steady,
+                "wing.aero.chord",
+            ),
+            (
+                AeroSection {
+                    elastic_axis: Profile::Uniform(1.2),
+                    ..ok.clone()
+                },
+                1.0,
+                Aerodynamics::Steady,
+                "wing.aero.elastic_axis",
+            ),
+            (
+                AeroSection {
+                    lift_slope: Profile::Uniform(0.0),
+                    ..ok.clone()
+                },
+                1.0,
+                Aerodynamics::Steady,
+                "wing.aero.lift_slope",
+            ),
+            (
+                AeroSection {
+                    cd0: Profile::Uniform(-0.1),
+                    ..ok.clone()
+                },
+                1.0,
+                Aerodynamics::Steady,
+                "wing.aero.cd0",
+            ),
+            (
+                AeroSection {
+                    cm0: Profile::Uniform(f64::NAN),
+                    ..ok.clone()
+                },
+                1.0,
+                Aerodynamics::Steady,
+                "wing.aero.cm0",
+            ),
+            (ok.clone(), 0.0, Aerodynamics::Steady, "wing.aero.density"),
+            (
+                ok.clone(),
+                1.0,
+                Aerodynamics::Peters { states: 0 },
+                "wing.aero.aerodynamics.states",
+            ),
+        ];
+        for (section, rho, aero, field) in cases {
+            let e = Aeroelastic::new(&full, &section, rho, aero, "wing.aero").unwrap_err();
+            assert_eq!(e.field, field, "{e}");
+        }
+        let bad = FlightCondition {
+            speed: -1.0,
+            root_angle: 0.0,
+            gravity: None,
+        };
+        assert_eq!(bad.validate("flight").unwrap_err().field, "flight.speed");
+        let bad = FlightCondition {
+            speed: 1.0,
+            root_angle: 2.0,
+            gravity: None,
+        };
+        assert_eq!(
+            bad.validate("flight").unwrap_err().field,
+            "flight.root_angle"
+        );
+        let bad = FlightCondition {
+            speed: 1.0,
+            root_angle: 0.0,
+            gravity: Some(f64::INFINITY),
+        };
+        assert_eq!(bad.validate("flight").unwrap_err().field, "flight.gravity");
+        // A valid model: strips at the element midpoints, the wet structure.
+        let aero =
+            Aeroelastic::new(&full, &ok, 0.0889, Aerodynamics::Peters { states: 6 }, "a").unwrap();
+        assert_eq!(aero.strip_stations(), vec![2.0, 6.0, 10.0, 14.0]);
+        assert_eq!(aero.n_aero_states(), 24);
+        assert!(aero.structure().has_fluid_inertia() && !full.has_fluid_inertia());
+    }
+}

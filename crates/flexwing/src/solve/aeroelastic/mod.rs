@@ -1,0 +1,27 @@
+//! Aeroelastic analyses (docs/aeroelastic-model.md §5): the equations of motion with strip
+//! aerodynamics, static aeroelastic equilibrium and divergence, stability and flutter, the
+//! frequency-domain (p-k) check, and time responses to gusts and manoeuvres.
+
+mod clu;
+mod equations;
+mod evaluator;
+mod flight;
+mod linear;
+
+pub use equations::AeroelasticEquations;
+pub use flight::{FlightHistory, Gust, GustShape};
+mod statics;
+
+pub use statics::{
+    static_sweep, AeroEquilibrium, Divergence, StaticAeroOutcome, StaticAeroPlan, SteadyAeroModel,
+    SteadyAeroWorkspace,
+};
+mod flutter;
+
+pub use flutter::{
+    flutter, stability_eigenvalues, Branch, Crossing, CrossingKind, FlutterMethod, FlutterOutcome,
+    FlutterPlan, FlutterStats, FlutterStop, MAC_MIN,
+};
+mod response;
+
+pub use response::{response, ResponseOutcome, ResponsePlan, ResponseSample};

@@ -1,0 +1,235 @@
+//! Time response of the aeroelastic system to gusts and to changes of speed or root angle
+//! (docs/aeroelastic-model.md §5), with the existing Radau IIA integrator and the exact Jacobian
+//! of `equations.rs`. The run starts from the static aeroelastic equilibrium of the initial
+//! flight condition, at rest, with the lag states in steady state.
+
+use super::equations::AeroelasticEquations;
+use super::flight::FlightHistory;
+use super::statics::SteadyAeroModel;
+use crate::error::{InputError, SolveError};
+use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic};
+use crate::model::{Load, StructuralModel};
+use crate::solve::integrate::{IntegratorStats, OdeSystem, Radau, RadauOptions, Tolerances};
+use crate::solve::{continue_static, Damping, StaticOptions, TimeFunction};
+
+/// A time response, validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ResponsePlan {
+    /// The flight condition over time (initial condition, changes, gust).
+    pub flight: FlightHistory,
+    /// Other loads, each scaled by its time function.
+    pub loads: Vec<Load>,
+    /// Time functions of the other loads (one per load).
+    pub time_functions: Vec<TimeFunction>,
+    /// Structural damping.
+    pub damping: Damping,
+    /// Duration (s), from `t = 0`.
+    pub duration: f64,
+    /// Output interval (s).
+    pub output_step: f64,
+    /// Relative tolerance of the integrator; the absolute tolerance is `rtol` rad on the
+    /// coordinates, scaled for the momenta and lag states (`AeroelasticEquations::state_atol`).
+    pub rtol: f64,
+    /// Largest step (s); infinite for none.
+    pub max_step: f64,
+    /// Options of the static solver for the initial equilibrium.
+    pub static_options: StaticOptions,
+}
+
+impl ResponsePlan {
+    /// A response of `duration` s in the flight `flight`, output every `output_step` s, rtol 1e-6,
+    /// no other loads, no damping.
+    pub fn new(flight: FlightHistory, duration: f64, output_step: f64) -> Self {
+        Self {
+            flight,
+            loads: vec![],
+            time_functions: vec![],
+            damping: Damping::None,
+            duration,
+            output_step,
+            rtol: 1e-6,
+            max_step: f64::INFINITY,
+            static_options: StaticOptions::default(),
+        }
+    }
+
+    /// Check the plan for a wing of span `length`; `field` prefixes the fields.
+    pub fn validate(&self, field: &str, length: f64) -> Result<(), InputError> {
+        let pos = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(InputError::new(
+                    format!("{field}.{name}"),
+                    format!("must be a finite positive number, got {v}"),
+                ))
+            }
+        };
+        pos("duration", self.duration)?;
+        pos("output_step", self.output_step)?;
+        pos("rtol", self.rtol)?;
+        if !(self.max_step > 0.0) {
+            return Err(InputError::new(
+                format!("{field}.max_step"),
+                format!("must be positive, got {}", self.max_step),
+            ));
+        }
+        if self.time_functions.len() != self.loads.len() {
+            return Err(InputError::new(
+                format!("{field}.loads"),
+                format!(
+                    "{} loads but {} time functions",
+                    self.loads.len(),
+                    self.time_functions.len()
+                ),
+            ));
+        }
+        for (i, f) in self.time_functions.iter().enumerate() {
+            f.validate(&format!("{field}.time_functions[{i}]"), 0.0, self.duration)?;
+        }
+        self.flight
+            .validate(&format!("{field}.flight"), length, 0.0, self.duration)?;
+        self.static_options.validate()
+    }
+}
+
+/// The outputs of the response at one time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ResponseSample {
+    /// Time (s).
+    pub t: f64,
+    /// Tip displacement of the elastic axis from the undeformed tip `(dx, dy)` (m).
+    pub tip: [f64; 2],
+    /// Tip twist (rad, nose-up).
+    pub tip_twist: f64,
+    /// Root bending moment, the clamp spring's moment `K_θ,1 q_1` (N·m).
+    pub root_bending_moment: f64,
+    /// Total aerodynamic force along the ground's vertical (N).
+    pub lift: f64,
+}
+
+/// What a time response produced.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ResponseOutcome {
+    /// Outputs at the output times reached.
+    pub samples: Vec<ResponseSample>,
+    /// States `(x, p, a)` at the output times reached.
+    pub states: Vec<Vec<f64>>,
+    /// Integrator counters.
+    pub stats: IntegratorStats,
+    /// Why the run stopped early, if it did (the output above is kept).
+    pub stopped: Option<SolveError>,
+}
+
+/// The time response of `aero` to `plan`. `progress` is called with the time reached.
+///
+/// # Errors
+/// An invalid plan or loads, or no initial equilibrium (as an input error naming
+/// `{field}.flight`: the initial condition is past divergence or the loads too large).
+pub fn response<M: AeroStructure>(
+    aero: &Aeroelastic<M>,
+    plan: &ResponsePlan,
+    field: &str,
+    progress: &mut dyn FnMut(f64),
+) -> Result<ResponseOutcome, InputError> {
+    plan.validate(field, aero.full().beam().length())?;
+    let init = plan.flight.initial;
+    // Initial equilibrium: the steady model with the loads at t = 0 and gravity.
+    let steady = aero.with_aerodynamics(Aerodynamics::Steady, field)?;
+    let mut loads0 = plan.loads.clone();
+    let mut scales0: Vec<f64> = plan.time_functions.iter().map(|f| f.at(0.0)).collect();
+    if let Some(g) = init.gravity {
+        loads0.push(Load::Gravity { g });
+        scales0.push(init.root_angle.cos());
+    }
+    let applied0 = aero.full().apply(&loads0, &format!("{field}.loads"))?;
+    let model = SteadyAeroModel::new(&steady, init.root_angle);
+    let n = model.n_dofs();
+    scales0.push(0.5 * aero.density() * init.speed * init.speed);
+    let zero_scales = vec![0.0; scales0.len()];
+    let x0 = continue_static(
+        &model,
+        &applied0,
+        (&vec![0.0; n], &zero_scales),
+        &scales0,
+        &plan.static_options,
+    )
+    .map_err(|e| {
+        InputError::new(
+            format!("{field}.flight"),
+            format!("no static equilibrium in the initial flight condition: {e}"),
+        )
+    })?
+    .x;
+    let applied = aero.full().apply(&plan.loads, &format!("{field}.loads"))?;
+    let mut eqs = AeroelasticEquations::new(
+        aero,
+        &applied,
+        plan.time_functions.clone(),
+        plan.flight.clone(),
+        &plan.damping,
+        &format!("{field}.flight"),
+    )?;
+    let a0 = eqs.steady_states(0.0, &x0);
+    let y0 = eqs.state(&x0, &vec![0.0; n], &a0);
+    let steps = (plan.duration / plan.output_step).round().max(1.0) as usize;
+    let t_out: Vec<f64> = (0..=steps)
+        .map(|k| (k as f64 * plan.output_step).min(plan.duration))
+        .collect();
+    let atol = eqs.state_atol(plan.rtol);
+    let radau = Radau {
+        options: RadauOptions {
+            tolerances: Tolerances {
+                rtol: plan.rtol,
+                atol,
+            },
+            max_step: plan.max_step,
+            ..Default::default()
+        },
+    };
+    let (trajectory, stats, stopped) = match radau.integrate(&mut eqs, 0.0, &y0, &t_out, progress) {
+        Ok((t, s)) => (t, s, None),
+        Err(f) => (f.trajectory, f.stats, Some(f.error)),
+    };
+    let samples = trajectory
+        .t
+        .iter()
+        .zip(&trajectory.y)
+        .map(|(&t, y)| sample(aero, &mut eqs, t, y))
+        .collect();
+    Ok(ResponseOutcome {
+        samples,
+        states: trajectory.y,
+        stats,
+        stopped,
+    })
+}
+
+/// The outputs of state `y` at time `t`.
+fn sample<M: AeroStructure>(
+    aero: &Aeroelastic<M>,
+    eqs: &mut AeroelasticEquations<'_, M>,
+    t: f64,
+    y: &[f64],
+) -> ResponseSample {
+    let full = aero.full();
+    let n = aero.structure().n_dofs();
+    let q = aero.structure().full_coordinates(&y[..n]);
+    let kin = full.kinematics(&q);
+    let nodes = full.node_positions(&kin);
+    let nel = full.n_elements();
+    let mut dy = vec![0.0; eqs.dim()];
+    eqs.rhs(t, y, &mut dy);
+    let lift = eqs.vertical_aerodynamic_force(t);
+    ResponseSample {
+        t,
+        tip: [nodes[nel][0] - full.beam().length(), nodes[nel][1]],
+        tip_twist: if full.has_torsion() {
+            kin.psi[nel - 1]
+        } else {
+            0.0
+        },
+        root_bending_moment: full.stiffness()[0] * q[0],
+        lift,
+    }
+}
