@@ -125,7 +125,7 @@ fn free_vibration_from_the_static_deflection_against_dormand_prince() {
         );
         errors.push((err, energy.last().unwrap() / h0));
     }
-    // Measured 9.97e-3 m (h = 5e-4) and 3.75e-3 m (h = 1.25e-4). The error is not the O(h²) of
+    // Measured 9.9e-3 m (h = 5e-4) and 3.75e-3 m (h = 1.25e-4). The error is not the O(h²) of
     // the first mode's phase alone: the released state carries 9e-3, 2e-3, 4e-4, 2e-4 m of tip
     // motion in modes 2–5 (348–3200 rad/s, benches/free_vibration.rs), which ρ∞ = 0.5 damps
     // once ωh ≳ 1, so the error falls as more of them are resolved. Bounds: twice the measured.

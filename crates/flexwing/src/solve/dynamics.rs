@@ -318,7 +318,11 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
                 unit[k] = 1.0;
                 let q = self.model.full_coordinates(&unit);
                 unit[k] = 0.0;
-                let norm = q.iter().zip(&q0).map(|(a, b)| (a - b) * (a - b)).sum::<f64>();
+                let norm = q
+                    .iter()
+                    .zip(&q0)
+                    .map(|(a, b)| (a - b) * (a - b))
+                    .sum::<f64>();
                 atol * (joints as f64 / r as f64).sqrt() / norm.sqrt()
             })
             .collect();
@@ -660,7 +664,11 @@ mod tests {
                 // conditioning of M(0) (κ ≈ 1e7 at n = 6 with torsion).
                 assert_eq!(a[i], atol);
                 let p = atol * (k[(i, i)] / m0_inverse[(i, i)]).sqrt();
-                assert!((a[nq + i] - p).abs() <= 1e-8 * p, "{i}: {} vs {p}", a[nq + i]);
+                assert!(
+                    (a[nq + i] - p).abs() <= 1e-8 * p,
+                    "{i}: {} vs {p}",
+                    a[nq + i]
+                );
             }
             let modes = Modes::undeformed(&full).unwrap();
             for r in [1, 3] {
@@ -678,7 +686,10 @@ mod tests {
                         / nq as f64)
                         .sqrt();
                     let expected = 1.0 / (r as f64).sqrt();
-                    assert!((full_norm - expected).abs() < 1e-12, "{full_norm} vs {expected}");
+                    assert!(
+                        (full_norm - expected).abs() < 1e-12,
+                        "{full_norm} vs {expected}"
+                    );
                     // Mass-normalized modes: K_r = diag(ω²), M_r(0) = I, so the momentum
                     // tolerance is ω_c a_c (to the accuracy of the eigen-decomposition).
                     let p = modes.omega()[c] * a[c];

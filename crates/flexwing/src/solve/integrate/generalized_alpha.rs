@@ -78,7 +78,8 @@ pub struct GeneralizedAlphaOptions {
     /// recomputes it at every step.
     pub jacobian_reuse: f64,
     /// Newton stops when its estimated remaining error is below this fraction of the error
-    /// scale `atol + rtol |y|`. Default 1e-2.
+    /// scale `atol + rtol |y|`. Default 0.03 (`RADAU5`'s `FNEWT` at moderate tolerances). With a
+    /// fixed step the tolerances serve only this scale.
     pub newton_tolerance: f64,
     /// When the proposed new step over the current one lies in `[lower, upper]`, the step and
     /// the factorization are kept (as [`super::RadauOptions::unchanged_step_ratio`]). Default
@@ -97,7 +98,7 @@ impl Default for GeneralizedAlphaOptions {
             first_step: None,
             max_newton_iterations: 7,
             jacobian_reuse: 0.1,
-            newton_tolerance: 1e-2,
+            newton_tolerance: 0.03,
             unchanged_step_ratio: (0.9, 2.0),
         }
     }
