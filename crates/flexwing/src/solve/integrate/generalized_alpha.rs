@@ -2,8 +2,8 @@
 //! second order, A-stable, with the spectral radius `ρ∞` of its amplification at `h|λ| → ∞` set
 //! by the user, so that the unresolved high modes of a structure are damped while the modes the
 //! step resolves are barely touched. `ρ∞ = 1` is the implicit midpoint rule (no damping,
-//! symplectic); `ρ∞ = 0` annihilates the highest modes in one step. Adaptive step from a local
-//! error estimate, or a fixed step.
+//! symplectic); `ρ∞ = 0` removes the modes far beyond the step's resolution within a step or two.
+//! Adaptive step from a local error estimate, or a fixed step.
 //!
 //! One step from `(y_n, ẏ_n)` (the method carries a rate `ẏ` besides `y`):
 //!
@@ -16,7 +16,7 @@
 //!
 //! Newton's method solves for `Δ = y_{n+1} − y_n` with the matrix `c I − J`, `c = α_m / (α_f γ h)`
 //! (the shifted Jacobian of the other implicit integrators, factored in one place,
-//! [`NewtonMatrix`]). The choice of this form over a second-order (Chung–Hulbert) one, the local
+//! `NewtonMatrix`). The choice of this form over a second-order (Chung–Hulbert) one, the local
 //! error estimate, the treatment of variable steps and the dense output are derived in
 //! `docs/model-choices.md` ("Generalized-α"); in short:
 //!
@@ -40,8 +40,12 @@
 //! C. Kadapa, W. G. Dettmer, D. Perić, "On the advantages of using the first-order generalised-
 //! alpha scheme for structural dynamic problems", Comput. Struct. 193 (2017) 226–238 (the
 //! first-order form applied to structures).
+//! E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*, §III.5–III.7
+//! (variable-step multistep methods and their error estimates from differences).
 //! E. Hairer, G. Wanner, *Solving Ordinary Differential Equations II*, §IV.8 (the filtered error
-//! estimate and the Newton control of `RADAU5`, followed here).
+//! estimate and the Newton control of `RADAU5`, followed here); L. F. Shampine, "Implementation
+//! of implicit formulas for the solution of ODEs", SIAM J. Sci. Stat. Comput. 1 (1980) 103–118
+//! (the filter).
 
 use nalgebra::DMatrix;
 
