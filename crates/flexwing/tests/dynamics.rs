@@ -651,7 +651,7 @@ fn radau_free_vibration_energy_drift_is_small_but_not_zero() {
         );
         drifts.push(drift);
     }
-    // Measured max |ΔH|/H: 1.2e-4 (rtol 1e-4, the energy grows by 1e-4 over 3 s), 6e-6
+    // Measured max |ΔH|/H: 1.5e-4 (rtol 1e-4, the energy grows by 1e-4 over 3 s), 6e-6
     // (rtol 1e-5); the drift falls with the tolerance. Margins of about 10.
     assert!(drifts[0] < 1e-3, "rtol 1e-4: {:.2e}", drifts[0]);
     assert!(drifts[1] < 1e-4, "rtol 1e-5: {:.2e}", drifts[1]);
@@ -684,7 +684,7 @@ fn radau_on_reduced_models_matches_dormand_prince() {
             EquationsOfMotion::new(&rom, &loads, tf.clone(), Gyroscopic::Exact, &Damping::None)
                 .unwrap();
         let a = dopri(&mut eom, &vec![0.0; 2 * r], &t, 1e-10);
-        let (b, stats) = radau(&mut eom, &vec![0.0; 2 * r], &t, 1e-6);
+        let (b, stats) = radau(&mut eom, &vec![0.0; 2 * r], &t, 1e-8);
         let worst =
             a.y.iter()
                 .zip(&b.y)
@@ -697,10 +697,12 @@ fn radau_on_reduced_models_matches_dormand_prince() {
                 })
                 .fold(0.0, f64::max);
         eprintln!(
-            "reduced r = {r}: Radau rtol 1e-6 against DOPRI5 1e-10: {worst:.2e} m, {stats:?}"
+            "reduced r = {r}: Radau rtol 1e-8 against DOPRI5 1e-10: {worst:.2e} m, {stats:?}"
         );
-        // The benchmark measures 1e-8 to 2e-8 m at rtol 1e-6; 1e-6 m leaves room.
-        assert!(worst < 1e-6, "r = {r}: {worst:.2e}");
+        // Measured 2.3e-8 (r = 2) and 5.1e-8 m (r = 4) at rtol 1e-8, 1.0e-6 m at rtol 1e-6 (where
+        // the full model gives 2.5e-6 m: the error weights of state_atol mean the same for
+        // both); 3e-7 m leaves room.
+        assert!(worst < 3e-7, "r = {r}: {worst:.2e}");
     }
 }
 

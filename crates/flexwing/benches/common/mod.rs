@@ -41,3 +41,30 @@ pub fn fmt_time(s: f64) -> String {
         format!("{s:.2} s")
     }
 }
+
+/// CPU time of this thread (s): from `/proc/thread-self/schedstat` on Linux (on-CPU nanoseconds,
+/// which a loaded machine does not inflate with waiting), else the wall clock since the first
+/// call. The kernel may update it only at scheduler ticks (4 ms here): [`cpu_per_call`] runs long
+/// enough for that not to matter.
+pub fn cpu_time() -> f64 {
+    static START: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or_else(
+            || START.get_or_init(Instant::now).elapsed().as_secs_f64(),
+            |ns| ns * 1e-9,
+        )
+}
+
+/// CPU time per call of `f`, repeating it until `total` of CPU time has been spent (at least
+/// once): with a 4 ms tick, 0.2 s gives the figure to 2 %.
+pub fn cpu_per_call(total: Duration, mut f: impl FnMut()) -> f64 {
+    let start = cpu_time();
+    let mut calls = 0u32;
+    while calls == 0 || cpu_time() - start < total.as_secs_f64() {
+        f();
+        calls += 1;
+    }
+    (cpu_time() - start) / f64::from(calls)
+}

@@ -195,7 +195,6 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     c: Option<DMatrix<f64>>,
     ws: M::Workspace,
     n: usize,
-    mass: DMatrix<f64>,
     scales: Vec<f64>,
     xdot: Vec<f64>,
     gamma: Vec<f64>,
@@ -261,7 +260,6 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             c,
             ws,
             n,
-            mass: DMatrix::zeros(n, n),
             x_shift: vec![0.0; n],
             identity: DMatrix::identity(n, n),
             minv: DMatrix::zeros(n, n),
@@ -295,15 +293,53 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         y
     }
 
-    /// Absolute tolerances for the state `(x, p)` from one tolerance `atol` on the coordinates
-    /// (rad): `atol` for `x`, and `atol · M_ii(0) / (1 s)` for the momenta, so that both halves
-    /// of the state are measured in consistent units.
+    /// Absolute tolerances for the state `(x, p)` from one tolerance `atol` on the joint
+    /// rotations (rad), with the same meaning for every model (docs/model-choices.md, "Error
+    /// weights in physical units"):
+    ///
+    /// * coordinate `k`: `atol √(N/r) / ‖∂q/∂x_k‖₂`, with `N` joint rotations `q`, `r`
+    ///   coordinates `x`. An error in `x_k` then weighs in the integrators' RMS error norm as
+    ///   much as the joint rotations it moves would weigh in the full model's: `atol` itself for
+    ///   the full model (`q = x`); for a reduced model, the tolerance of a modal amplitude is
+    ///   `atol` over the joint rotations of a unit of its mode.
+    /// * momentum `k`: the coordinate's tolerance times `√(K_kk / (M(0)⁻¹)_kk)`, so that an error
+    ///   of its size in `p_k` alone carries the kinetic energy `½ (M⁻¹)_kk δp_k²` that an error of
+    ///   the coordinate's tolerance in `x_k` alone carries as strain energy `½ K_kk δx_k²` (for
+    ///   a reduced model on mass-normalized modes, the modal frequency times the amplitude's
+    ///   tolerance; for a coordinate without stiffness, `1 / (M(0)⁻¹)_kk` per second).
     pub fn state_atol(&mut self, atol: f64) -> Vec<f64> {
-        let x0 = vec![0.0; self.n];
-        self.model
-            .mass_matrix_into(&x0, &mut self.ws, &mut self.mass);
-        let mut v = vec![atol; self.n];
-        v.extend((0..self.n).map(|i| atol * self.mass[(i, i)]));
+        let r = self.n;
+        let x0 = vec![0.0; r];
+        let q0 = self.model.full_coordinates(&x0);
+        let joints = q0.len();
+        let mut unit = x0.clone();
+        let mut v: Vec<f64> = (0..r)
+            .map(|k| {
+                unit[k] = 1.0;
+                let q = self.model.full_coordinates(&unit);
+                unit[k] = 0.0;
+                let norm = q
+                    .iter()
+                    .zip(&q0)
+                    .map(|(a, b)| (a - b) * (a - b))
+                    .sum::<f64>();
+                atol * (joints as f64 / r as f64).sqrt() / norm.sqrt()
+            })
+            .collect();
+        // M(0)⁻¹ by the model's own velocity solve, column by column.
+        let positive =
+            self.model
+                .velocities_block_into(&x0, &self.identity, &mut self.ws, &mut self.minv);
+        for k in 0..r {
+            let (stiffness, inverse_mass) = (self.k[(k, k)], self.minv[(k, k)]);
+            let momentum_per_coordinate = match (positive, stiffness > 0.0) {
+                (true, true) => (stiffness / inverse_mass).sqrt(),
+                (true, false) => 1.0 / inverse_mass,
+                // A mass matrix that is not positive definite fails every run anyway.
+                (false, _) => 1.0,
+            };
+            v.push(v[k] * momentum_per_coordinate);
+        }
         v
     }
 
@@ -602,6 +638,63 @@ mod tests {
                     "{gyroscopic:?} ({r}, {c}): {fd} vs {}",
                     jac[(r, c)]
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn state_atol_means_a_joint_rotation_for_every_model() {
+        let atol = 1e-6;
+        for torsion in [false, true] {
+            let full = model(torsion);
+            let none = full.apply(&[], "loads").unwrap();
+            let nq = full.n_dofs();
+            let mut eom =
+                EquationsOfMotion::new(&full, &none, vec![], Gyroscopic::Exact, &Damping::None)
+                    .unwrap();
+            let a = eom.state_atol(atol);
+            let k = full.stiffness_matrix();
+            let mut m0 = DMatrix::zeros(nq, nq);
+            full.mass_matrix_into(&vec![0.0; nq], &mut full.workspace(), &mut m0);
+            let m0_inverse = m0.try_inverse().unwrap();
+            for i in 0..nq {
+                // Full model: atol on each joint rotation; on each momentum the error that
+                // carries the energy ½ K_ii atol², √(K_ii / (M⁻¹)_ii) atol, with M⁻¹ here from
+                // the dense closed-form mass matrix (the library uses its chain solve): to the
+                // conditioning of M(0) (κ ≈ 1e7 at n = 6 with torsion).
+                assert_eq!(a[i], atol);
+                let p = atol * (k[(i, i)] / m0_inverse[(i, i)]).sqrt();
+                assert!(
+                    (a[nq + i] - p).abs() <= 1e-8 * p,
+                    "{i}: {} vs {p}",
+                    a[nq + i]
+                );
+            }
+            let modes = Modes::undeformed(&full).unwrap();
+            for r in [1, 3] {
+                let rom = ReducedModel::first(&full, modes.shapes(), r).unwrap();
+                let mut eom =
+                    EquationsOfMotion::new(&rom, &none, vec![], Gyroscopic::Exact, &Damping::None)
+                        .unwrap();
+                let a = eom.state_atol(atol);
+                for c in 0..r {
+                    // An error of a_c in mode c moves the joints by Φ_c a_c; the full model's RMS
+                    // norm of that (over its nq joints, each weighed by atol) equals the reduced
+                    // model's RMS norm of the single error a_c over its r coordinates, 1/√r.
+                    let phi = rom.basis().column(c);
+                    let full_norm = (phi.iter().map(|v| (v * a[c] / atol).powi(2)).sum::<f64>()
+                        / nq as f64)
+                        .sqrt();
+                    let expected = 1.0 / (r as f64).sqrt();
+                    assert!(
+                        (full_norm - expected).abs() < 1e-12,
+                        "{full_norm} vs {expected}"
+                    );
+                    // Mass-normalized modes: K_r = diag(ω²), M_r(0) = I, so the momentum
+                    // tolerance is ω_c a_c (to the accuracy of the eigen-decomposition).
+                    let p = modes.omega()[c] * a[c];
+                    assert!((a[r + c] - p).abs() < 1e-8 * p, "{c}: {} vs {p}", a[r + c]);
+                }
             }
         }
     }

@@ -9,12 +9,14 @@
 
 mod bdf;
 mod dopri5;
+mod generalized_alpha;
 mod lu;
 mod midpoint;
 mod radau;
 
 pub use bdf::{Bdf, BdfOptions};
 pub use dopri5::{Dopri5, Dopri5Options};
+pub use generalized_alpha::{GeneralizedAlpha, GeneralizedAlphaOptions};
 pub use midpoint::{ImplicitMidpoint, MidpointOptions};
 pub use radau::{Radau, RadauOptions};
 
