@@ -37,4 +37,4 @@ pub mod model;
 pub mod paper;
 pub mod solve;
 
-pub use error::{Error, InputError, Result, SolveError};
+pub use error::{Error, InputError, Result, SolveError, StaticFailure};

@@ -127,6 +127,20 @@ impl AppliedLoads {
     pub fn n_loads(&self) -> usize {
         self.n_loads
     }
+    /// Whether the loads at these scales are conservative: no follower force with a non-zero
+    /// scale (dead forces, moments, torques and gravity derive from a potential; a follower force
+    /// does not, and makes the tangent `K − ∂Q/∂q` non-symmetric).
+    ///
+    /// # Panics
+    /// If `scales.len() != self.n_loads()`.
+    pub fn is_conservative(&self, scales: &[f64]) -> bool {
+        assert_eq!(scales.len(), self.n_loads, "one scale per load");
+        self.items.iter().all(|it| match it.kind {
+            ItemKind::Follower { ft, fn_ } => scales[it.load] == 0.0 || (ft == 0.0 && fn_ == 0.0),
+            _ => true,
+        })
+    }
+
     /// No loads at all.
     pub fn none() -> Self {
         Self {
