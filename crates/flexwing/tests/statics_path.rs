@@ -196,3 +196,46 @@ fn follower_loads_are_not_assessed() {
     let sol = solve_static(&full, &loads, &[1.0], &StaticOptions::default()).unwrap();
     assert_eq!(sol.stable, None);
 }
+
+#[test]
+fn the_stability_check_alone_refuses_the_unstable_c_shape() {
+    // With the rotation limit off, Newton's first step from rest goes where it went before path
+    // following (the C-shape below the clamp at n = 40); the stability check refuses it, the step
+    // is cut, and the path is followed to the elastica anyway.
+    let n = 40;
+    let full = table4(n);
+    let loads = tip_load(&full, 0.0, 750.0);
+    let opts = StaticOptions {
+        max_rotation_step: 1e6,
+        ..StaticOptions::default()
+    };
+    let sol = solve_static(&full, &loads, &[1.0], &opts).unwrap();
+    assert!(sol.stats.unstable_steps >= 1, "{:?}", sol.stats);
+    let exact = dead_tip_primary(15.0);
+    // As in a_large_tip_load_applied_at_once_lands_on_the_elastica: 2.4e-4 at n = 40.
+    assert!(distance(tip(&full, &sol), [exact[0], exact[1]]) < 0.5 / (n * n) as f64);
+}
+
+#[test]
+fn an_extreme_tip_load_at_once_gives_the_primary_branch() {
+    // fy = 5e7 N (α = 1e6) at once at n = 20, which gave a zig-zag reported complete. The
+    // primary branch of the elastica has θ rising monotonically from 0 to θ_L < π/2 (first
+    // integral θ'² = 2α(sin θ_L − sin θ)); at this load the whole beam stands almost vertical.
+    let n = 20;
+    let full = table4(n);
+    let loads = tip_load(&full, 0.0, 5e7);
+    let sol = solve_static(&full, &loads, &[1.0], &StaticOptions::default()).unwrap();
+    assert_eq!(sol.stable, Some(true));
+    let theta = full.kinematics(&sol.q).theta;
+    assert!(theta[0] > 0.0, "θ_0 = {}", theta[0]);
+    // (to round-off: the outer elements are vertical to 1 ulp)
+    for w in theta.windows(2) {
+        assert!(
+            w[1] >= w[0] - 1e-12 && w[1] <= PI / 2.0 + 1e-12,
+            "θ = {theta:?}"
+        );
+    }
+    // The tip is within the root element's rotation of the vertical: (ℓ cos θ_0, ≈ L).
+    let t = tip(&full, &sol);
+    assert!(t[0] > 0.0 && t[0] < 1e-3 && t[1] > 0.999, "tip {t:?}");
+}
