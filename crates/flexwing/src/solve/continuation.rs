@@ -272,7 +272,6 @@ pub fn arc_length_static<M: StructuralModel>(
                 rotation,
                 residual,
             } => {
-                run.newton.stats.load_steps += 1;
                 run.newton.stats.residual_norm = residual;
                 let lambda0 = run.last().load_factor;
                 let x0 = DVector::from_column_slice(&run.last().solution.x);
@@ -288,11 +287,17 @@ pub fn arc_length_static<M: StructuralModel>(
                     {
                         let stable = run.newton.stability(&x1, &s1, run.conservative);
                         run.newton.stats.residual_norm = run.newton.residual(&x1, &s1).amax();
+                        run.newton.stats.load_steps += 1;
                         let stats = since(&run.newton.stats, &before);
                         run.push(x1, 1.0, stable, stats);
                         return Ok(run.finish());
                     }
+                    // The landing failed: a shorter step, which lands from closer.
+                    run.newton.stats.rejected_steps += 1;
                     arc *= 0.5;
+                    if arc < options.min_arc {
+                        return Err(run.stalled(arc, iterations, residual, StaticFailure::Newton));
+                    }
                 } else {
                     // Next tangent: same bordered matrix, right-hand side (0, 1).
                     let k_t = run.newton.tangent(&x, &run.scales_at(lambda));
@@ -304,6 +309,7 @@ pub fn arc_length_static<M: StructuralModel>(
                     let Some(z) = run.bordered(k_t, &f, &t).lu().solve(&rhs) else {
                         // Singular bordered matrix (a branch point exactly on the step): retry
                         // with a shorter step.
+                        run.newton.stats.rejected_steps += 1;
                         arc *= 0.5;
                         if arc < options.min_arc {
                             return Err(run.stalled(
@@ -317,6 +323,7 @@ pub fn arc_length_static<M: StructuralModel>(
                     };
                     let nd = x.len();
                     t = run.normalize(z.rows(0, nd).into_owned(), z[nd]);
+                    run.newton.stats.load_steps += 1;
                     let stats = since(&run.newton.stats, &before);
                     run.push(x, lambda, stable, stats);
                     let by_iterations = (options.target_iterations as f64
