@@ -341,3 +341,37 @@ fn bad_options_name_the_field() {
         "{err}"
     );
 }
+
+#[test]
+fn a_path_that_stops_keeps_its_points() {
+    let (full, loads) = setup(20);
+    let start = solve_static(&full, &loads, &[1.0, M_START], &StaticOptions::default()).unwrap();
+    let from = (start.x.as_slice(), start.scales.as_slice());
+    // Out of points: the ten points found, and where the path stood.
+    let opts = ArcLengthOptions {
+        max_points: 10,
+        ..ArcLengthOptions::default()
+    };
+    let err = arc_length_static(&full, &loads, from, &[1.0, M_END], &opts).unwrap_err();
+    assert_eq!(err.path.points.len(), 10);
+    let last = err.path.points.last().unwrap().load_factor;
+    assert!(matches!(
+        err.error,
+        SolveError::ArcLengthTooManyPoints { load_factor, points: 10 } if load_factor == last
+    ));
+    // Steps that must be long (min_arc = 3 rad) but may rotate an element by 0.1 rad at most:
+    // the corrector is refused until the arc falls below min_arc; the start is kept.
+    let opts = ArcLengthOptions {
+        min_arc: 3.0,
+        max_arc: 3.0,
+        max_rotation_step: 0.1,
+        ..ArcLengthOptions::default()
+    };
+    let err = arc_length_static(&full, &loads, from, &[1.0, M_END], &opts).unwrap_err();
+    assert_eq!(err.path.points.len(), 1);
+    assert!(
+        matches!(err.error, SolveError::ArcLengthStalled { points: 1, .. }),
+        "{}",
+        err.error
+    );
+}
