@@ -254,6 +254,23 @@ proptest! {
         let sc = vec![1.0; conservative.len()];
         m.load_jacobian_into(q, &applied, &sc, &mut m.workspace(), &mut jac);
         prop_assert!((&jac - jac.transpose()).amax() <= 1e-12 * (1.0 + jac.amax()));
+        // Without follower forces the dense Jacobian is assembled block-diagonally in absolute
+        // angles; it equals the directional derivatives (the general path) and central
+        // differences.
+        let mut general = DMatrix::zeros(nd, nd);
+        m.load_jacobian_times_kin_into(&m.kinematics(q), &applied, &sc, &DMatrix::identity(nd, nd), &mut general);
+        prop_assert!((&general - &jac).amax() <= 1e-12 * (1.0 + jac.amax()));
+        for d in 0..nd {
+            let (mut qp, mut qm) = (q.to_vec(), q.to_vec());
+            qp[d] += h;
+            qm[d] -= h;
+            m.generalized_forces_into(&qp, &applied, &sc, &mut m.workspace(), &mut fp);
+            m.generalized_forces_into(&qm, &applied, &sc, &mut m.workspace(), &mut fm);
+            for r in 0..nd {
+                let fd = (fp[r] - fm[r]) / (2.0 * h);
+                prop_assert!((fd - jac[(r, d)]).abs() < 1e-6, "conservative ({r}, {d}): fd {fd} vs {}", jac[(r, d)]);
+            }
+        }
     }
 }
 

@@ -401,6 +401,13 @@ impl FullModel {
     ) {
         let nd = self.n_dofs();
         assert_eq!(out.shape(), (nd, nd), "Jacobian buffer has the wrong shape");
+        if !r.has_rates {
+            // Conservative loads: each element's Q_abs depends on its own angles only, so
+            // ∂Q_abs/∂(θ, ψ) is block-diagonal; O(n) entries, then the O(n²) map Tᵀ (·) T.
+            self.block_diagonal_abs(kin, r, out);
+            suffix_sum_blocks(out, self.n);
+            return;
+        }
         // Column c of ∂Q_abs/∂(θ, ψ) is the derivative along the unit direction c.
         for col in 0..nd {
             dir[col] = 1.0;
@@ -409,6 +416,51 @@ impl FullModel {
             dir[col] = 0.0;
         }
         suffix_sum_blocks(out, self.n);
+    }
+
+    /// `∂Q_abs/∂(θ, ψ)` of loads without follower forces (block-diagonal: dead forces and
+    /// moments give `∂Q_θ,j/∂θ_j = −e_j · lever_j`, gravity the 2 × 2 blocks of element `j`),
+    /// into `out`; the same entries as [`Self::directional_abs`] along unit directions.
+    fn block_diagonal_abs(&self, kin: &Kinematics, r: &Resultants, out: &mut DMatrix<f64>) {
+        let n = self.n;
+        let (c, s) = (&kin.cos_theta, &kin.sin_theta);
+        out.fill(0.0);
+        let mut outboard = [0.0; 2];
+        for j in (0..n).rev() {
+            let lever = [
+                self.ell[j] * outboard[0] + r.arm_force[j][0],
+                self.ell[j] * outboard[1] + r.arm_force[j][1],
+            ];
+            out[(j, j)] = -(c[j] * lever[0] + s[j] * lever[1]);
+            outboard[0] += r.force[j][0];
+            outboard[1] += r.force[j][1];
+        }
+        if r.gravity != 0.0 {
+            let mut mass_out = 0.0;
+            for j in (0..n).rev() {
+                let [bb, bt, tt] = self.gravity_block(kin, r.gravity, j, mass_out);
+                out[(j, j)] += bb;
+                if self.torsion {
+                    out[(j, n + j)] += bt;
+                    out[(n + j, j)] += bt;
+                    out[(n + j, n + j)] += tt;
+                }
+                mass_out += self.mass[j];
+            }
+        }
+    }
+
+    /// Gravity `w = g`'s block of `∂Q_abs/∂(θ_j, ψ_j)`: `[θθ, θψ = ψθ, ψψ]`, with `mass_out` the
+    /// mass outboard of element `j`.
+    fn gravity_block(&self, kin: &Kinematics, w: f64, j: usize, mass_out: f64) -> [f64; 3] {
+        let (mj, d, l) = (self.mass[j], self.d0[j], self.ell[j]);
+        let (c, s) = (kin.cos_theta[j], kin.sin_theta[j]);
+        let (cp, sp) = (kin.cos_psi[j], kin.sin_psi[j]);
+        [
+            w * (s * l * mass_out + mj * (0.5 * l * s + d * sp * c)),
+            w * mj * d * cp * s,
+            w * mj * d * sp * c,
+        ]
     }
 
     /// `(∂Q/∂q) V` for a block of directions `V` (`n_dofs × r`, joint coordinates), into `out`
@@ -472,7 +524,7 @@ impl FullModel {
             // elements j − 1, j and j + 1 (slots 0, 1, 2).
             let mut d_force = [0.0; 2];
             let mut d_arm = [0.0; 2];
-            for slot in 0..3 {
+            for slot in 0..if r.has_rates { 3 } else { 0 } {
                 let Some(e) = (j + slot).checked_sub(1).filter(|&e| e < n) else {
                     continue;
                 };
@@ -504,18 +556,13 @@ impl FullModel {
             let w = r.gravity;
             let mut mass_out = 0.0;
             for j in (0..n).rev() {
-                let (mj, d) = (self.mass[j], self.d0[j]);
-                let (cp, sp) = (kin.cos_psi[j], kin.sin_psi[j]);
-                out[j] += w
-                    * (s[j] * self.ell[j] * mass_out
-                        + mj * (0.5 * self.ell[j] * s[j] + d * sp * c[j]))
-                    * dir[j];
+                let [bb, bt, tt] = self.gravity_block(kin, w, j, mass_out);
+                out[j] += bb * dir[j];
                 if self.torsion {
-                    let tp = w * mj * d * cp * s[j];
-                    out[j] += tp * dir[n + j];
-                    out[n + j] += tp * dir[j] + w * mj * d * sp * c[j] * dir[n + j];
+                    out[j] += bt * dir[n + j];
+                    out[n + j] += bt * dir[j] + tt * dir[n + j];
                 }
-                mass_out += mj;
+                mass_out += self.mass[j];
             }
         }
     }
@@ -538,6 +585,9 @@ pub(super) struct Resultants {
     torque: Vec<f64>,
     /// Σ scale · g of the gravity loads.
     gravity: f64,
+    /// Whether any follower force acts (non-zero rates): without, `∂Q_abs/∂(θ, ψ)` is
+    /// block-diagonal (each element's generalized force depends on its own angles only).
+    has_rates: bool,
 }
 
 impl Resultants {
@@ -550,6 +600,7 @@ impl Resultants {
             moment: vec![0.0; n],
             torque: vec![0.0; n],
             gravity: 0.0,
+            has_rates: false,
         }
     }
 
@@ -570,6 +621,7 @@ impl Resultants {
         self.moment.fill(0.0);
         self.torque.fill(0.0);
         self.gravity = 0.0;
+        self.has_rates = false;
         let r = self;
         for it in &loads.items {
             let sc = scales[it.load];
@@ -609,6 +661,7 @@ impl Resultants {
                 r.arm_force[k][a] += it.arm * f[a];
             }
             if let Some(turn) = turn {
+                r.has_rates |= rate != [0.0, 0.0];
                 for (e, w) in turn.e.into_iter().zip(turn.w) {
                     // e ∈ {k − 1, k, k + 1}: slot e + 1 − k.
                     let slot = e + 1 - k;
