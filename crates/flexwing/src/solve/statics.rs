@@ -41,8 +41,8 @@ pub struct StaticOptions {
     /// Backtracking line search on `‖R‖₂`. Default `true`.
     pub line_search: bool,
     /// Largest change of any element's absolute rotation (bending angle `θ_i` or twist `ψ_i`, of
-    /// the full model) from one equilibrium to the next, rad. Newton iterates that stray more than
-    /// twice this far from the last equilibrium end the attempt early. Default `1.0` (57°): the
+    /// the full model) from one equilibrium to the next, rad. A first Newton step that goes more
+    /// than twice this far from the last equilibrium ends the attempt at once. Default `1.0` (57°): the
     /// paper's 150 N tip load (tip rotation 0.99 rad) is still one step, while Newton's first
     /// step from rest under a load that rotates the tip by several radians is refused.
     pub max_rotation_step: f64,
@@ -204,6 +204,20 @@ pub fn continue_static<M: StructuralModel>(
     scales: &[f64],
     options: &StaticOptions,
 ) -> Result<StaticSolution, SolveError> {
+    follow(model, loads, start, scales, options, None)
+}
+
+/// [`continue_static`], with the equilibrium `before = (x, scales)` that preceded the start on
+/// the path, if any: when the load keeps its direction, the first step's predictor is the
+/// secant through it (as between the steps of one call).
+fn follow<M: StructuralModel>(
+    model: &M,
+    loads: &AppliedLoads,
+    start: (&[f64], &[f64]),
+    scales: &[f64],
+    options: &StaticOptions,
+    before: Option<(&[f64], &[f64])>,
+) -> Result<StaticSolution, SolveError> {
     options.validate().map_err(SolveError::from_input)?;
     let (x_start, s_start) = start;
     let nd = model.n_dofs();
@@ -221,7 +235,17 @@ pub fn continue_static<M: StructuralModel>(
     let mut mu = 0.0;
     let mut x = DVector::from_column_slice(x_start);
     let mut stable = None;
-    let mut x_prev: Option<(f64, DVector<f64>)> = None;
+    // The previous equilibrium, at μ_p < 0 on the same line of loads if the load keeps its
+    // direction.
+    let mut x_prev: Option<(f64, DVector<f64>)> = before.and_then(|(xb, sb)| {
+        let d_old: Vec<f64> = s_start.iter().zip(sb).map(|(a, b)| a - b).collect();
+        let d_new: Vec<f64> = scales.iter().zip(s_start).map(|(a, b)| a - b).collect();
+        let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let dot: f64 = d_old.iter().zip(&d_new).map(|(a, b)| a * b).sum();
+        let (n_old, n_new) = (norm(&d_old), norm(&d_new));
+        (n_old > 0.0 && n_new > 0.0 && dot >= (1.0 - 1e-9) * n_old * n_new)
+            .then(|| (-n_old / n_new, DVector::from_column_slice(xb)))
+    });
     let mut step = options.initial_step.clamp(options.min_step, 1.0);
     while mu < 1.0 {
         let target = (mu + step).min(1.0);
@@ -449,8 +473,8 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
         r.amax() <= self.options.tolerance * scale || r.amax() == 0.0
     }
 
-    /// Newton from `x`. With `anchor = (x₀, limit)`, gives up as soon as a full Newton step or an
-    /// iterate lies more than `limit` (largest absolute rotation) away from `x₀`.
+    /// Newton from `x`. With `anchor = (x₀, limit)`, gives up at once if the first full Newton
+    /// step lands more than `limit` (largest absolute rotation) away from `x₀`.
     pub(super) fn solve(
         &mut self,
         mut x: DVector<f64>,
@@ -484,7 +508,9 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
                     residual: r.amax(),
                 };
             };
-            if let Some((x0, limit)) = anchor {
+            // The first step shows a load step that is too large (from an equilibrium it is the
+            // linear response); later iterates that stray are caught at convergence.
+            if let (Some((x0, limit)), 0) = (anchor, it) {
                 let rotation = max_rotation(self.model, (&x + &dx - x0).as_slice());
                 if rotation > limit {
                     return Newtonian::Strayed {
@@ -606,10 +632,18 @@ pub fn sweep_static<M: StructuralModel>(
 ) -> Result<Vec<StaticSolution>, SweepError> {
     let mut done: Vec<StaticSolution> = Vec::with_capacity(points.len());
     for (i, scales) in points.iter().enumerate() {
-        let result = match done.last() {
-            None => solve_static(model, loads, scales, options),
-            Some(prev) => continue_static(model, loads, (&prev.x, &prev.scales), scales, options),
+        // Each point from the previous one (the first from rest), with the one before it (or
+        // rest) for the secant predictor.
+        let rest = (vec![0.0; model.n_dofs()], vec![0.0; scales.len()]);
+        let start = done
+            .last()
+            .map_or((&rest.0, &rest.1), |p| (&p.x, &p.scales));
+        let before = match done.len() {
+            0 => None,
+            1 => Some((&rest.0[..], &rest.1[..])),
+            k => Some((&done[k - 2].x[..], &done[k - 2].scales[..])),
         };
+        let result = follow(model, loads, (start.0, start.1), scales, options, before);
         match result {
             Ok(sol) => done.push(sol),
             Err(error) => {
