@@ -6,7 +6,12 @@
 //! Cases, on the Table 4 beam (L = 1 m, EI = 50 N·m², m = 0.2 kg/m):
 //! * `tip`: dead vertical tip force 150 N, solved from rest in one call;
 //! * `two-load sweep`: dead tip force F1 = 0, 10, …, 150 N with F2 = −150 N at mid-span, each
-//!   point continued from the previous one (the paper's Figure 4).
+//!   point continued from the previous one (the paper's Figure 4);
+//! * `tip 750 N`: dead vertical tip force 750 N (α = 15) in one call from rest: load control
+//!   follows the path in steps (Newton's first step from rest is refused);
+//! * `arc-length S-curve`: the compressed beam of `tests/statics_arclength.rs` (dead tip force
+//!   1.5 × Euler and a tip moment M = −2 → 30 N·m, through two limit points), arc-length
+//!   continuation with the default options from the equilibrium at M = −2 N·m.
 //!
 //! The tip case runs for n = 10 … 320 to show how a static solve grows with n (full: dense O(n³)
 //! LU per Newton iteration; reduced: O(n r) per iteration plus O(r³)).
@@ -21,19 +26,86 @@ mod common;
 use common::{fmt_time, measure};
 
 use flexwing::model::{AppliedLoads, Force, FullModel, Load, ReducedModel, StructuralModel};
-use flexwing::solve::{solve_static, sweep_static, Modes, StaticOptions};
+use flexwing::solve::{
+    arc_length_static, solve_static, sweep_static, ArcLengthOptions, Modes, StaticOptions,
+};
 
 fn table4(n: usize) -> FullModel {
     flexwing::paper::table4_beam(n).expect("valid beam")
 }
 
-fn run<M: StructuralModel>(model: &M, loads: &AppliedLoads, sweep: bool) {
+#[derive(Clone, Copy, PartialEq)]
+enum Case {
+    Tip,
+    Sweep,
+    ArcLength,
+}
+
+fn run<M: StructuralModel>(model: &M, loads: &AppliedLoads, case: Case, start: &[f64]) {
     let opts = StaticOptions::default();
-    if sweep {
-        let points: Vec<Vec<f64>> = (0..=15).map(|k| vec![10.0 * k as f64, 1.0]).collect();
-        black_box(sweep_static(model, loads, &points, &opts).expect("sweep"));
-    } else {
-        black_box(solve_static(model, loads, &[1.0], &opts).expect("solve"));
+    match case {
+        Case::Sweep => {
+            let points: Vec<Vec<f64>> = (0..=15).map(|k| vec![10.0 * k as f64, 1.0]).collect();
+            black_box(sweep_static(model, loads, &points, &opts).expect("sweep"));
+        }
+        Case::Tip => {
+            black_box(solve_static(model, loads, &[1.0], &opts).expect("solve"));
+        }
+        Case::ArcLength => {
+            let path = arc_length_static(
+                model,
+                loads,
+                (start, &[1.0, -2.0]),
+                &[1.0, 30.0],
+                &ArcLengthOptions::default(),
+            );
+            black_box(path.expect("path"));
+        }
+    }
+}
+
+/// The start of the arc-length case (M = −2 N·m, by load control); empty for the others.
+fn start<M: StructuralModel>(model: &M, loads: &AppliedLoads, case: Case) -> Vec<f64> {
+    if case != Case::ArcLength {
+        return Vec::new();
+    }
+    solve_static(model, loads, &[1.0, -2.0], &StaticOptions::default())
+        .expect("start")
+        .x
+}
+
+fn loads_of(case: Case, tip: f64) -> Vec<Load> {
+    match case {
+        Case::Sweep => vec![
+            Load::PointForce {
+                span: 1.0,
+                force: Force::Dead { fx: 0.0, fy: 1.0 },
+            },
+            Load::PointForce {
+                span: 0.5,
+                force: Force::Dead {
+                    fx: 0.0,
+                    fy: -150.0,
+                },
+            },
+        ],
+        Case::Tip => vec![Load::PointForce {
+            span: 1.0,
+            force: Force::Dead { fx: 0.0, fy: tip },
+        }],
+        Case::ArcLength => vec![
+            Load::PointForce {
+                span: 1.0,
+                force: Force::Dead {
+                    fx: -1.5 * std::f64::consts::PI.powi(2) * 50.0 / 4.0,
+                    fy: 0.0,
+                },
+            },
+            Load::Moment {
+                span: 1.0,
+                value: 1.0,
+            },
+        ],
     }
 }
 
@@ -46,34 +118,24 @@ fn main() {
     };
     println!("| case | n | model | dofs | wall time | spread | ratio to full | build (modes + projection) |");
     println!("|---|---|---|---|---|---|---|---|");
-    for (name, sweep, sizes) in [
-        ("tip 150 N", false, &[10, 20, 40, 80, 160, 320][..]),
-        ("two-load sweep", true, &[10, 20, 40][..]),
+    for (name, case, tip, sizes) in [
+        (
+            "tip 150 N",
+            Case::Tip,
+            150.0,
+            &[10, 20, 40, 80, 160, 320][..],
+        ),
+        ("two-load sweep", Case::Sweep, 0.0, &[10, 20, 40][..]),
+        ("tip 750 N", Case::Tip, 750.0, &[10, 20, 40, 80][..]),
+        ("arc-length S-curve", Case::ArcLength, 0.0, &[20, 40][..]),
     ] {
         for &n in sizes {
             let full = table4(n);
-            let loads = if sweep {
-                vec![
-                    Load::PointForce {
-                        span: 1.0,
-                        force: Force::Dead { fx: 0.0, fy: 1.0 },
-                    },
-                    Load::PointForce {
-                        span: 0.5,
-                        force: Force::Dead {
-                            fx: 0.0,
-                            fy: -150.0,
-                        },
-                    },
-                ]
-            } else {
-                vec![Load::PointForce {
-                    span: 1.0,
-                    force: Force::Dead { fx: 0.0, fy: 150.0 },
-                }]
-            };
-            let applied = full.apply(&loads, "loads").expect("valid loads");
-            let (t_full, s_full) = measure(budget, batches, || run(&full, &applied, sweep));
+            let applied = full
+                .apply(&loads_of(case, tip), "loads")
+                .expect("valid loads");
+            let x0 = start(&full, &applied, case);
+            let (t_full, s_full) = measure(budget, batches, || run(&full, &applied, case, &x0));
             println!(
                 "| {name} | {n} | full | {} | {} | {:.0} % | 1 | – |",
                 full.n_dofs(),
@@ -87,7 +149,8 @@ fn main() {
                 });
                 let modes = Modes::undeformed(&full).expect("modes");
                 let rom = ReducedModel::first(&full, modes.shapes(), r).expect("rom");
-                let (t, s) = measure(budget, batches, || run(&rom, &applied, sweep));
+                let x0 = start(&rom, &applied, case);
+                let (t, s) = measure(budget, batches, || run(&rom, &applied, case, &x0));
                 println!(
                     "| {name} | {n} | reduced r = {r} | {r} | {} | {:.0} % | {:.3} | {} |",
                     fmt_time(t),

@@ -45,6 +45,35 @@ fn seconds(t: &f64) -> String {
     }
 }
 
+/// What failed in a static step (data of [`SolveError::StaticDiverged`] and
+/// [`SolveError::ArcLengthStalled`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum StaticFailure {
+    /// Newton's method did not converge (or the residual became non-finite).
+    Newton,
+    /// Newton's iterates or solution moved more than the allowed rotation from the last
+    /// equilibrium.
+    TooFar {
+        /// Largest change of an element's rotation (rad).
+        rotation: f64,
+        /// The limit (`max_rotation_step`, rad).
+        limit: f64,
+    },
+}
+
+fn divergence_detail(cause: &StaticFailure, iterations: usize, residual: f64) -> String {
+    match cause {
+        StaticFailure::Newton => format!(
+            "residual {residual:.3e} after {iterations} Newton iterations with the smallest load step"
+        ),
+        StaticFailure::TooFar { rotation, limit } => format!(
+            "with the smallest step the solution moved {rotation:.3} rad from the last \
+             equilibrium, more than max_rotation_step = {limit} rad: a limit point of the path, or \
+             too coarse a smallest step"
+        ),
+    }
+}
+
 /// Failure of a numerical algorithm.
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
@@ -52,11 +81,12 @@ pub enum SolveError {
     /// The mass matrix is not positive definite (a massless degree of freedom).
     #[error("mass matrix is not positive definite (is some degree of freedom massless?)")]
     MassNotPositiveDefinite,
-    /// Newton's method could not reach the requested load even with the smallest load step.
+    /// Load control could not reach the requested load even with the smallest load step: Newton
+    /// did not converge there, or converged only to equilibria too far from the last one.
     #[error(
         "static solver did not converge: equilibrium found up to load factor {load_factor:.6}, \
-         failed at {attempted:.6} (residual {residual_norm:.3e} after {iterations} Newton iterations \
-         with the smallest load step)"
+         failed at {attempted:.6} ({})",
+        divergence_detail(.cause, *.iterations, *.residual_norm)
     )]
     StaticDiverged {
         /// Last load factor (0 → 1) at which an equilibrium was found.
@@ -67,6 +97,53 @@ pub enum SolveError {
         iterations: usize,
         /// `‖K x − Q(x)‖∞` at the end of the last failed attempt (NaN if it blew up).
         residual_norm: f64,
+        /// What failed.
+        cause: StaticFailure,
+    },
+    /// Load control reached a critical point of the equilibrium path (buckling or a limit
+    /// point): past `load_factor`, every equilibrium found down to the smallest load step is
+    /// unstable.
+    #[error(
+        "static load path loses stability at load factor {load_factor:.6}: the equilibria found \
+         beyond it (tried up to {attempted:.6}) are unstable (buckling or a limit point); load \
+         control stops there, arc-length continuation follows the path through it"
+    )]
+    StaticUnstable {
+        /// Last load factor (0 → 1) at which a stable equilibrium was found.
+        load_factor: f64,
+        /// Load factor of the last attempt (its equilibrium was unstable).
+        attempted: f64,
+    },
+    /// Arc-length continuation could not take a step, even with the smallest arc length.
+    #[error(
+        "arc-length continuation stopped at load factor {load_factor:.6} after {points} points: \
+         no converged step with arc length {arc_length:.3e} ({})",
+        divergence_detail(.cause, *.iterations, *.residual_norm)
+    )]
+    ArcLengthStalled {
+        /// Load factor of the last point on the path.
+        load_factor: f64,
+        /// Points on the path so far (the start included).
+        points: usize,
+        /// The arc length of the last attempt.
+        arc_length: f64,
+        /// Newton iterations of the last attempt.
+        iterations: usize,
+        /// `‖K x − Q(x)‖∞` at the end of the last attempt.
+        residual_norm: f64,
+        /// What failed.
+        cause: StaticFailure,
+    },
+    /// Arc-length continuation used up its budget of points before the target load.
+    #[error(
+        "arc-length continuation stopped at load factor {load_factor:.6}: {points} points \
+         reached the limit max_points before the load factor reached 1"
+    )]
+    ArcLengthTooManyPoints {
+        /// Load factor of the last point on the path.
+        load_factor: f64,
+        /// Points on the path (the start included).
+        points: usize,
     },
     /// An input of the solver is invalid.
     #[error(transparent)]
@@ -160,7 +237,22 @@ impl SolveError {
 
     /// Whether the error is a failure to converge (as opposed to a singular problem).
     pub fn is_divergence(&self) -> bool {
-        matches!(self, SolveError::StaticDiverged { .. })
+        matches!(
+            self,
+            SolveError::StaticDiverged { .. } | SolveError::ArcLengthStalled { .. }
+        )
+    }
+
+    /// The load factor reached by a static solver that stopped (the last equilibrium found), if
+    /// the error comes from one.
+    pub fn load_factor(&self) -> Option<f64> {
+        match self {
+            SolveError::StaticDiverged { load_factor, .. }
+            | SolveError::StaticUnstable { load_factor, .. }
+            | SolveError::ArcLengthStalled { load_factor, .. }
+            | SolveError::ArcLengthTooManyPoints { load_factor, .. } => Some(*load_factor),
+            _ => None,
+        }
     }
 }
 

@@ -38,4 +38,4 @@ pub mod paper;
 pub mod solve;
 pub mod wings;
 
-pub use error::{Error, InputError, Result, SolveError};
+pub use error::{Error, InputError, Result, SolveError, StaticFailure};

@@ -176,12 +176,20 @@ proptest! {
             let fd = -(potential(&qp) - potential(&qm)) / (2.0 * h);
             prop_assert!((fd - f[d]).abs() < 1e-7, "gravity dof {d}: {fd} vs {}", f[d]);
         }
-        // Follower force: Q = J_Xᵀ F(q) with F rotated into the carrying element's frame.
+        // Follower force: Q = J_Xᵀ F(q) with F turned by the beam's tangent angle φ at the point:
+        // the element angles interpolated linearly in span between element midpoints, 0 at the
+        // clamp, the tip element's angle past its midpoint (docs/model-choices.md, "Loads").
         let follower = [Load::PointForce { span, force: Force::Follower { tangential: ft, normal: fnorm } }];
         let applied = m.apply(&follower, "loads").unwrap();
         m.generalized_forces_kin_into(&kin, &applied, &[1.0], &mut f);
-        let k = m.beam().nodes().partition_point(|&s| s < span);
-        let (c, s) = if k == 0 { (1.0, 0.0) } else { (kin.cos_theta[k - 1], kin.sin_theta[k - 1]) };
+        let nodes = m.beam().nodes();
+        let mut knots = vec![(0.0, 0.0)];
+        knots.extend((0..6).map(|j| (0.5 * (nodes[j] + nodes[j + 1]), kin.theta[j])));
+        knots.push((2.0, kin.theta[5]));
+        let i = knots.windows(2).position(|w| span <= w[1].0).unwrap();
+        let ((s0, a0), (s1, a1)) = (knots[i], knots[i + 1]);
+        let phi = a0 + (a1 - a0) * (span - s0) / (s1 - s0);
+        let (s, c) = phi.sin_cos();
         let force = nalgebra::Vector3::new(ft * c - fnorm * s, ft * s + fnorm * c, 0.0);
         let expected = m.point_jacobian(&kin, span).transpose() * force;
         prop_assert!((&f - &expected).amax() < 1e-12 * (1.0 + expected.amax()));
@@ -246,6 +254,71 @@ proptest! {
         let sc = vec![1.0; conservative.len()];
         m.load_jacobian_into(q, &applied, &sc, &mut m.workspace(), &mut jac);
         prop_assert!((&jac - jac.transpose()).amax() <= 1e-12 * (1.0 + jac.amax()));
+        // Without follower forces the dense Jacobian is assembled block-diagonally in absolute
+        // angles; it equals the directional derivatives (the general path) and central
+        // differences.
+        let mut general = DMatrix::zeros(nd, nd);
+        m.load_jacobian_times_kin_into(&m.kinematics(q), &applied, &sc, &DMatrix::identity(nd, nd), &mut general);
+        prop_assert!((&general - &jac).amax() <= 1e-12 * (1.0 + jac.amax()));
+        for d in 0..nd {
+            let (mut qp, mut qm) = (q.to_vec(), q.to_vec());
+            qp[d] += h;
+            qm[d] -= h;
+            m.generalized_forces_into(&qp, &applied, &sc, &mut m.workspace(), &mut fp);
+            m.generalized_forces_into(&qm, &applied, &sc, &mut m.workspace(), &mut fm);
+            for r in 0..nd {
+                let fd = (fp[r] - fm[r]) / (2.0 * h);
+                prop_assert!((fd - jac[(r, d)]).abs() < 1e-6, "conservative ({r}, {d}): fd {fd} vs {}", jac[(r, d)]);
+            }
+        }
+    }
+}
+
+#[test]
+fn follower_jacobian_at_every_node_agrees_with_finite_differences() {
+    // The proptest above draws spans at random, which never hit a node exactly: here a follower
+    // force at every node (where it turns with the two elements meeting there), at the tip, near
+    // the clamp and inside the first half-element (where it turns with a fraction of θ_0), and
+    // in the inboard half of an element (where it turns with that element and the previous one).
+    let m = model(6, true);
+    let nodes = m.beam().nodes().to_vec();
+    let q: Vec<f64> = (0..12).map(|i| 0.3 * ((i * 5 + 1) as f64).sin()).collect();
+    let mut spans: Vec<f64> = nodes[1..].to_vec();
+    spans.extend([
+        1e-3,
+        0.25 * nodes[1],
+        nodes[2] + 0.2 * (nodes[3] - nodes[2]),
+    ]);
+    let nd = m.n_dofs();
+    for span in spans {
+        let load = [Load::PointForce {
+            span,
+            force: Force::Follower {
+                tangential: -2.0,
+                normal: 3.0,
+            },
+        }];
+        let applied = m.apply(&load, "loads").unwrap();
+        let mut jac = DMatrix::zeros(nd, nd);
+        m.load_jacobian_into(&q, &applied, &[1.0], &mut m.workspace(), &mut jac);
+        let h = 1e-6;
+        let (mut fp, mut fm) = (DVector::zeros(nd), DVector::zeros(nd));
+        for d in 0..nd {
+            let (mut qp, mut qm) = (q.clone(), q.clone());
+            qp[d] += h;
+            qm[d] -= h;
+            m.generalized_forces_into(&qp, &applied, &[1.0], &mut m.workspace(), &mut fp);
+            m.generalized_forces_into(&qm, &applied, &[1.0], &mut m.workspace(), &mut fm);
+            for r in 0..nd {
+                let fd = (fp[r] - fm[r]) / (2.0 * h);
+                // As in the proptest: truncation h² ≈ 1e-12, round-off ≈ 1e-8.
+                assert!(
+                    (fd - jac[(r, d)]).abs() < 1e-6,
+                    "span {span} ({r}, {d}): fd {fd} vs {}",
+                    jac[(r, d)]
+                );
+            }
+        }
     }
 }
 

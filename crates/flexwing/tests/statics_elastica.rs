@@ -4,6 +4,7 @@
 
 mod common;
 
+use common::elastica::two_followers;
 use common::*;
 use flexwing::beam::{Calibration, Profile};
 use flexwing::model::{DistributedForce, Force, FullModel, Load, ReducedModel, StructuralModel};
@@ -205,4 +206,73 @@ fn distributed_load_converges_to_the_elastica() {
         e40 < 1e-3 && (3.5..4.5).contains(&(e20 / e40)),
         "{e20:.2e} {e40:.2e}"
     );
+}
+
+#[test]
+fn the_shooting_reference_of_follower_forces_matches_the_checked_in_one() {
+    // The two-follower shooting of common/elastica.rs with the mid-span force off is the
+    // follower tip case of tests/data/elastica (30 digits): RK4 on 4000 steps, agreement 1e-10.
+    let rows = read("follower_tip.csv");
+    let mut guess = 0.0;
+    for row in rows.iter().skip(1) {
+        let r = two_followers(50.0, row[1], 0.0, guess);
+        guess = r[2];
+        for (k, col) in [(0, 2), (1, 3), (2, 4)] {
+            assert!((r[k] - row[col]).abs() < 1e-10, "α = {}: {r:?}", row[0]);
+        }
+    }
+}
+
+#[test]
+fn follower_forces_at_mid_span_converge_at_second_order() {
+    // The paper's two-load case with both forces as followers normal to the beam: F1 at the tip,
+    // swept 0 … ±150 N (up and down), F2 = −150 N at mid-span (a node for even n), against the
+    // elastica of two follower forces shot in common/elastica.rs (each force along the normal of
+    // the beam's tangent at its point). Before the follower force turned with the beam's tangent
+    // at its point (it turned with the inboard element), the error fell at first order only:
+    // 4.7e-3, 2.5e-3, 1.3e-3, 6.6e-4 L at n = 10 … 80 (F1 up).
+    let f1: Vec<f64> = (0..=15).map(|k| 10.0 * k as f64).collect();
+    for sign in [1.0, -1.0] {
+        let mut guess = 0.0;
+        let reference: Vec<Vec<f64>> = f1
+            .iter()
+            .map(|&f| {
+                let r = two_followers(50.0, sign * f, -150.0, guess);
+                guess = r[2];
+                vec![f, r[0], r[1]]
+            })
+            .collect();
+        let loads = vec![
+            Load::PointForce {
+                span: 1.0,
+                force: Force::Follower {
+                    tangential: 0.0,
+                    normal: sign,
+                },
+            },
+            Load::PointForce {
+                span: 0.5,
+                force: Force::Follower {
+                    tangential: 0.0,
+                    normal: -150.0,
+                },
+            },
+        ];
+        let e: Vec<f64> = [10, 20, 40, 80]
+            .iter()
+            .map(|&n| max_tip_error(&table4(n), &loads, &reference, 0, (1, 2)))
+            .collect();
+        // Measured (F1 up) 3.8e-4, 9.5e-5, 2.4e-5, 5.9e-6 and (F1 down, the beam curls to a tip
+        // angle of −1.7 rad) 1.4e-3, 3.5e-4, 8.6e-5, 2.2e-5 at n = 10, 20, 40, 80: bound 0.2 L/n²,
+        // and each doubling of n divides the error by 3.5 to 4.5.
+        for (err, n) in e.iter().zip([10.0, 20.0, 40.0, 80.0]) {
+            assert!(*err < 0.2 / (n * n), "F1 sign {sign}, n = {n}: {err:.3e}");
+        }
+        for w in e.windows(2) {
+            assert!(
+                (3.5..4.5).contains(&(w[0] / w[1])),
+                "F1 sign {sign}: errors {e:?}"
+            );
+        }
+    }
 }

@@ -24,8 +24,11 @@ pub enum Force {
         /// Vertical global component (N).
         fy: f64,
     },
-    /// Follower force, `F = f_t e(θ_k) + f_n n(θ_k)` in the frame of the element `k` carrying the
-    /// point: it turns with the beam (the paper's eq. 15 is a normal follower force at the tip).
+    /// Follower force, `F = f_t e(φ) + f_n n(φ)` in the frame of the beam's tangent at the point,
+    /// `φ`: it turns with the beam (the paper's eq. 15 is a normal follower force at the tip).
+    /// `φ` interpolates the element angles linearly between element midpoints (the mean of the
+    /// two elements' angles at a node between equal elements), from 0 at the clamp, and is the
+    /// tip element's angle beyond its midpoint (docs/model-choices.md, "Loads").
     Follower {
         /// Component along the element axis `e(θ_k)` (N).
         tangential: f64,
@@ -108,10 +111,29 @@ enum ItemKind {
     Follower {
         ft: f64,
         fn_: f64,
+        turn: Turn,
     },
     Moment(f64),
     Torque(f64),
     Gravity(f64),
+}
+
+/// The direction angle of a follower force, `φ = w[0] θ_{e[0]} + w[1] θ_{e[1]}` (absolute bending
+/// angles of elements next to the carrying one).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Turn {
+    e: [usize; 2],
+    w: [f64; 2],
+}
+
+impl Turn {
+    /// Turns with element `k` alone.
+    fn element(k: usize) -> Self {
+        Self {
+            e: [k, k],
+            w: [1.0, 0.0],
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -127,6 +149,22 @@ impl AppliedLoads {
     pub fn n_loads(&self) -> usize {
         self.n_loads
     }
+    /// Whether the loads at these scales are conservative: no follower force with a non-zero
+    /// scale (dead forces, moments, torques and gravity derive from a potential; a follower force
+    /// does not, and makes the tangent `K − ∂Q/∂q` non-symmetric).
+    ///
+    /// # Panics
+    /// If `scales.len() != self.n_loads()`.
+    pub fn is_conservative(&self, scales: &[f64]) -> bool {
+        assert_eq!(scales.len(), self.n_loads, "one scale per load");
+        self.items.iter().all(|it| match it.kind {
+            ItemKind::Follower { ft, fn_, .. } => {
+                scales[it.load] == 0.0 || (ft == 0.0 && fn_ == 0.0)
+            }
+            _ => true,
+        })
+    }
+
     /// No loads at all.
     pub fn none() -> Self {
         Self {
@@ -175,6 +213,7 @@ impl FullModel {
             };
             match load {
                 Load::PointForce { span, force } => {
+                    let place = at(*span)?;
                     let kind = match *force {
                         Force::Dead { fx, fy } => ItemKind::Dead {
                             fx: finite("fx", fx)?,
@@ -183,9 +222,10 @@ impl FullModel {
                         Force::Follower { tangential, normal } => ItemKind::Follower {
                             ft: finite("tangential", tangential)?,
                             fn_: finite("normal", normal)?,
+                            turn: self.tangent_turn(span.min(length)),
                         },
                     };
-                    push(at(*span)?, kind);
+                    push(place, kind);
                 }
                 Load::Moment { span, value } => {
                     push(at(*span)?, ItemKind::Moment(finite("moment", *value)?));
@@ -215,8 +255,13 @@ impl FullModel {
                         let (x0, x1) = (nodes[e], nodes[e + 1]);
                         let ra = integrate(&[a], x0, x1, |x| a.at(x));
                         let rb = integrate(&[b], x0, x1, |x| b.at(x));
+                        // Lumped at the element midpoint, where the tangent is the element's.
                         let kind = if follower {
-                            ItemKind::Follower { ft: ra, fn_: rb }
+                            ItemKind::Follower {
+                                ft: ra,
+                                fn_: rb,
+                                turn: Turn::element(e),
+                            }
                         } else {
                             ItemKind::Dead { fx: ra, fy: rb }
                         };
@@ -233,6 +278,36 @@ impl FullModel {
             items,
             n_loads: loads.len(),
         })
+    }
+
+    /// The beam's tangent angle at `span` (`0 < span ≤ L`) as a combination of element angles:
+    /// linear interpolation between the element midpoints `c_j`, where the element angles are
+    /// second-order approximations of the continuous beam's tangent; from the clamp (angle 0 at
+    /// `span = 0`) to `c_0`; the tip element's angle from `c_{n−1}` to the tip (the paper's
+    /// eq. 15 at the tip). At a node between equal elements this is the mean of their angles.
+    fn tangent_turn(&self, span: f64) -> Turn {
+        let nodes = self.beam.nodes();
+        let mid = |j: usize| 0.5 * (nodes[j] + nodes[j + 1]);
+        let n = self.n;
+        if span >= mid(n - 1) {
+            return Turn::element(n - 1);
+        }
+        if span <= mid(0) {
+            return Turn {
+                e: [0, 0],
+                w: [span / mid(0), 0.0],
+            };
+        }
+        // The interval [c_j, c_{j+1}) holding span.
+        let j = (0..n - 1)
+            .rev()
+            .find(|&j| mid(j) <= span)
+            .expect("span lies past the first midpoint");
+        let t = (span - mid(j)) / (mid(j + 1) - mid(j));
+        Turn {
+            e: [j, j + 1],
+            w: [1.0 - t, t],
+        }
     }
 
     /// Generalized forces `Q(q) = Σ_k scales[k] Q_k(q)` at the configuration `kin`, into `out`.
@@ -326,6 +401,13 @@ impl FullModel {
     ) {
         let nd = self.n_dofs();
         assert_eq!(out.shape(), (nd, nd), "Jacobian buffer has the wrong shape");
+        if !r.has_rates {
+            // Conservative loads: each element's Q_abs depends on its own angles only, so
+            // ∂Q_abs/∂(θ, ψ) is block-diagonal; O(n) entries, then the O(n²) map Tᵀ (·) T.
+            self.block_diagonal_abs(kin, r, out);
+            suffix_sum_blocks(out, self.n);
+            return;
+        }
         // Column c of ∂Q_abs/∂(θ, ψ) is the derivative along the unit direction c.
         for col in 0..nd {
             dir[col] = 1.0;
@@ -334,6 +416,51 @@ impl FullModel {
             dir[col] = 0.0;
         }
         suffix_sum_blocks(out, self.n);
+    }
+
+    /// `∂Q_abs/∂(θ, ψ)` of loads without follower forces (block-diagonal: dead forces and
+    /// moments give `∂Q_θ,j/∂θ_j = −e_j · lever_j`, gravity the 2 × 2 blocks of element `j`),
+    /// into `out`; the same entries as [`Self::directional_abs`] along unit directions.
+    fn block_diagonal_abs(&self, kin: &Kinematics, r: &Resultants, out: &mut DMatrix<f64>) {
+        let n = self.n;
+        let (c, s) = (&kin.cos_theta, &kin.sin_theta);
+        out.fill(0.0);
+        let mut outboard = [0.0; 2];
+        for j in (0..n).rev() {
+            let lever = [
+                self.ell[j] * outboard[0] + r.arm_force[j][0],
+                self.ell[j] * outboard[1] + r.arm_force[j][1],
+            ];
+            out[(j, j)] = -(c[j] * lever[0] + s[j] * lever[1]);
+            outboard[0] += r.force[j][0];
+            outboard[1] += r.force[j][1];
+        }
+        if r.gravity != 0.0 {
+            let mut mass_out = 0.0;
+            for j in (0..n).rev() {
+                let [bb, bt, tt] = self.gravity_block(kin, r.gravity, j, mass_out);
+                out[(j, j)] += bb;
+                if self.torsion {
+                    out[(j, n + j)] += bt;
+                    out[(n + j, j)] += bt;
+                    out[(n + j, n + j)] += tt;
+                }
+                mass_out += self.mass[j];
+            }
+        }
+    }
+
+    /// Gravity `w = g`'s block of `∂Q_abs/∂(θ_j, ψ_j)`: `[θθ, θψ = ψθ, ψψ]`, with `mass_out` the
+    /// mass outboard of element `j`.
+    fn gravity_block(&self, kin: &Kinematics, w: f64, j: usize, mass_out: f64) -> [f64; 3] {
+        let (mj, d, l) = (self.mass[j], self.d0[j], self.ell[j]);
+        let (c, s) = (kin.cos_theta[j], kin.sin_theta[j]);
+        let (cp, sp) = (kin.cos_psi[j], kin.sin_psi[j]);
+        [
+            w * (s * l * mass_out + mj * (0.5 * l * s + d * sp * c)),
+            w * mj * d * cp * s,
+            w * mj * d * sp * c,
+        ]
     }
 
     /// `(∂Q/∂q) V` for a block of directions `V` (`n_dofs × r`, joint coordinates), into `out`
@@ -393,21 +520,34 @@ impl FullModel {
         let mut d_outboard = [0.0; 2];
         for j in (0..n).rev() {
             let dth = dir[j];
+            // Rates of the follower forces on element j along dir: they turn with the angles of
+            // elements j − 1, j and j + 1 (slots 0, 1, 2).
+            let mut d_force = [0.0; 2];
+            let mut d_arm = [0.0; 2];
+            for slot in 0..if r.has_rates { 3 } else { 0 } {
+                let Some(e) = (j + slot).checked_sub(1).filter(|&e| e < n) else {
+                    continue;
+                };
+                for a in 0..2 {
+                    d_force[a] += r.force_rate[j][slot][a] * dir[e];
+                    d_arm[a] += r.arm_rate[j][slot][a] * dir[e];
+                }
+            }
             let lever = [
                 self.ell[j] * outboard[0] + r.arm_force[j][0],
                 self.ell[j] * outboard[1] + r.arm_force[j][1],
             ];
             let d_lever = [
-                self.ell[j] * d_outboard[0] + r.arm_rate[j][0] * dth,
-                self.ell[j] * d_outboard[1] + r.arm_rate[j][1] * dth,
+                self.ell[j] * d_outboard[0] + d_arm[0],
+                self.ell[j] * d_outboard[1] + d_arm[1],
             ];
             // d(n_j · lever) = −e_j · lever dθ_j + n_j · d lever.
             out[j] =
                 -(c[j] * lever[0] + s[j] * lever[1]) * dth - s[j] * d_lever[0] + c[j] * d_lever[1];
             outboard[0] += r.force[j][0];
             outboard[1] += r.force[j][1];
-            d_outboard[0] += r.force_rate[j][0] * dth;
-            d_outboard[1] += r.force_rate[j][1] * dth;
+            d_outboard[0] += d_force[0];
+            d_outboard[1] += d_force[1];
             if self.torsion {
                 out[n + j] = 0.0;
             }
@@ -416,18 +556,13 @@ impl FullModel {
             let w = r.gravity;
             let mut mass_out = 0.0;
             for j in (0..n).rev() {
-                let (mj, d) = (self.mass[j], self.d0[j]);
-                let (cp, sp) = (kin.cos_psi[j], kin.sin_psi[j]);
-                out[j] += w
-                    * (s[j] * self.ell[j] * mass_out
-                        + mj * (0.5 * self.ell[j] * s[j] + d * sp * c[j]))
-                    * dir[j];
+                let [bb, bt, tt] = self.gravity_block(kin, w, j, mass_out);
+                out[j] += bb * dir[j];
                 if self.torsion {
-                    let tp = w * mj * d * cp * s[j];
-                    out[j] += tp * dir[n + j];
-                    out[n + j] += tp * dir[j] + w * mj * d * sp * c[j] * dir[n + j];
+                    out[j] += bt * dir[n + j];
+                    out[n + j] += bt * dir[j] + tt * dir[n + j];
                 }
-                mass_out += mj;
+                mass_out += self.mass[j];
             }
         }
     }
@@ -441,14 +576,18 @@ pub(super) struct Resultants {
     force: Vec<[f64; 2]>,
     /// Σ arm · force on element k.
     arm_force: Vec<[f64; 2]>,
-    /// Σ ∂F/∂θ_k of the follower forces on element k.
-    force_rate: Vec<[f64; 2]>,
-    /// Σ arm · ∂F/∂θ_k.
-    arm_rate: Vec<[f64; 2]>,
+    /// Σ ∂F/∂θ_{k−1+slot} of the follower forces on element k, slots 0, 1, 2 for the elements
+    /// k − 1, k, k + 1 (a follower force turns with the tangent at its point).
+    force_rate: Vec<[[f64; 2]; 3]>,
+    /// Σ arm · ∂F/∂θ_{k−1+slot}.
+    arm_rate: Vec<[[f64; 2]; 3]>,
     moment: Vec<f64>,
     torque: Vec<f64>,
     /// Σ scale · g of the gravity loads.
     gravity: f64,
+    /// Whether any follower force acts (non-zero rates): without, `∂Q_abs/∂(θ, ψ)` is
+    /// block-diagonal (each element's generalized force depends on its own angles only).
+    has_rates: bool,
 }
 
 impl Resultants {
@@ -456,11 +595,12 @@ impl Resultants {
         Self {
             force: vec![[0.0; 2]; n],
             arm_force: vec![[0.0; 2]; n],
-            force_rate: vec![[0.0; 2]; n],
-            arm_rate: vec![[0.0; 2]; n],
+            force_rate: vec![[[0.0; 2]; 3]; n],
+            arm_rate: vec![[[0.0; 2]; 3]; n],
             moment: vec![0.0; n],
             torque: vec![0.0; n],
             gravity: 0.0,
+            has_rates: false,
         }
     }
 
@@ -476,24 +616,31 @@ impl Resultants {
         debug_assert_eq!(self.force.len(), model.n);
         self.force.fill([0.0; 2]);
         self.arm_force.fill([0.0; 2]);
-        self.force_rate.fill([0.0; 2]);
-        self.arm_rate.fill([0.0; 2]);
+        self.force_rate.fill([[0.0; 2]; 3]);
+        self.arm_rate.fill([[0.0; 2]; 3]);
         self.moment.fill(0.0);
         self.torque.fill(0.0);
         self.gravity = 0.0;
+        self.has_rates = false;
         let r = self;
         for it in &loads.items {
             let sc = scales[it.load];
             let k = it.element;
-            let (c, s) = (kin.cos_theta[k], kin.sin_theta[k]);
-            let (f, rate) = match it.kind {
-                ItemKind::Dead { fx, fy } => ([sc * fx, sc * fy], [0.0, 0.0]),
-                ItemKind::Follower { ft, fn_ } => {
+            let (f, rate, turn) = match it.kind {
+                ItemKind::Dead { fx, fy } => ([sc * fx, sc * fy], [0.0, 0.0], None),
+                ItemKind::Follower { ft, fn_, turn } => {
                     let (ft, fn_) = (sc * ft, sc * fn_);
-                    // F = f_t e_k + f_n n_k, ∂F/∂θ_k = f_t n_k − f_n e_k.
+                    let (s, c) = if turn.w == [1.0, 0.0] {
+                        (kin.sin_theta[turn.e[0]], kin.cos_theta[turn.e[0]])
+                    } else {
+                        (turn.w[0] * kin.theta[turn.e[0]] + turn.w[1] * kin.theta[turn.e[1]])
+                            .sin_cos()
+                    };
+                    // F = f_t e(φ) + f_n n(φ), ∂F/∂φ = f_t n(φ) − f_n e(φ).
                     (
                         [ft * c - fn_ * s, ft * s + fn_ * c],
                         [-ft * s - fn_ * c, ft * c - fn_ * s],
+                        Some(turn),
                     )
                 }
                 ItemKind::Moment(m) => {
@@ -512,8 +659,17 @@ impl Resultants {
             for a in 0..2 {
                 r.force[k][a] += f[a];
                 r.arm_force[k][a] += it.arm * f[a];
-                r.force_rate[k][a] += rate[a];
-                r.arm_rate[k][a] += it.arm * rate[a];
+            }
+            if let Some(turn) = turn {
+                r.has_rates |= rate != [0.0, 0.0];
+                for (e, w) in turn.e.into_iter().zip(turn.w) {
+                    // e ∈ {k − 1, k, k + 1}: slot e + 1 − k.
+                    let slot = e + 1 - k;
+                    for a in 0..2 {
+                        r.force_rate[k][slot][a] += w * rate[a];
+                        r.arm_rate[k][slot][a] += w * it.arm * rate[a];
+                    }
+                }
             }
         }
     }

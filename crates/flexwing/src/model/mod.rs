@@ -128,6 +128,12 @@ pub trait StructuralModel {
     ) -> bool {
         hamiltonian_derivatives_dense(self, x, p, ws, with_gamma, dxdx, dgamma)
     }
+    /// Whether the loads at these scales derive from a potential, so that the tangent
+    /// `K − ∂Q/∂x` is symmetric and its positive definiteness decides stability. `scales` is the
+    /// slice the model's force methods take (a model may append scales of its own loads).
+    fn loads_are_conservative(&self, loads: &AppliedLoads, scales: &[f64]) -> bool {
+        loads.is_conservative(scales)
+    }
     /// Joint rotations `q` of the full model for the model's coordinates `x`.
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64>;
     /// The full model underneath (itself for the full model).

@@ -1,6 +1,7 @@
 //! Solvers: modal analysis, non-linear statics, and time integration.
 
 pub mod aeroelastic;
+mod continuation;
 mod dynamics;
 mod eigen;
 pub mod integrate;
@@ -9,6 +10,7 @@ mod modes;
 mod statics;
 mod tangent;
 
+pub use continuation::{arc_length_static, ArcLengthOptions, PathError, PathPoint, StaticPath};
 pub use dynamics::{Damping, EquationsOfMotion, Gyroscopic, TimeFunction};
 pub use eigen::generalized_symmetric_eigen;
 pub use modes::{ModeShape, Modes, ModesMethod, ModesStats, DENSE_MAX_DOFS};

@@ -1,10 +1,29 @@
-//! Non-linear statics: `K x = Q(x)` by Newton's method with an exact tangent, load stepping with
-//! automatic cut-back, and a backtracking line search. Works for any [`StructuralModel`]: the
-//! full model and reduced models.
+//! Non-linear statics: `K x = Q(x)` by Newton's method with an exact tangent and a backtracking
+//! line search, load stepping that follows the equilibrium path from the start, and a stability
+//! check of every equilibrium. Works for any [`StructuralModel`]: the full model and reduced
+//! models. Statics of the model: docs/model.md ("Statics"); arc-length continuation through limit
+//! points is in [`super::continuation`].
+//!
+//! Path following (load control). The load factor `μ` runs from the start (0) to the target (1)
+//! in steps whose size is set by the solution, not only by Newton failures (Crisfield, *Non-linear
+//! Finite Element Analysis of Solids and Structures*, vol. 1, 1991, §9.5, automatic increments): a
+//! step is accepted only if Newton converges, no element's absolute rotation (bending angle or
+//! twist) changed by more than `max_rotation_step`, and the new equilibrium is not unstable; the
+//! next step grows or shrinks with that rotation and with the Newton iteration count. So one large
+//! load cannot jump to a distant branch: Newton's first step from rest under `α = PL²/EI = 15`
+//! predicts a tip rotation of 7.5 rad and is refused at once.
+//!
+//! Stability (docs/model-choices.md, "Stability of equilibria"). Under conservative loads an
+//! equilibrium is stable when the tangent `K − ∂Q/∂x` is positive definite (a strict minimum of the
+//! potential energy, Lagrange–Dirichlet), tested by one Cholesky attempt. Under follower forces the
+//! tangent is not symmetric and has no potential behind it; a negative determinant still proves
+//! instability (divergence: `det(K_T) < 0` gives a real positive root of `det(M s² + C s + K_T)`
+//! for any mass and damping), but a positive one proves nothing (flutter is a dynamic question),
+//! so such points are reported as not assessed.
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::error::SolveError;
+use crate::error::{SolveError, StaticFailure};
 use crate::model::{AppliedLoads, FullModel, StructuralModel};
 
 /// Options of the static solver.
@@ -15,12 +34,18 @@ pub struct StaticOptions {
     /// Newton iterations allowed per load step before the step is cut. Default 30.
     pub max_iterations: usize,
     /// First load-factor increment (fraction of the whole load change). Default `1.0`: try the
-    /// whole load at once, cut back if Newton fails.
+    /// whole load at once; `max_rotation_step` and Newton cut it as needed.
     pub initial_step: f64,
     /// Smallest increment before giving up. Default `1e-6`.
     pub min_step: f64,
     /// Backtracking line search on `‖R‖₂`. Default `true`.
     pub line_search: bool,
+    /// Largest change of any element's absolute rotation (bending angle `θ_i` or twist `ψ_i`, of
+    /// the full model) from one equilibrium to the next, rad. A first Newton step that goes more
+    /// than twice this far from the last equilibrium ends the attempt at once. Default `1.0` (57°): the
+    /// paper's 150 N tip load (tip rotation 0.99 rad) is still one step, while Newton's first
+    /// step from rest under a load that rotates the tip by several radians is refused.
+    pub max_rotation_step: f64,
 }
 
 impl Default for StaticOptions {
@@ -31,17 +56,23 @@ impl Default for StaticOptions {
             initial_step: 1.0,
             min_step: 1e-6,
             line_search: true,
+            max_rotation_step: 1.0,
         }
     }
 }
 
 impl StaticOptions {
-    /// Check the options: finite positive tolerance and steps, `min_step ≤ initial_step ≤ 1`,
-    /// at least one iteration (fields `static.*`).
+    /// Check the options with fields named `static.*`; see [`StaticOptions::validate_as`].
     pub fn validate(&self) -> Result<(), crate::InputError> {
+        self.validate_as("static")
+    }
+
+    /// Check the options: finite positive tolerance and rotation step, `min_step ≤ initial_step
+    /// ≤ 1`, at least one iteration. Error fields are `{field}.tolerance` etc.
+    pub fn validate_as(&self, field: &str) -> Result<(), crate::InputError> {
         let bad = |f: &str, v: f64, what: &str| {
             Err(crate::InputError::new(
-                format!("static.{f}"),
+                format!("{field}.{f}"),
                 format!("must be {what}, got {v}"),
             ))
         };
@@ -57,6 +88,13 @@ impl StaticOptions {
         if self.max_iterations == 0 {
             return bad("max_iterations", 0.0, "at least 1");
         }
+        if !(self.max_rotation_step > 0.0 && self.max_rotation_step.is_finite()) {
+            return bad(
+                "max_rotation_step",
+                self.max_rotation_step,
+                "a finite positive angle (rad)",
+            );
+        }
         Ok(())
     }
 }
@@ -66,14 +104,22 @@ impl StaticOptions {
 pub struct StaticStats {
     /// Accepted load steps.
     pub load_steps: usize,
-    /// Load steps rejected (Newton failed) and retried with a smaller increment.
+    /// Load steps rejected and retried with a smaller increment, for any reason (the next two
+    /// counters are part of this one).
     pub rejected_steps: usize,
+    /// Load steps rejected because the solution moved too far (`max_rotation_step`).
+    pub limited_steps: usize,
+    /// Load steps rejected because they ended on an unstable equilibrium.
+    pub unstable_steps: usize,
     /// Newton iterations, over all steps (accepted or not).
     pub iterations: usize,
     /// Evaluations of the residual `K x − Q(x)`.
     pub residual_evaluations: usize,
-    /// Evaluations and LU factorizations of the tangent `K − ∂Q/∂x`.
+    /// Evaluations and LU factorizations of the tangent `K − ∂Q/∂x` in Newton iterations.
     pub factorizations: usize,
+    /// Stability checks (a tangent evaluation and one Cholesky attempt, or one LU for
+    /// non-conservative loads).
+    pub stability_checks: usize,
     /// `‖K x − Q(x)‖∞` at the solution.
     pub residual_norm: f64,
 }
@@ -87,16 +133,31 @@ pub struct StaticSolution {
     pub q: Vec<f64>,
     /// Load scales this equilibrium is for.
     pub scales: Vec<f64>,
+    /// Stability of the equilibrium, for the model solved (a reduced model's tangent is the
+    /// projected one):
+    /// * `Some(true)`: conservative loads and the tangent `K − ∂Q/∂x` is positive definite — a
+    ///   strict minimum of the potential energy, stable;
+    /// * `Some(false)`: unstable — under conservative loads the tangent is not positive definite
+    ///   (a saddle or a neutral state); under follower loads its determinant is negative (static
+    ///   divergence, unstable whatever the mass and damping);
+    /// * `None`: follower (non-conservative) loads with a positive determinant: statics cannot
+    ///   tell (the point may still flutter); not assessed.
+    ///
+    /// Load control ([`solve_static`], [`continue_static`], [`sweep_static`]) never returns a
+    /// point with `Some(false)`: it stops with [`SolveError::StaticUnstable`] instead. Arc-length
+    /// continuation returns unstable points, marked.
+    pub stable: Option<bool>,
     /// Solver counters.
     pub stats: StaticStats,
 }
 
 /// Solve `K x = Q(x; scales)` for the loads `loads` scaled by `scales`, starting at rest
-/// (`x = 0`, no load) and stepping the load factor from 0 to 1.
+/// (`x = 0`, no load) and following the equilibrium path as the load factor steps from 0 to 1.
 ///
 /// # Errors
-/// [`SolveError::StaticDiverged`] with the load factor reached if the step had to be cut below
-/// `options.min_step`.
+/// [`SolveError::StaticDiverged`] or [`SolveError::StaticUnstable`] with the load factor reached
+/// if the path could not be followed with steps down to `options.min_step`; see
+/// [`continue_static`].
 pub fn solve_static<M: StructuralModel>(
     model: &M,
     loads: &AppliedLoads,
@@ -108,12 +169,34 @@ pub fn solve_static<M: StructuralModel>(
     continue_static(model, loads, (&x0, &s0), scales, options)
 }
 
+/// Why the last attempted load step was refused.
+#[derive(Debug, Clone, Copy)]
+enum Refusal {
+    Newton {
+        iterations: usize,
+        residual: f64,
+    },
+    TooFar {
+        iterations: usize,
+        residual: f64,
+        rotation: f64,
+    },
+    Unstable,
+}
+
 /// Continue an equilibrium `start = (x, scales₀)` to new load scales `scales₁` along
-/// `s(μ) = scales₀ + μ (scales₁ − scales₀)`, `μ: 0 → 1`, with adaptive increments of `μ`.
+/// `s(μ) = scales₀ + μ (scales₁ − scales₀)`, `μ: 0 → 1`, following the equilibrium path with
+/// adaptive increments of `μ` (module documentation): each accepted step converged, moved no
+/// element by more than `options.max_rotation_step`, and ended on an equilibrium that is not
+/// unstable.
 ///
 /// # Errors
-/// [`SolveError::StaticDiverged`] if the increment had to be cut below `options.min_step`; its
-/// `load_factor` is the last `μ` at which an equilibrium was found.
+/// If the increment had to be cut below `options.min_step`, with the last `μ` at which an
+/// equilibrium was found as `load_factor`:
+/// * [`SolveError::StaticUnstable`]: the only equilibria found past it are unstable — the path
+///   reaches a critical point (buckling or a limit point), which load control cannot pass;
+/// * [`SolveError::StaticDiverged`]: Newton did not converge, or converged only to equilibria
+///   farther than `max_rotation_step` (a limit point of the path, or too coarse a `min_step`).
 pub fn continue_static<M: StructuralModel>(
     model: &M,
     loads: &AppliedLoads,
@@ -121,10 +204,26 @@ pub fn continue_static<M: StructuralModel>(
     scales: &[f64],
     options: &StaticOptions,
 ) -> Result<StaticSolution, SolveError> {
+    follow(model, loads, start, scales, options, None)
+}
+
+/// [`continue_static`], with the equilibrium `before = (x, scales)` that preceded the start on
+/// the path, if any: when the load keeps its direction, the first step's predictor is the
+/// secant through it (as between the steps of one call).
+fn follow<M: StructuralModel>(
+    model: &M,
+    loads: &AppliedLoads,
+    start: (&[f64], &[f64]),
+    scales: &[f64],
+    options: &StaticOptions,
+    before: Option<(&[f64], &[f64])>,
+) -> Result<StaticSolution, SolveError> {
     options.validate().map_err(SolveError::from_input)?;
     let (x_start, s_start) = start;
     let nd = model.n_dofs();
-    let mut ws = Newton::new(model, loads, options);
+    let mut ws = Newton::new(model, loads, options.clone());
+    // Follower scales are linear in μ: the path is conservative iff both ends are.
+    let conservative = model.loads_are_conservative(loads, s_start) && model.loads_are_conservative(loads, scales);
     let s_at = |mu: f64| -> Vec<f64> {
         s_start
             .iter()
@@ -132,39 +231,130 @@ pub fn continue_static<M: StructuralModel>(
             .map(|(a, b)| a + mu * (b - a))
             .collect()
     };
+    let limit = options.max_rotation_step;
     let mut mu = 0.0;
     let mut x = DVector::from_column_slice(x_start);
-    let mut x_prev: Option<(f64, DVector<f64>)> = None;
+    let mut stable = None;
+    // The previous equilibrium, at μ_p < 0 on the same line of loads if the load keeps its
+    // direction.
+    let mut x_prev: Option<(f64, DVector<f64>)> = before.and_then(|(xb, sb)| {
+        let d_old: Vec<f64> = s_start.iter().zip(sb).map(|(a, b)| a - b).collect();
+        let d_new: Vec<f64> = scales.iter().zip(s_start).map(|(a, b)| a - b).collect();
+        let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let dot: f64 = d_old.iter().zip(&d_new).map(|(a, b)| a * b).sum();
+        let (n_old, n_new) = (norm(&d_old), norm(&d_new));
+        (n_old > 0.0 && n_new > 0.0 && dot >= (1.0 - 1e-9) * n_old * n_new)
+            .then(|| (-n_old / n_new, DVector::from_column_slice(xb)))
+    });
     let mut step = options.initial_step.clamp(options.min_step, 1.0);
     while mu < 1.0 {
         let target = (mu + step).min(1.0);
         let dmu = target - mu;
+        let s_target = s_at(target);
         // Secant predictor from the previous two equilibria.
         let guess = match &x_prev {
             Some((mu_p, xp)) if mu - mu_p > 0.0 => &x + (&x - xp) * (dmu / (mu - mu_p)),
             _ => x.clone(),
         };
-        match ws.solve(guess, &s_at(target)) {
-            Ok((x_new, iterations)) => {
-                ws.stats.load_steps += 1;
-                x_prev = Some((mu, std::mem::replace(&mut x, x_new)));
-                mu = target;
-                if iterations <= options.max_iterations / 4 {
-                    step = (2.0 * step).min(1.0);
-                }
-            }
-            Err((iterations, residual_norm)) => {
-                ws.stats.rejected_steps += 1;
-                step *= 0.25;
-                if step < options.min_step {
-                    return Err(SolveError::StaticDiverged {
-                        load_factor: mu,
-                        attempted: target,
+        let refusal = match ws.solve(guess, &s_target, Some((&x, 2.0 * limit))) {
+            Newtonian::Converged(x_new, iterations) => {
+                let rotation = ws.rotation_change(&x, &x_new);
+                if rotation > limit {
+                    Refusal::TooFar {
                         iterations,
-                        residual_norm,
-                    });
+                        residual: 0.0,
+                        rotation,
+                    }
+                } else {
+                    let stability = ws.stability(&x_new, &s_target, conservative);
+                    if stability == Some(false) {
+                        Refusal::Unstable
+                    } else {
+                        ws.stats.load_steps += 1;
+                        stable = stability;
+                        x_prev = Some((mu, std::mem::replace(&mut x, x_new)));
+                        mu = target;
+                        // Grow or shrink with the rotation of this step (aim at 0.8 of the
+                        // limit) and with the Newton iteration count.
+                        let by_rotation = if rotation > 0.0 {
+                            0.8 * limit / rotation
+                        } else {
+                            2.0
+                        };
+                        let by_iterations = if iterations <= options.max_iterations / 4 {
+                            2.0
+                        } else if iterations > options.max_iterations / 2 {
+                            0.5
+                        } else {
+                            1.0
+                        };
+                        if dmu >= step * (1.0 - 1e-12) {
+                            step = (step * by_rotation.min(by_iterations).min(2.0)).min(1.0);
+                        }
+                        step = step.max(options.min_step);
+                        continue;
+                    }
                 }
             }
+            Newtonian::Strayed {
+                iterations,
+                residual,
+                rotation,
+            } => Refusal::TooFar {
+                iterations,
+                residual,
+                rotation,
+            },
+            Newtonian::Failed {
+                iterations,
+                residual,
+            } => Refusal::Newton {
+                iterations,
+                residual,
+            },
+        };
+        ws.stats.rejected_steps += 1;
+        // The new increment: in proportion to the rotation limit when the solution went too
+        // far (Newton's first step is linear in the increment), a quarter otherwise.
+        step = match refusal {
+            Refusal::TooFar { rotation, .. } => {
+                ws.stats.limited_steps += 1;
+                dmu * (0.9 * limit / rotation).clamp(0.01, 0.5)
+            }
+            Refusal::Unstable => {
+                ws.stats.unstable_steps += 1;
+                0.25 * dmu
+            }
+            Refusal::Newton { .. } => 0.25 * dmu,
+        };
+        if step < options.min_step {
+            return Err(match refusal {
+                Refusal::Unstable => SolveError::StaticUnstable {
+                    load_factor: mu,
+                    attempted: target,
+                },
+                Refusal::Newton {
+                    iterations,
+                    residual,
+                } => SolveError::StaticDiverged {
+                    load_factor: mu,
+                    attempted: target,
+                    iterations,
+                    residual_norm: residual,
+                    cause: StaticFailure::Newton,
+                },
+                Refusal::TooFar {
+                    iterations,
+                    residual,
+                    rotation,
+                } => SolveError::StaticDiverged {
+                    load_factor: mu,
+                    attempted: target,
+                    iterations,
+                    residual_norm: residual,
+                    cause: StaticFailure::TooFar { rotation, limit },
+                },
+            });
         }
     }
     let final_scales = s_at(1.0);
@@ -176,24 +366,40 @@ pub fn continue_static<M: StructuralModel>(
         q: model.full_coordinates(&xs),
         x: xs,
         scales: final_scales,
+        stable,
         stats: ws.stats,
     })
 }
 
+/// Result of one Newton solve.
+pub(super) enum Newtonian {
+    /// Converged to `x` in this many iterations.
+    Converged(DVector<f64>, usize),
+    /// An iterate (or a full Newton step) went farther than allowed from the anchor.
+    Strayed {
+        iterations: usize,
+        residual: f64,
+        rotation: f64,
+    },
+    /// No convergence within the iterations allowed (or a non-finite residual, or a singular
+    /// tangent).
+    Failed { iterations: usize, residual: f64 },
+}
+
 /// Newton iteration state and buffers for one model and load set.
-struct Newton<'a, M: StructuralModel> {
+pub(super) struct Newton<'a, M: StructuralModel> {
     model: &'a M,
     loads: &'a AppliedLoads,
-    options: &'a StaticOptions,
+    options: StaticOptions,
     ws: M::Workspace,
-    k: DMatrix<f64>,
+    pub(super) k: DMatrix<f64>,
     f: DVector<f64>,
     jac: DMatrix<f64>,
-    stats: StaticStats,
+    pub(super) stats: StaticStats,
 }
 
 impl<'a, M: StructuralModel> Newton<'a, M> {
-    fn new(model: &'a M, loads: &'a AppliedLoads, options: &'a StaticOptions) -> Self {
+    pub(super) fn new(model: &'a M, loads: &'a AppliedLoads, options: StaticOptions) -> Self {
         let nd = model.n_dofs();
         Self {
             model,
@@ -208,7 +414,7 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
     }
 
     /// `R = K x − Q(x)`; leaves `Q` in `self.f`.
-    fn residual(&mut self, x: &DVector<f64>, scales: &[f64]) -> DVector<f64> {
+    pub(super) fn residual(&mut self, x: &DVector<f64>, scales: &[f64]) -> DVector<f64> {
         self.stats.residual_evaluations += 1;
         self.model.generalized_forces_into(
             x.as_slice(),
@@ -220,24 +426,71 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
         &self.k * x - &self.f
     }
 
-    fn converged(&self, x: &DVector<f64>, r: &DVector<f64>) -> bool {
+    /// Generalized forces `Q(x; scales)` (into a new vector).
+    pub(super) fn forces(&mut self, x: &DVector<f64>, scales: &[f64]) -> DVector<f64> {
+        let mut out = DVector::zeros(x.len());
+        self.model.generalized_forces_into(
+            x.as_slice(),
+            self.loads,
+            scales,
+            &mut self.ws,
+            &mut out,
+        );
+        out
+    }
+
+    /// The tangent `K − ∂Q/∂x` at `x` (into a new matrix).
+    pub(super) fn tangent(&mut self, x: &DVector<f64>, scales: &[f64]) -> DMatrix<f64> {
+        self.model.load_jacobian_into(
+            x.as_slice(),
+            self.loads,
+            scales,
+            &mut self.ws,
+            &mut self.jac,
+        );
+        &self.k - &self.jac
+    }
+
+    /// Stability of the equilibrium `x` (see [`StaticSolution::stable`]).
+    pub(super) fn stability(
+        &mut self,
+        x: &DVector<f64>,
+        scales: &[f64],
+        conservative: bool,
+    ) -> Option<bool> {
+        self.stats.stability_checks += 1;
+        let tangent = self.tangent(x, scales);
+        tangent_stability(tangent, conservative)
+    }
+
+    /// Largest change of an element's absolute rotation between `a` and `b`.
+    pub(super) fn rotation_change(&self, a: &DVector<f64>, b: &DVector<f64>) -> f64 {
+        max_rotation(self.model, (b - a).as_slice())
+    }
+
+    pub(super) fn converged(&self, x: &DVector<f64>, r: &DVector<f64>) -> bool {
         let scale = (&self.k * x).amax().max(self.f.amax());
         r.amax() <= self.options.tolerance * scale || r.amax() == 0.0
     }
 
-    /// Newton from `x`; on failure returns (iterations, last residual norm).
-    fn solve(
+    /// Newton from `x`. With `anchor = (x₀, limit)`, gives up at once if the first full Newton
+    /// step lands more than `limit` (largest absolute rotation) away from `x₀`.
+    pub(super) fn solve(
         &mut self,
         mut x: DVector<f64>,
         scales: &[f64],
-    ) -> Result<(DVector<f64>, usize), (usize, f64)> {
+        anchor: Option<(&DVector<f64>, f64)>,
+    ) -> Newtonian {
         let mut r = self.residual(&x, scales);
         for it in 0..self.options.max_iterations {
             if !r.iter().all(|v| v.is_finite()) {
-                return Err((it, f64::NAN));
+                return Newtonian::Failed {
+                    iterations: it,
+                    residual: f64::NAN,
+                };
             }
             if self.converged(&x, &r) {
-                return Ok((x, it));
+                return Newtonian::Converged(x, it);
             }
             self.stats.iterations += 1;
             self.stats.factorizations += 1;
@@ -250,8 +503,23 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
             );
             let tangent = &self.k - &self.jac;
             let Some(dx) = tangent.lu().solve(&(-&r)) else {
-                return Err((it + 1, r.amax()));
+                return Newtonian::Failed {
+                    iterations: it + 1,
+                    residual: r.amax(),
+                };
             };
+            // The first step shows a load step that is too large (from an equilibrium it is the
+            // linear response); later iterates that stray are caught at convergence.
+            if let (Some((x0, limit)), 0) = (anchor, it) {
+                let rotation = max_rotation(self.model, (&x + &dx - x0).as_slice());
+                if rotation > limit {
+                    return Newtonian::Strayed {
+                        iterations: it + 1,
+                        residual: r.amax(),
+                        rotation,
+                    };
+                }
+            }
             let r0 = r.norm();
             let mut alpha = 1.0;
             loop {
@@ -268,10 +536,48 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
             }
         }
         if self.converged(&x, &r) {
-            return Ok((x, self.options.max_iterations));
+            return Newtonian::Converged(x, self.options.max_iterations);
         }
-        Err((self.options.max_iterations, r.amax()))
+        Newtonian::Failed {
+            iterations: self.options.max_iterations,
+            residual: r.amax(),
+        }
     }
+}
+
+/// Largest absolute rotation `max_i |θ_i|, |ψ_i|` of the full model for the model coordinates
+/// `dx` (the map `x ↦ q` is linear, so for a difference of two states this is the largest
+/// change of an element's rotation between them).
+pub(super) fn max_rotation<M: StructuralModel>(model: &M, dx: &[f64]) -> f64 {
+    let q = model.full_coordinates(dx);
+    let n = model.full_model().n_elements();
+    let mut worst = 0.0_f64;
+    for block in q.chunks(n) {
+        let mut angle = 0.0;
+        for dq in block {
+            angle += dq;
+            if angle.is_nan() {
+                // A non-finite state is infinitely far.
+                return f64::INFINITY;
+            }
+            worst = worst.max(angle.abs());
+        }
+    }
+    worst
+}
+
+/// Stability from the tangent `K − ∂Q/∂x` (see [`StaticSolution::stable`]): one Cholesky attempt
+/// under conservative loads; under follower loads the sign of the determinant, from one LU.
+pub(super) fn tangent_stability(tangent: DMatrix<f64>, conservative: bool) -> Option<bool> {
+    if conservative {
+        return Some(tangent.cholesky().is_some());
+    }
+    let lu = tangent.lu();
+    let mut sign = lu.p().determinant::<f64>();
+    for d in lu.u().diagonal().iter() {
+        sign *= d.signum();
+    }
+    (sign < 0.0).then_some(false)
 }
 
 /// Linear static solution `q = K⁻¹ Q(0)` of `loads` about the undeformed state, and the linearized
@@ -326,10 +632,18 @@ pub fn sweep_static<M: StructuralModel>(
 ) -> Result<Vec<StaticSolution>, SweepError> {
     let mut done: Vec<StaticSolution> = Vec::with_capacity(points.len());
     for (i, scales) in points.iter().enumerate() {
-        let result = match done.last() {
-            None => solve_static(model, loads, scales, options),
-            Some(prev) => continue_static(model, loads, (&prev.x, &prev.scales), scales, options),
+        // Each point from the previous one (the first from rest), with the one before it (or
+        // rest) for the secant predictor.
+        let rest = (vec![0.0; model.n_dofs()], vec![0.0; scales.len()]);
+        let start = done
+            .last()
+            .map_or((&rest.0, &rest.1), |p| (&p.x, &p.scales));
+        let before = match done.len() {
+            0 => None,
+            1 => Some((&rest.0[..], &rest.1[..])),
+            k => Some((&done[k - 2].x[..], &done[k - 2].scales[..])),
         };
+        let result = follow(model, loads, (start.0, start.1), scales, options, before);
         match result {
             Ok(sol) => done.push(sol),
             Err(error) => {
@@ -342,4 +656,50 @@ pub fn sweep_static<M: StructuralModel>(
         }
     }
     Ok(done)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stability_of_small_tangents() {
+        let m = |rows: &[f64]| DMatrix::from_row_slice(2, 2, rows);
+        // Symmetric: positive definite is stable; indefinite or singular is not.
+        assert_eq!(
+            tangent_stability(m(&[2.0, 1.0, 1.0, 2.0]), true),
+            Some(true)
+        );
+        assert_eq!(
+            tangent_stability(m(&[1.0, 2.0, 2.0, 1.0]), true),
+            Some(false)
+        );
+        assert_eq!(
+            tangent_stability(m(&[1.0, 1.0, 1.0, 1.0]), true),
+            Some(false)
+        );
+        // Non-symmetric: a negative determinant is divergence (unstable) whatever the pivoting;
+        // a positive one proves nothing.
+        assert_eq!(
+            tangent_stability(m(&[1.0, 3.0, 1.0, 2.0]), false),
+            Some(false)
+        );
+        assert_eq!(
+            tangent_stability(m(&[0.0, 1.0, 1.0, 0.0]), false),
+            Some(false)
+        );
+        assert_eq!(tangent_stability(m(&[1.0, 5.0, -5.0, 1.0]), false), None);
+        assert_eq!(tangent_stability(m(&[-1.0, 0.0, 0.0, -1.0]), false), None);
+    }
+
+    #[test]
+    fn rotation_change_is_the_largest_absolute_angle() {
+        let model = crate::paper::table4_beam(4).unwrap();
+        // Joint rotations (0.1, 0.2, −0.5, 0.1): absolute angles 0.1, 0.3, −0.2, −0.1.
+        assert!((max_rotation(&model, &[0.1, 0.2, -0.5, 0.1]) - 0.3).abs() < 1e-15);
+        assert_eq!(
+            max_rotation(&model, &[0.0, f64::NAN, 0.0, 0.0]),
+            f64::INFINITY
+        );
+    }
 }

@@ -7,6 +7,8 @@ use flexwing::beam::{
 use flexwing::model::FullModel;
 use std::path::PathBuf;
 
+pub mod elastica;
+
 /// A two-point (linear root → tip) table over `[0, length]`.
 pub fn linear(length: f64, root: f64, tip: f64) -> Profile {
     Profile::Table {
