@@ -446,7 +446,8 @@ impl<'a, M: StructuralModel> Run<'a, M> {
             newton: Newton::new(model, loads, newton_options),
             options,
             s_start: s_start.to_vec(),
-            conservative: model.loads_are_conservative(loads, s_start) && model.loads_are_conservative(loads, scales),
+            conservative: model.loads_are_conservative(loads, s_start)
+                && model.loads_are_conservative(loads, scales),
             direction,
             g,
             psi: 1.0,

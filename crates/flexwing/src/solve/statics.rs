@@ -223,7 +223,8 @@ fn follow<M: StructuralModel>(
     let nd = model.n_dofs();
     let mut ws = Newton::new(model, loads, options.clone());
     // Follower scales are linear in μ: the path is conservative iff both ends are.
-    let conservative = model.loads_are_conservative(loads, s_start) && model.loads_are_conservative(loads, scales);
+    let conservative =
+        model.loads_are_conservative(loads, s_start) && model.loads_are_conservative(loads, scales);
     let s_at = |mu: f64| -> Vec<f64> {
         s_start
             .iter()

@@ -224,7 +224,11 @@ impl<'a, M: AeroStructure> StructuralModel for SteadyAeroModel<'a, M> {
     /// twist, so the tangent is not symmetric once the dynamic pressure is non-zero.
     fn loads_are_conservative(&self, loads: &AppliedLoads, scales: &[f64]) -> bool {
         let k = loads.n_loads();
-        scales[k] == 0.0 && self.aero.structure().loads_are_conservative(loads, &scales[..k])
+        scales[k] == 0.0
+            && self
+                .aero
+                .structure()
+                .loads_are_conservative(loads, &scales[..k])
     }
     fn velocities_into(
         &self,
