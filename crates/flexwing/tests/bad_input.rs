@@ -136,7 +136,21 @@ fn load_errors_name_the_load() {
         )
         .unwrap_err()
         .field,
-        "loads[0].torque"
+        // The load itself cannot act on this beam (it was `loads[0].torque`, a name no caller
+        // uses; the value of a moment or torque is `value`, as in `Load::Torque { value }`).
+        "loads[0]"
+    );
+    assert_eq!(
+        m.apply(
+            &[Load::Moment {
+                span: 1.0,
+                value: f64::NAN
+            }],
+            "loads"
+        )
+        .unwrap_err()
+        .field,
+        "loads[0].value"
     );
     assert!(m
         .apply(

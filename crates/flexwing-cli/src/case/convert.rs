@@ -2,14 +2,32 @@
 //! (positivity, NaN, table coverage, increasing stations); this module only checks what the
 //! library cannot see: which keys were given together.
 
+use flexwing::analysis::modes::ModesPlan;
 use flexwing::beam::{
     Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties, TorsionProperties,
 };
+use flexwing::model::FullModel;
 use flexwing::InputError;
 
 use super::spec::{BeamSpec, CalibrationSpec, Case, InertiaAxisSpec, SectionSpec};
 
 impl Case {
+    /// The full model of `[beam]`.
+    ///
+    /// # Errors
+    /// As [`Case::to_beam`].
+    pub fn model(&self) -> Result<FullModel, InputError> {
+        Ok(FullModel::new(self.to_beam()?))
+    }
+
+    /// The modal analysis of `[beam]` and `[modes]`, validated.
+    ///
+    /// # Errors
+    /// As [`Case::to_beam`]; `modes.count` outside `1 ..= n_dofs`.
+    pub fn modes_plan(&self) -> Result<ModesPlan, InputError> {
+        ModesPlan::new(self.model()?, self.modes.count, "modes.count")
+    }
+
     /// The lumped-mass beam of `[beam]`, validated by [`Beam::new`].
     pub fn to_beam(&self) -> Result<Beam, InputError> {
         let b = &self.beam;

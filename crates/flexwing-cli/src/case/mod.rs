@@ -11,10 +11,7 @@ mod statics;
 
 use std::path::Path;
 
-pub use dynamic::{DynamicPlan, InitialPlan, Integrator, IntegratorSettings, ModelKind, ModelPlan};
-pub use loads::case_field;
 pub use spec::Case;
-pub use statics::{StaticPlan, Sweep};
 
 impl Case {
     /// Read and parse the case file at `path`.

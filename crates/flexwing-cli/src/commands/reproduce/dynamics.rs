@@ -10,31 +10,45 @@ use flexwing::solve::{
 };
 
 use super::paper::{self, FIGURE5_MAX_ERROR, TABLE6, TABLE7_RATIO, TABLE8_RATIO};
-use super::run::{integrate, Method, Run};
+use super::run::{integrate, Integrator};
 use super::table::{Cell, Fmt, Table, Timing};
 use super::{distance, tip, AccuracyRow, Context, Section};
+use crate::commands::stop_message;
 use crate::plot::{
     write_history, write_lines, HistoryPlot, HistorySeries, LinePlot, Panel, Series,
 };
+use flexwing::analysis::dynamics::GuardedRun as Run;
 
 /// Integrator of the full model in case (b): its tip error against a tight run is reported.
 /// Measured on this case: with steps capped at 1.2 output intervals, Radau's error control never
 /// binds at rtol 1e-2, the Jacobian and the factorizations are reused across steps, and the tip
 /// error (dominated by the third-order dense output between steps) is about 5e-5 m; leaving the
 /// step free at rtol 1e-3 costs twice as much for 1.2e-4 m.
-const FULL_METHOD: Method = Method::Radau(1e-2, 6e-3);
+fn full_method() -> Integrator {
+    Integrator::radau(1e-2, Some(6e-3))
+}
 /// The tight run that serves as the converged full solution of case (b).
-const FULL_REFERENCE: Method = Method::Radau(1e-9, f64::INFINITY);
+fn full_reference() -> Integrator {
+    Integrator::radau(1e-9, None)
+}
 /// Integrator of the reduced models: the same as the full model's. Measured on this case, it
 /// needs fewer right-hand sides than Dormand–Prince already at r = 2 (Dormand–Prince is limited
 /// by the tolerance on the small modal amplitudes at r = 2, by stability from r = 3 on).
-const ROM_METHOD: Method = FULL_METHOD;
+fn rom_method() -> Integrator {
+    full_method()
+}
 /// The explicit alternative, shown for r = 2.
-const EXPLICIT_METHOD: Method = Method::Dopri5(1e-3);
+fn explicit_method() -> Integrator {
+    Integrator::dopri5(1e-3)
+}
 /// Integrator of the free-vibration case (a), both models, over 1 s.
-const RELEASE_METHOD: Method = Method::Radau(1e-5, f64::INFINITY);
+fn release_method() -> Integrator {
+    Integrator::radau(1e-5, None)
+}
 /// Integrator of the 30 s free vibration: symplectic, so the energy error does not drift.
-const LONG_METHOD: Method = Method::Midpoint(2.5e-4);
+fn long_method() -> Integrator {
+    Integrator::midpoint(2.5e-4)
+}
 /// A run whose energy exceeds this multiple of its initial value has blown up.
 const ENERGY_LIMIT: f64 = 10.0;
 
@@ -49,6 +63,11 @@ fn tips<M: StructuralModel>(model: &M, run: &Run) -> Tips {
         .iter()
         .map(|y| tip(full, &model.full_coordinates(&y[..n])))
         .collect()
+}
+
+/// Why `run` stopped, worded, if it did.
+fn stopped(run: &Run) -> Option<String> {
+    run.stop.as_ref().map(|s| stop_message(s, None, &[]))
 }
 
 fn max_distance(a: &[(f64, f64)], b: &[(f64, f64)]) -> f64 {
@@ -90,7 +109,7 @@ struct SineModel {
     /// Tips of the same model integrated tightly.
     converged: Vec<(f64, f64)>,
     timing: Timing,
-    method: Method,
+    method: Integrator,
 }
 
 fn run_sine<M: StructuralModel>(
@@ -98,7 +117,7 @@ fn run_sine<M: StructuralModel>(
     model: &M,
     loads: &AppliedLoads,
     gyroscopic: Gyroscopic,
-    method: Method,
+    method: &Integrator,
     t_out: &[f64],
 ) -> Result<(Run, Timing, Run)> {
     let tf = vec![TimeFunction::Sine {
@@ -108,14 +127,14 @@ fn run_sine<M: StructuralModel>(
     let mut eom = EquationsOfMotion::new(model, loads, tf, gyroscopic, &Damping::None)?;
     let y0 = vec![0.0; 2 * model.n_dofs()];
     let run = integrate(&mut eom, &y0, t_out, method, None);
-    if let Some(e) = &run.stopped {
+    if let Some(e) = stopped(&run) {
         anyhow::bail!("case (b), {} dofs: {e}", model.n_dofs());
     }
     let timing = Timing::measure(ctx.repeats, || {
         std::hint::black_box(integrate(&mut eom, &y0, t_out, method, None).stats);
     });
-    let converged = integrate(&mut eom, &y0, t_out, FULL_REFERENCE, None);
-    if let Some(e) = &converged.stopped {
+    let converged = integrate(&mut eom, &y0, t_out, &full_reference(), None);
+    if let Some(e) = stopped(&converged) {
         anyhow::bail!("case (b), {} dofs, converged run: {e}", model.n_dofs());
     }
     Ok((run, timing, converged))
@@ -135,8 +154,14 @@ pub fn table8(ctx: &Context) -> Result<(Vec<Section>, Vec<AccuracyRow>, SineSumm
     let modes = Modes::undeformed(&full)?;
     let mut models: Vec<SineModel> = Vec::new();
     // The full model's tight run is the converged solution every model is compared with.
-    let (run, timing, reference) =
-        run_sine(ctx, &full, &loads, Gyroscopic::Exact, FULL_METHOD, &t_out)?;
+    let (run, timing, reference) = run_sine(
+        ctx,
+        &full,
+        &loads,
+        Gyroscopic::Exact,
+        &full_method(),
+        &t_out,
+    )?;
     let reference_tips = tips(&full, &reference);
     models.push(SineModel {
         label: "full (exact γ)".into(),
@@ -145,14 +170,14 @@ pub fn table8(ctx: &Context) -> Result<(Vec<Section>, Vec<AccuracyRow>, SineSumm
         converged: reference_tips.clone(),
         run,
         timing,
-        method: FULL_METHOD,
+        method: full_method(),
     });
     let (run, timing, converged) = run_sine(
         ctx,
         &full,
         &loads,
         Gyroscopic::Neglected,
-        FULL_METHOD,
+        &full_method(),
         &t_out,
     )?;
     models.push(SineModel {
@@ -162,12 +187,12 @@ pub fn table8(ctx: &Context) -> Result<(Vec<Section>, Vec<AccuracyRow>, SineSumm
         converged: tips(&full, &converged),
         run,
         timing,
-        method: FULL_METHOD,
+        method: full_method(),
     });
     for r in [1, 2, 3, 4, 6] {
         let rom = ReducedModel::first(&full, modes.shapes(), r)?;
         let (run, timing, converged) =
-            run_sine(ctx, &rom, &loads, Gyroscopic::Exact, ROM_METHOD, &t_out)?;
+            run_sine(ctx, &rom, &loads, Gyroscopic::Exact, &rom_method(), &t_out)?;
         models.push(SineModel {
             label: format!("reduced, {r} mode{}", if r == 1 { "" } else { "s" }),
             dofs: r,
@@ -175,7 +200,7 @@ pub fn table8(ctx: &Context) -> Result<(Vec<Section>, Vec<AccuracyRow>, SineSumm
             converged: tips(&rom, &converged),
             run,
             timing,
-            method: ROM_METHOD,
+            method: rom_method(),
         });
     }
     // The explicit alternative for the paper's reduced model.
@@ -185,7 +210,7 @@ pub fn table8(ctx: &Context) -> Result<(Vec<Section>, Vec<AccuracyRow>, SineSumm
         &rom,
         &loads,
         Gyroscopic::Exact,
-        EXPLICIT_METHOD,
+        &explicit_method(),
         &t_out,
     )?;
     models.push(SineModel {
@@ -195,7 +220,7 @@ pub fn table8(ctx: &Context) -> Result<(Vec<Section>, Vec<AccuracyRow>, SineSumm
         converged: tips(&rom, &converged),
         run,
         timing,
-        method: EXPLICIT_METHOD,
+        method: explicit_method(),
     });
     // The converged full model against the independent implementation (same output times).
     let independent = paper::independent_case_b()?;
@@ -244,7 +269,7 @@ pub fn table8(ctx: &Context) -> Result<(Vec<Section>, Vec<AccuracyRow>, SineSumm
         if m.label == "reduced, 2 modes" {
             ratio_r2 = ratio;
         }
-        if m.label.starts_with("reduced") && m.method == ROM_METHOD {
+        if m.label.starts_with("reduced") && m.method == rom_method() {
             accuracy.push(AccuracyRow {
                 case: "dynamic, tip force 10 sin(20 t) N, 1 s (n = 20)".into(),
                 modes: m.dofs,
@@ -342,8 +367,8 @@ pub fn table8(ctx: &Context) -> Result<(Vec<Section>, Vec<AccuracyRow>, SineSumm
          its own uncertainty 6.4e-10 m). The largest tip displacement is \
          {:.4} m. Times: the whole 1 s integration (median of {} samples). Reduced models \
          exclude the offline modal analysis and projection.\n\n",
-        FULL_REFERENCE.describe(),
-        FULL_METHOD.describe(),
+        full_reference().describe(),
+        full_method().describe(),
         full_integration_error,
         independent_difference,
         amplitude,
@@ -537,7 +562,7 @@ fn deflected(full: &FullModel, force: f64) -> Result<(Vec<f64>, AppliedLoads)> {
 }
 
 /// The simplified model released from the deflection under `force`, with the energy guard.
-fn simplified_release(full: &FullModel, force: f64, end: f64, method: Method) -> Result<Run> {
+fn simplified_release(full: &FullModel, force: f64, end: f64, method: &Integrator) -> Result<Run> {
     let (q0, none) = deflected(full, force)?;
     let mut eom =
         EquationsOfMotion::new(full, &none, vec![], Gyroscopic::Neglected, &Damping::None)?;
@@ -556,7 +581,7 @@ fn release(
     full: &FullModel,
     force: f64,
     end: f64,
-    method: Method,
+    method: &Integrator,
     timed: bool,
 ) -> Result<Release> {
     let (q0, none) = deflected(full, force)?;
@@ -586,7 +611,7 @@ fn release(
         Ok((run, timing, energy))
     };
     let (full_run, full_timing, energy_full) = go(Gyroscopic::Exact)?;
-    if let Some(e) = &full_run.stopped {
+    if let Some(e) = stopped(&full_run) {
         anyhow::bail!("case (a), full model released from {force} N: {e}");
     }
     let (simplified, simplified_timing, energy_simplified) = go(Gyroscopic::Neglected)?;
@@ -633,9 +658,9 @@ fn t_reached(run: &Run) -> f64 {
 /// full against simplified, 1 s (timed) and 30 s; the same after a 10 N release; energies.
 pub fn table7(ctx: &Context) -> Result<(Vec<Section>, ReleaseSummary)> {
     let full = paper::table4_beam(10)?;
-    let big = release(ctx, &full, 150.0, 1.0, RELEASE_METHOD, true)?;
-    let long = release(ctx, &full, 150.0, 30.0, LONG_METHOD, false)?;
-    let small = release(ctx, &full, 10.0, 1.0, RELEASE_METHOD, false)?;
+    let big = release(ctx, &full, 150.0, 1.0, &release_method(), true)?;
+    let long = release(ctx, &full, 150.0, 30.0, &long_method(), false)?;
+    let small = release(ctx, &full, 10.0, 1.0, &release_method(), false)?;
     let mut table = Table::new(
         "table7",
         &[
@@ -652,11 +677,11 @@ pub fn table7(ctx: &Context) -> Result<(Vec<Section>, ReleaseSummary)> {
             ("status", "status"),
         ],
     );
-    let status = |r: &Run| r.stopped.clone().unwrap_or_else(|| "complete".into());
+    let status = |r: &Run| stopped(r).unwrap_or_else(|| "complete".into());
     table.push(vec![
         Cell::text("full (exact γ)"),
         Cell::Num(10.0, Fmt::Fixed(0)),
-        Cell::text(RELEASE_METHOD.short()),
+        Cell::text(release_method().short()),
         Cell::fixed(t_reached(&big.full), 3),
         Cell::Empty,
         Cell::Empty,
@@ -669,14 +694,14 @@ pub fn table7(ctx: &Context) -> Result<(Vec<Section>, ReleaseSummary)> {
     table.push(vec![
         Cell::text("simplified (γ = 0)"),
         Cell::Num(10.0, Fmt::Fixed(0)),
-        Cell::text(RELEASE_METHOD.short()),
+        Cell::text(release_method().short()),
         Cell::fixed(t_reached(&big.simplified), 3),
         Cell::fixed(100.0 * max_of(&big.error_x), 2),
         Cell::fixed(100.0 * max_of(&big.error_y), 2),
         Cell::time(big.simplified_timing.median),
         Cell::fixed(big.simplified_timing.spread_percent(), 0),
         // A run that stopped early did less work: its time is no measure of the model's cost.
-        if big.simplified.stopped.is_none() {
+        if big.simplified.stop.is_none() {
             Cell::fixed(big.simplified_timing.median / big.full_timing.median, 3)
         } else {
             Cell::Empty
@@ -732,15 +757,15 @@ pub fn table7(ctx: &Context) -> Result<(Vec<Section>, ReleaseSummary)> {
         ],
     );
     for method in [
-        Method::Midpoint(1e-3),
-        Method::Midpoint(5e-4),
-        Method::Midpoint(2.5e-4),
-        Method::Radau(1e-3, f64::INFINITY),
-        Method::Radau(1e-4, f64::INFINITY),
-        Method::Radau(1e-5, f64::INFINITY),
-        Method::Radau(1e-6, f64::INFINITY),
+        Integrator::midpoint(1e-3),
+        Integrator::midpoint(5e-4),
+        Integrator::midpoint(2.5e-4),
+        Integrator::radau(1e-3, None),
+        Integrator::radau(1e-4, None),
+        Integrator::radau(1e-5, None),
+        Integrator::radau(1e-6, None),
     ] {
-        let run = simplified_release(&full, 150.0, 1.0, method)?;
+        let run = simplified_release(&full, 150.0, 1.0, &method)?;
         blowup.push(vec![
             Cell::text(method.describe()),
             Cell::fixed(t_reached(&run), 3),
@@ -852,7 +877,7 @@ pub fn table7(ctx: &Context) -> Result<(Vec<Section>, ReleaseSummary)> {
          samples); no CPU ratio is given for a run that stopped early. The paper reports relative errors up to {:.0} %.\n\n",
         tips(&full, &big.full)[0].0,
         tips(&full, &big.full)[0].1,
-        RELEASE_METHOD.describe(),
+        release_method().describe(),
         ctx.repeats,
         100.0 * FIGURE5_MAX_ERROR,
     );
@@ -875,8 +900,8 @@ pub fn table7(ctx: &Context) -> Result<(Vec<Section>, ReleaseSummary)> {
          conserves quadratic invariants and has no secular energy drift (the full model's 30 s \
          run took {}, one run). The simplified model's equations do not conserve H \
          (dH/dt = −γ·q̇).\n\n",
-        RELEASE_METHOD.describe(),
-        LONG_METHOD.describe(),
+        release_method().describe(),
+        long_method().describe(),
         super::table::duration_text(long.full_timing.median),
     );
     energy_text.push_str(&energy.markdown());
@@ -894,7 +919,7 @@ pub fn table7(ctx: &Context) -> Result<(Vec<Section>, ReleaseSummary)> {
             },
         ],
         ReleaseSummary {
-            simplified_stopped: big.simplified.stopped.clone(),
+            simplified_stopped: stopped(&big.simplified),
             max_error_150: (max_of(&big.error_x), max_of(&big.error_y)),
             max_error_10: (max_of(&small.error_x), max_of(&small.error_y)),
             full_drift_30: drift(&long.energy_full),

@@ -1,45 +1,85 @@
-//! Time integration for the reproduction: one driver over the library's integrators (those the
-//! reproduction uses), with a
-//! guard that stops a run whose energy explodes (the simplified model released from a large
-//! deflection) instead of letting the integrator grind to a tiny step.
+//! The integrators of the reproduction: each is the library's one choice of method and its
+//! settings ([`flexwing::solve::integrate`]), named for the tables; runs go through the library's
+//! guarded integration ([`integrate_guarded`]), which stops a run whose energy explodes (the
+//! simplified model released from a large deflection) instead of letting the integrator grind
+//! to a tiny step.
 
+use flexwing::analysis::dynamics::{integrate_guarded, EnergyGuard, GuardedRun};
 use flexwing::model::StructuralModel;
-use flexwing::solve::integrate::{
-    Dopri5, Dopri5Options, ImplicitMidpoint, IntegratorStats, MidpointOptions, Radau, RadauOptions,
-    Tolerances, Trajectory,
-};
+use flexwing::solve::integrate::{IntegratorSettings, Method};
 use flexwing::solve::EquationsOfMotion;
 
-/// An integrator and its accuracy setting.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Method {
-    /// Dormand–Prince 5(4), relative tolerance.
-    Dopri5(f64),
-    /// Implicit midpoint rule with a fixed step (s).
-    Midpoint(f64),
-    /// Radau IIA of order 5, relative tolerance and largest step (s).
-    Radau(f64, f64),
+/// An integrator and its accuracy setting. Tolerances: `rtol`, and an absolute tolerance on the
+/// coordinates (rad) with consistent momenta of `rtol/100` for Dormand–Prince and `rtol` for
+/// Radau (whose tolerances are rescaled internally as in `RADAU5`); the midpoint rule's fixed
+/// step uses the library's defaults.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Integrator {
+    /// The method.
+    pub method: Method,
+    /// Its settings.
+    pub settings: IntegratorSettings,
 }
 
-impl Method {
+impl Integrator {
+    /// Dormand–Prince 5(4) at relative tolerance `rtol`.
+    pub fn dopri5(rtol: f64) -> Self {
+        Self {
+            method: Method::Dopri5,
+            settings: IntegratorSettings {
+                rtol,
+                atol: rtol * 1e-2,
+                ..Default::default()
+            },
+        }
+    }
+
+    /// The implicit midpoint rule with the fixed step `h` (s).
+    pub fn midpoint(h: f64) -> Self {
+        Self {
+            method: Method::Midpoint,
+            settings: IntegratorSettings {
+                step: Some(h),
+                ..Default::default()
+            },
+        }
+    }
+
+    /// Radau IIA of order 5 at relative tolerance `rtol`, steps at most `max_step` (s).
+    pub fn radau(rtol: f64, max_step: Option<f64>) -> Self {
+        Self {
+            method: Method::Radau,
+            settings: IntegratorSettings {
+                rtol,
+                atol: rtol,
+                max_step,
+                ..Default::default()
+            },
+        }
+    }
+
     /// Description for the report.
     pub fn describe(&self) -> String {
-        match self {
-            Self::Dopri5(rtol) => format!("Dormand–Prince 5(4), rtol {rtol:.0e}"),
-            Self::Midpoint(h) => format!("implicit midpoint, h = {h:.1e} s"),
-            Self::Radau(rtol, h) if h.is_finite() => {
-                format!("Radau IIA order 5, rtol {rtol:.0e}, steps ≤ {h} s")
+        let s = &self.settings;
+        match (self.method, s.step, s.max_step) {
+            (Method::Dopri5, ..) => format!("Dormand–Prince 5(4), rtol {:.0e}", s.rtol),
+            (Method::Midpoint, Some(h), _) => format!("implicit midpoint, h = {h:.1e} s"),
+            (Method::Radau, _, Some(h)) => {
+                format!("Radau IIA order 5, rtol {:.0e}, steps ≤ {h} s", s.rtol)
             }
-            Self::Radau(rtol, _) => format!("Radau IIA order 5, rtol {rtol:.0e}"),
+            (Method::Radau, _, None) => format!("Radau IIA order 5, rtol {:.0e}", s.rtol),
+            (method, ..) => format!("{}, rtol {:.0e}", method.name(), s.rtol),
         }
     }
 
     /// Short name for tables.
     pub fn short(&self) -> String {
-        match self {
-            Self::Dopri5(rtol) => format!("DOPRI5 {rtol:.0e}"),
-            Self::Midpoint(h) => format!("midpoint h {h:.1e}"),
-            Self::Radau(rtol, _) => format!("Radau {rtol:.0e}"),
+        let s = &self.settings;
+        match (self.method, s.step) {
+            (Method::Dopri5, _) => format!("DOPRI5 {:.0e}", s.rtol),
+            (Method::Midpoint, Some(h)) => format!("midpoint h {h:.1e}"),
+            (Method::Radau, _) => format!("Radau {:.0e}", s.rtol),
+            (method, _) => format!("{} {:.0e}", method.name(), s.rtol),
         }
     }
 }
@@ -49,123 +89,28 @@ impl Method {
 /// tightest tolerance used here, unless it blew up.
 pub const WINDOW_STEPS: usize = 5_000;
 
-/// A run: the output reached, the integrator's counters and, if it stopped early, why.
-pub struct Run {
-    pub trajectory: Trajectory,
-    pub stats: IntegratorStats,
-    pub stopped: Option<String>,
-}
-
 /// Integrate `eom` from `y0` at `t_out[0]` to the output times `t_out`. With `energy_limit`, the
 /// run goes in windows of `window` output intervals and stops when the energy exceeds that
 /// multiple of its initial value, or when one window needs more than [`WINDOW_STEPS`] steps (a
-/// blown-up run). Tolerances: `rtol`, and an absolute tolerance on the coordinates (rad) with
-/// consistent momenta (`EquationsOfMotion::state_atol`) of `rtol/100` (`rtol` for Radau, whose
-/// tolerances are rescaled internally as in `RADAU5`).
+/// blown-up run).
 pub fn integrate<M: StructuralModel>(
     eom: &mut EquationsOfMotion<'_, M>,
     y0: &[f64],
     t_out: &[f64],
-    method: Method,
+    integrator: &Integrator,
     energy_limit: Option<(f64, usize)>,
-) -> Run {
-    let (rtol, atol) = match method {
-        Method::Dopri5(r) => (r, r * 1e-2),
-        Method::Radau(r, _) => (r, r),
-        Method::Midpoint(_) => (1e-6, 1e-8),
-    };
-    let tolerances = Tolerances {
-        rtol,
-        atol: eom.state_atol(atol),
-    };
-    let max_steps = if energy_limit.is_some() {
-        WINDOW_STEPS
-    } else {
-        1_000_000
-    };
-    let energy = |eom: &mut EquationsOfMotion<'_, M>, y: &[f64]| {
-        let (k, s) = eom.energies(y);
-        k + s
-    };
-    // The initial energy only matters to a guarded run; unguarded runs are timed, and this
-    // factorization would be timed with them.
-    let h0 = if energy_limit.is_some() {
-        energy(eom, y0)
-    } else {
-        f64::NAN
-    };
-    let window = energy_limit.map_or(t_out.len(), |(_, w)| w.max(1));
-    let mut run = Run {
-        trajectory: Trajectory::default(),
-        stats: IntegratorStats::default(),
-        stopped: None,
-    };
-    let mut y = y0.to_vec();
-    let mut start = 0;
-    while start + 1 < t_out.len() || (start == 0 && t_out.len() == 1) {
-        let end = (start + window).min(t_out.len() - 1);
-        let times = &t_out[start..=end];
-        let t0 = times[0];
-        let result = match method {
-            Method::Dopri5(_) => Dopri5 {
-                options: Dopri5Options {
-                    tolerances: tolerances.clone(),
-                    max_steps,
-                    ..Default::default()
-                },
-            }
-            .integrate(eom, t0, &y, times, &mut |_| {}),
-            Method::Midpoint(h) => ImplicitMidpoint {
-                options: MidpointOptions {
-                    tolerances: tolerances.clone(),
-                    step: Some(h),
-                    max_steps,
-                    ..Default::default()
-                },
-            }
-            .integrate(eom, t0, &y, times, &mut |_| {}),
-            Method::Radau(_, max_step) => Radau {
-                options: RadauOptions {
-                    tolerances: tolerances.clone(),
-                    max_step,
-                    max_steps,
-                    ..Default::default()
-                },
-            }
-            .integrate(eom, t0, &y, times, &mut |_| {}),
-        };
-        let (mut traj, stats, error) = match result {
-            Ok((traj, stats)) => (traj, stats, None),
-            Err(f) => (f.trajectory, f.stats, Some(f.error.to_string())),
-        };
-        run.stats += stats;
-        // Each window repeats the previous window's last output as its first.
-        let skip = usize::from(start > 0 && !traj.t.is_empty());
-        if let Some(last) = traj.y.last() {
-            y.clone_from(last);
-        }
-        run.trajectory.t.extend(traj.t.drain(skip..));
-        run.trajectory.y.extend(traj.y.drain(skip..));
-        if let Some(e) = error {
-            run.stopped = Some(e);
-            break;
-        }
-        if let Some((limit, _)) = energy_limit {
-            let h = energy(eom, &y);
-            if !(h <= limit * h0) {
-                run.stopped = Some(format!(
-                    "stopped at t = {} s: the energy grew to {:.3} times its initial value \
-                     (a blown-up run; limit {limit})",
-                    crate::output::short(t_out[end]),
-                    h / h0
-                ));
-                break;
-            }
-        }
-        if end + 1 >= t_out.len() {
-            break;
-        }
-        start = end;
-    }
-    run
+) -> GuardedRun {
+    let guard = energy_limit.map(|(limit, window)| EnergyGuard {
+        limit,
+        window,
+        window_steps: WINDOW_STEPS,
+    });
+    integrate_guarded(
+        eom,
+        y0,
+        t_out,
+        integrator.method,
+        &integrator.settings,
+        guard.as_ref(),
+    )
 }
