@@ -8,13 +8,12 @@ use clap::Args;
 use flexwing::analysis::modes::{self, ModeResult, ModesPlan};
 use flexwing::analysis::NoProgress;
 use flexwing::model::FullModel;
-use flexwing::InputError;
 use serde::Serialize;
 
 use super::{calibration_name, default_out_dir, model_line, Failure};
-use crate::case::Case;
 use crate::output;
 use crate::plot::{self, ModePlot};
+use flexwing_case::Case;
 
 /// Options of `flexwing modes`.
 #[derive(Debug, Args)]
@@ -44,14 +43,13 @@ pub struct ModesArgs {
 /// Run the command.
 pub fn run(args: &ModesArgs) -> Result<(), Failure> {
     let name = args.case.display().to_string();
-    let input = |e: InputError| Failure::input(format!("{name}: {e}"));
     let case = Case::load(&args.case).map_err(Failure::input)?;
     // `--count` wins over `[modes] count`.
     let plan = match args.count {
-        Some(n) => ModesPlan::new(case.model().map_err(input)?, Some(n), "--count"),
-        None => case.modes_plan(),
-    }
-    .map_err(input)?;
+        Some(n) => ModesPlan::new(case.model().map_err(Failure::input)?, Some(n), "--count")
+            .map_err(|e| Failure::input(format!("{name}: {e}")))?,
+        None => case.modes_plan().map_err(Failure::input)?,
+    };
     let model = &plan.model;
     let results = modes::run(&plan, &mut NoProgress)
         .map_err(|e| Failure::run(format!("{name}: modal analysis failed: {e}")))?

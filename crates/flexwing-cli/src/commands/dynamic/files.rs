@@ -7,10 +7,10 @@ use serde::Serialize;
 use flexwing::analysis::dynamics::ModelRun;
 
 use super::Outcome;
-use crate::case::Case;
 use crate::commands::statics::report::short;
 use crate::output;
 use crate::plot::{self, HistoryPlot, HistorySeries, ModelShapes, ShapePlot};
+use flexwing_case::Case;
 
 #[derive(Serialize)]
 #[allow(non_snake_case)]

@@ -15,10 +15,10 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexwing::analysis::dynamics::{self, DynamicOutcome, Initial, ModelRun};
-use flexwing::{Error, InputError};
+use flexwing::Error;
 
 use super::{default_out_dir, model_line, stop_message, Failure};
-use crate::case::Case;
+use flexwing_case::Case;
 use progress::Progress;
 
 /// Most node snapshots per model in `dynamic_nodes.csv`: with more output times, every k-th is
@@ -124,9 +124,8 @@ impl Outcome {
 /// Run the command.
 pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
     let name = args.case.display().to_string();
-    let input = |e: InputError| Failure::input(format!("{name}: {e}"));
     let case = Case::load(&args.case).map_err(Failure::input)?;
-    let mut plan = case.dynamic_plan().map_err(input)?;
+    let mut plan = case.dynamic_plan().map_err(Failure::input)?;
     let n_out = plan.output_times.len();
     let node_indices = node_indices(n_out);
     let plot_indices = plot_indices(n_out);
@@ -135,7 +134,7 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
     let show_progress = !args.json && std::io::stderr().is_terminal();
     let mut progress = Progress::new(show_progress);
     let result = dynamics::run(&plan, &mut progress).map_err(|e| match e {
-        Error::Input(e) => input(e),
+        Error::Input(e) => Failure::input(format!("{name}: {e}")),
         e => Failure::run(format!(
             "{name}: modal analysis about the undeformed state failed: {e}"
         )),

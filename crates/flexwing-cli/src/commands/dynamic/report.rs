@@ -9,8 +9,8 @@ use flexwing::solve::{Damping, Gyroscopic, TimeFunction};
 use serde::Serialize;
 
 use super::Outcome;
-use crate::case::Case;
 use crate::commands::statics::report::{describe_load, short};
+use flexwing_case::Case;
 
 const MISSING: &str = "-";
 

@@ -8,9 +8,9 @@ use serde::Serialize;
 use flexwing::analysis::statics::ModelRun;
 
 use super::Outcome;
-use crate::case::Case;
 use crate::output;
 use crate::plot::{self, ModelShapes, ShapePlot};
+use flexwing_case::Case;
 
 #[derive(Serialize)]
 struct TipRow {

@@ -18,7 +18,7 @@ use flexwing::model::Load;
 use flexwing::Error;
 
 use super::{default_out_dir, model_line, stop_message, Failure};
-use crate::case::Case;
+use flexwing_case::Case;
 
 /// Options of `flexwing static`.
 #[derive(Debug, Args)]
@@ -123,11 +123,10 @@ impl Outcome {
 /// Run the command.
 pub fn run(args: &StaticArgs) -> Result<(), Failure> {
     let name = args.case.display().to_string();
-    let input = |e: flexwing::InputError| Failure::input(format!("{name}: {e}"));
     let case = Case::load(&args.case).map_err(Failure::input)?;
-    let plan = case.static_plan().map_err(input)?;
+    let plan = case.static_plan().map_err(Failure::input)?;
     let result = statics::run(&plan, &mut NoProgress).map_err(|e| match e {
-        Error::Input(e) => input(e),
+        Error::Input(e) => Failure::input(format!("{name}: {e}")),
         e => Failure::run(format!(
             "{name}: modal analysis about the undeformed state failed: {e}"
         )),

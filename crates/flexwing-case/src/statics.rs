@@ -7,6 +7,7 @@ use flexwing::model::FullModel;
 use flexwing::InputError;
 
 use super::spec::{Case, SweepSpec};
+use crate::CaseError;
 
 impl Case {
     /// The static analysis of `[[loads]]` and `[static]` (defaults without it), validated.
@@ -14,7 +15,11 @@ impl Case {
     /// # Errors
     /// A bad beam or load, a sweep of an unknown load or spelled wrongly, and every error of
     /// [`StaticPlan::validate`], named as in the case file.
-    pub fn static_plan(&self) -> Result<StaticPlan, InputError> {
+    pub fn static_plan(&self) -> Result<StaticPlan, CaseError> {
+        self.checked_static_plan().map_err(|e| self.error(e))
+    }
+
+    fn checked_static_plan(&self) -> Result<StaticPlan, InputError> {
         let model = FullModel::new(self.to_beam()?);
         let loads = self.to_loads(model.beam())?;
         let s = &self.statics;
@@ -109,7 +114,7 @@ mod tests {
          direction = \"dead\"\nfy = 1\n\n[[loads]]\ntype = \"gravity\"\n";
 
     fn plan(extra: &str) -> Result<StaticPlan, String> {
-        let case = Case::parse(&format!("{BEAM}{extra}"), "x.toml")?;
+        let case = Case::from_toml_str(&format!("{BEAM}{extra}")).map_err(|e| e.to_string())?;
         case.static_plan().map_err(|e| e.to_string())
     }
 

@@ -12,8 +12,9 @@ use flexwing::InputError;
 
 use super::spec::{
     Case, DampingKindSpec, DampingSpec, DynamicSpec, GyroscopicSpec, InitialKindSpec, InitialSpec,
-    IntegratorSpec, TimeKindSpec, TimeSpec,
+    TimeKindSpec, TimeSpec,
 };
+use crate::CaseError;
 
 impl Case {
     /// The dynamic analysis of `[[loads]]` and `[dynamic]`, validated.
@@ -21,7 +22,11 @@ impl Case {
     /// # Errors
     /// No `[dynamic]` table, keys that do not belong together, unknown load names, and every
     /// error of [`DynamicPlan::validate`], named as in the case file.
-    pub fn dynamic_plan(&self) -> Result<DynamicPlan, InputError> {
+    pub fn dynamic_plan(&self) -> Result<DynamicPlan, CaseError> {
+        self.checked_dynamic_plan().map_err(|e| self.error(e))
+    }
+
+    fn checked_dynamic_plan(&self) -> Result<DynamicPlan, InputError> {
         let d = self.dynamic.as_ref().ok_or_else(|| {
             InputError::new(
                 "dynamic",
@@ -39,13 +44,7 @@ impl Case {
         plan.reduced.clone_from(&d.reduced);
         plan.reduced_modes.clone_from(&d.reduced_modes);
         plan.gyroscopic = gyroscopic(d)?;
-        plan.integrator = match d.integrator {
-            IntegratorSpec::Auto => Method::default(),
-            IntegratorSpec::Radau => Method::Radau,
-            IntegratorSpec::Bdf => Method::Bdf,
-            IntegratorSpec::Dopri5 => Method::Dopri5,
-            IntegratorSpec::Midpoint => Method::Midpoint,
-        };
+        plan.integrator = d.integrator.method();
         check_integrator_keys(d, plan.integrator)?;
         let s = &mut plan.settings;
         s.rtol = d.rtol.unwrap_or(s.rtol);

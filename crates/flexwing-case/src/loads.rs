@@ -18,7 +18,7 @@ impl Case {
     /// A key that does not belong to the load's type or direction, a missing key, a repeated or
     /// empty name, a node beyond the tip. The values (positions on the beam, finite numbers, a
     /// torque on a bending-only beam) are checked by the library when the loads are applied.
-    pub fn to_loads(&self, beam: &Beam) -> Result<Vec<Load>, InputError> {
+    pub(crate) fn to_loads(&self, beam: &Beam) -> Result<Vec<Load>, InputError> {
         check_names(&self.loads)?;
         self.loads
             .iter()
@@ -273,7 +273,7 @@ mod tests {
 
     /// The loads of `extra`, applied to the beam (as every analysis does).
     fn loads(extra: &str) -> Result<Vec<Load>, String> {
-        let case = Case::parse(&format!("{BEAM}{extra}"), "x.toml")?;
+        let case = Case::from_toml_str(&format!("{BEAM}{extra}")).map_err(|e| e.to_string())?;
         let model = flexwing::model::FullModel::new(case.to_beam().map_err(|e| e.to_string())?);
         let loads = case.to_loads(model.beam()).map_err(|e| e.to_string())?;
         model.apply(&loads, "loads").map_err(|e| e.to_string())?;
