@@ -130,6 +130,23 @@ mod tests {
         assert_eq!(b.time, [Some(sine)]);
         let times: Vec<f64> = (0..=200).map(|k| k as f64 * 0.005).collect();
         assert_eq!(b.output_times, times);
+        // The library's preset of case (b), the benchmarks' and examples' definition, is the
+        // same case.
+        let preset = flexwing::paper::sine_case(20).unwrap();
+        assert_eq!(preset.model.beam(), b.model.beam());
+        assert_eq!(
+            (&preset.loads, &preset.time, &preset.output_times),
+            (&b.loads, &b.time, &b.output_times)
+        );
+        assert_eq!(
+            (preset.end_time, preset.gyroscopic, preset.integrator),
+            (b.end_time, b.gyroscopic, b.integrator)
+        );
+        assert_eq!(
+            flexwing::paper::table4_beam(20).unwrap().beam(),
+            t3.model.beam()
+        );
+        assert_eq!(flexwing::paper::table1_beam(32).unwrap().beam(), t1.beam());
         let a = free_vibration(10.0, 30.0).unwrap();
         assert_eq!(a.model.n_dofs(), 10);
         assert_eq!(a.loads, [tip(1.0, 10.0)]);

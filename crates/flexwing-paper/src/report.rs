@@ -139,9 +139,10 @@ fn gyroscopic_conclusions(s: &mut String, sine: &SineStudy, release: &ReleaseStu
         gamma.fd_cost_ratio(),
     ));
     s.push_str(&format!(
-        "- **Energy.** Over 30 s the full model with the exact term keeps its energy to \
+        "- **Energy.** Over {} s the full model with the exact term keeps its energy to \
          {:.1e} (relative).\n",
-        release.full_drift_30()
+        release.long.end_time,
+        release.full_drift_long()
     ));
 }
 

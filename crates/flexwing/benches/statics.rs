@@ -67,10 +67,8 @@ fn main() {
                     },
                 ]
             } else {
-                vec![Load::PointForce {
-                    span: 1.0,
-                    force: Force::Dead { fx: 0.0, fy: 150.0 },
-                }]
+                // Table 3's load (examples/paper_tip_force.toml).
+                vec![flexwing::paper::table4_tip_force(150.0)]
             };
             let applied = full.apply(&loads, "loads").expect("valid loads");
             let (t_full, s_full) = measure(budget, batches, || run(&full, &applied, sweep));

@@ -7,7 +7,7 @@
 
 use std::time::Instant;
 
-use flexwing::model::{Force, FullModel, Load, ReducedModel, StructuralModel};
+use flexwing::model::{FullModel, ReducedModel, StructuralModel};
 use flexwing::solve::integrate::{integrate, IntegratorSettings, Method, OdeSystem, Trajectory};
 use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, Modes, TimeFunction};
 
@@ -114,21 +114,11 @@ fn main() {
     );
 
     // Table 6: exact against finite-difference γ at the state of the sine case at t = 1 s.
-    let full20 = table4(20);
-    let sine = full20
-        .apply(
-            &[Load::PointForce {
-                span: 1.0,
-                force: Force::Dead { fx: 0.0, fy: 10.0 },
-            }],
-            "loads",
-        )
-        .unwrap();
-    let tf = vec![TimeFunction::Sine {
-        omega: 20.0,
-        phase: 0.0,
-    }];
-    let t_out: Vec<f64> = (0..=200).map(|k| k as f64 * 0.005).collect();
+    let case = flexwing::paper::sine_case(20).unwrap();
+    let full20 = case.model.clone();
+    let sine = full20.apply(&case.loads, "loads").unwrap();
+    let tf: Vec<TimeFunction> = case.time.iter().flatten().cloned().collect();
+    let t_out = case.output_times.clone();
     let mut eom = EquationsOfMotion::new(
         &full20,
         &sine,
