@@ -36,7 +36,8 @@ impl Case {
     pub(crate) fn to_beam(&self) -> Result<Beam, InputError> {
         let b = &self.beam;
         let section = section(&b.section)?;
-        Beam::new(
+        Beam::named(
+            "beam",
             b.length,
             &section,
             &discretization(b)?,

@@ -6,6 +6,10 @@ use common::*;
 use flexwing::beam::{Beam, Calibration, Discretization, InertiaAxis, Profile, TorsionProperties};
 use flexwing::model::{Force, FullModel, Load};
 
+fn stations_of(x: &[f64]) -> Discretization {
+    Discretization::Stations(x.to_vec())
+}
+
 fn field_of(r: Result<Beam, flexwing::InputError>) -> String {
     r.expect_err("must be rejected").field
 }
@@ -30,6 +34,21 @@ fn beam_errors_name_the_field() {
         "beam.elements"
     );
     assert_eq!(field_of(Beam::new(f64::NAN, &good, &d, cal)), "beam.length");
+    // Under the caller's own name for the beam.
+    assert_eq!(
+        field_of(Beam::named("wing", -1.0, &good, &d, cal)),
+        "wing.length"
+    );
+    let mut negative = good.clone();
+    negative.ei = Profile::Uniform(-1.0);
+    assert_eq!(
+        field_of(Beam::named("wing", 16.0, &negative, &d, cal)),
+        "wing.section.EI"
+    );
+    assert_eq!(
+        field_of(Beam::named("", 16.0, &good, &stations_of(&[0.0, 8.0]), cal)),
+        "stations"
+    );
     let stations = |x: Vec<f64>| Discretization::Stations(x);
     assert_eq!(
         field_of(Beam::new(
