@@ -4,7 +4,6 @@
 //! Errors are printed as one line, `error: …`, on stderr. Exit status: 0 on success, 2 for bad
 //! input (command line or case file), 1 when the run fails (a solver, or writing the results).
 
-mod case;
 mod commands;
 mod output;
 mod plot;
@@ -108,7 +107,7 @@ fn main() -> ExitCode {
 
 fn report(failure: &Failure) {
     // `{:#}` joins the context chain with ": ".
-    print_error(&case::one_line(&format!("{:#}", failure.error())));
+    print_error(&flexwing_case::one_line(&format!("{:#}", failure.error())));
 }
 
 /// `error: MESSAGE` on stderr; a closed stderr is ignored (`eprintln!` would panic).
@@ -138,7 +137,7 @@ fn usage_error(e: &clap::Error) -> ExitCode {
             let mut line = String::new();
             for part in message
                 .lines()
-                .map(case::one_line)
+                .map(flexwing_case::one_line)
                 .filter(|l| !l.is_empty())
             {
                 if !line.is_empty() {

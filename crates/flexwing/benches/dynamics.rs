@@ -10,9 +10,9 @@ use std::time::Duration;
 mod common;
 use common::{fmt_time, measure};
 
-use flexwing::model::{AppliedLoads, Force, FullModel, Load, ReducedModel, StructuralModel};
+use flexwing::model::{AppliedLoads, FullModel, ReducedModel, StructuralModel};
 use flexwing::solve::integrate::{
-    Bdf, BdfOptions, Dopri5, Dopri5Options, IntegrationResult, IntegratorStats, OdeSystem, Radau,
+    integrate, IntegrationResult, IntegratorSettings, IntegratorStats, Method, OdeSystem, Radau,
     RadauOptions, Tolerances,
 };
 use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, Modes, TimeFunction};
@@ -22,74 +22,62 @@ fn table4(n: usize) -> FullModel {
     flexwing::paper::table4_beam(n).expect("valid beam")
 }
 
-#[derive(Clone, Copy)]
-enum Method {
-    Bdf,
-    Dopri5,
-    Radau,
-    /// Radau keeping the step and its LU for step ratios in [0.99, 2] (RADAU5's advice for
-    /// large systems) instead of [1, 1.2].
-    RadauWide,
-    /// Radau with steps capped at 6 ms (1.2 output intervals): the setting of
-    /// `flexwing reproduce`, where the cap sets the step and the loose rtol lets the Jacobian and
-    /// the factorizations be reused.
-    RadauCapped,
+/// Case (b) with `n` elements (the library's preset): the model, its loads applied, the time
+/// history of each load and the output times.
+fn sine_case(n: usize) -> (FullModel, AppliedLoads, Vec<TimeFunction>, Vec<f64>) {
+    let case = flexwing::paper::sine_case(n).expect("case (b)");
+    let loads = case.model.apply(&case.loads, "loads").expect("loads");
+    let time = case.time.iter().flatten().cloned().collect();
+    (case.model, loads, time, case.output_times)
 }
 
-/// Tip positions at the output times, and the integrator's counters, for `rtol` and a
-/// coordinate `atol = atol_ratio · rtol`.
+/// Radau with RADAU5's advice for large systems: keep the step and its LU for step ratios in
+/// [0.99, 2] instead of [1, 1.2] (a Radau option outside the shared settings).
+const WIDE_LU_REUSE: (f64, f64) = (0.99, 2.0);
+
+/// Settings of a run at `rtol` with the coordinate tolerance `atol = atol_ratio · rtol`.
+fn settings(rtol: f64, atol_ratio: f64, max_step: Option<f64>) -> IntegratorSettings {
+    IntegratorSettings {
+        rtol,
+        atol: rtol * atol_ratio,
+        max_step,
+        ..Default::default()
+    }
+}
+
+/// Tip positions at the output times, and the integrator's counters; `wide` runs Radau with
+/// [`WIDE_LU_REUSE`].
 fn tip_history<M: StructuralModel>(
     model: &M,
-    loads: &AppliedLoads,
-    rtol: f64,
-    atol_ratio: f64,
+    (loads, time, t): (&AppliedLoads, &[TimeFunction], &[f64]),
     method: Method,
+    settings: &IntegratorSettings,
+    wide: bool,
 ) -> (Vec<[f64; 2]>, IntegratorStats) {
     let full = model.full_model();
-    let tf = vec![TimeFunction::Sine {
-        omega: 20.0,
-        phase: 0.0,
-    }];
-    let mut eom =
-        EquationsOfMotion::new(model, loads, tf, Gyroscopic::Exact, &Damping::None).expect("eom");
-    let tolerances = Tolerances {
-        rtol,
-        atol: eom.state_atol(rtol * atol_ratio),
-    };
-    let t: Vec<f64> = (0..=200).map(|k| k as f64 * 0.005).collect();
+    let mut eom = EquationsOfMotion::new(
+        model,
+        loads,
+        time.to_vec(),
+        Gyroscopic::Exact,
+        &Damping::None,
+    )
+    .expect("eom");
     let y0 = vec![0.0; 2 * model.n_dofs()];
-    let result: IntegrationResult = match method {
-        Method::Bdf => Bdf {
-            options: BdfOptions {
-                tolerances,
-                ..Default::default()
-            },
-        }
-        .integrate(&mut eom, 0.0, &y0, &t, &mut |_| {}),
-        Method::Dopri5 => Dopri5 {
-            options: Dopri5Options {
-                tolerances,
-                ..Default::default()
-            },
-        }
-        .integrate(&mut eom, 0.0, &y0, &t, &mut |_| {}),
-        Method::Radau | Method::RadauWide | Method::RadauCapped => Radau {
+    let result: IntegrationResult = if wide {
+        Radau {
             options: RadauOptions {
-                tolerances,
-                max_step: if matches!(method, Method::RadauCapped) {
-                    6e-3
-                } else {
-                    f64::INFINITY
+                tolerances: Tolerances {
+                    rtol: settings.rtol,
+                    atol: eom.state_atol(settings.atol),
                 },
-                unchanged_step_ratio: if matches!(method, Method::RadauWide) {
-                    (0.99, 2.0)
-                } else {
-                    (1.0, 1.2)
-                },
+                unchanged_step_ratio: WIDE_LU_REUSE,
                 ..Default::default()
             },
         }
-        .integrate(&mut eom, 0.0, &y0, &t, &mut |_| {}),
+        .integrate(&mut eom, 0.0, &y0, t, &mut |_| {})
+    } else {
+        integrate(method, settings, &mut eom, 0.0, &y0, t, &mut |_| {})
     };
     let (traj, stats) = result.expect("integrates");
     let tips = traj
@@ -118,16 +106,8 @@ fn main() {
     } else {
         (Duration::from_millis(500), 5)
     };
-    let full = table4(20);
-    let loads = full
-        .apply(
-            &[Load::PointForce {
-                span: 1.0,
-                force: Force::Dead { fx: 0.0, fy: 10.0 },
-            }],
-            "loads",
-        )
-        .expect("loads");
+    let (full, loads, time, t_out) = sine_case(20);
+    let case = (&loads, time.as_slice(), t_out.as_slice());
     let modes = Modes::undeformed(&full).expect("modes");
     println!("Case (b), 1 s, output every 5 ms. Error: max tip distance from the same model at rtol 1e-9 (BDF for the full model, Dormand–Prince for the reduced ones). atol: the coordinate tolerance over rtol (state_atol).\n");
     println!("| model | integrator | rtol | atol/rtol | tip error (m) | steps (rejected) | f / J / LU / Newton | wall time | spread |");
@@ -152,29 +132,31 @@ fn main() {
             100.0 * s
         );
     };
-    let (reference, _) = tip_history(&full, &loads, 1e-9, 1e-2, Method::Bdf);
-    let full_runs: Vec<(Method, &str, f64, f64)> = [1e-4, 1e-5, 1e-6]
+    let (reference, _) = tip_history(&full, case, Method::Bdf, &settings(1e-9, 1e-2, None), false);
+    let full_runs: Vec<(Method, bool, &str, f64, f64)> = [1e-4, 1e-5, 1e-6]
         .iter()
-        .map(|&r| (Method::Bdf, "BDF (order ≤ 2)", r, 1e-2))
+        .map(|&r| (Method::Bdf, false, "BDF (order ≤ 2)", r, 1e-2))
         .chain(
             [(1e-3, 1e-2), (1e-4, 1e-2), (1e-5, 1e-2), (1e-6, 1e-2)]
                 .iter()
                 .chain(&[(1e-3, 1.0), (5e-4, 1.0), (1e-4, 1.0), (1e-5, 1.0)])
-                .map(|&(r, a)| (Method::Radau, "Radau IIA (5)", r, a)),
+                .map(|&(r, a)| (Method::Radau, false, "Radau IIA (5)", r, a)),
         )
         .chain([(1e-3, 1.0), (5e-4, 1.0)].iter().map(|&(r, a)| {
             (
-                Method::RadauWide,
+                Method::Radau,
+                true,
                 "Radau IIA (5), LU kept for h ratio in [0.99, 2]",
                 r,
                 a,
             )
         }))
         .collect();
-    for (method, name, rtol, ratio) in full_runs {
-        let (h, st) = tip_history(&full, &loads, rtol, ratio, method);
+    for (method, wide, name, rtol, ratio) in full_runs {
+        let s = settings(rtol, ratio, None);
+        let (h, st) = tip_history(&full, case, method, &s, wide);
         let (t, s) = measure(budget, batches, || {
-            black_box(tip_history(&full, &loads, rtol, ratio, method));
+            black_box(tip_history(&full, case, method, &s, wide));
         });
         row(
             "full n = 20",
@@ -189,16 +171,18 @@ fn main() {
     }
     for r in [1, 2, 3, 4] {
         let rom = ReducedModel::first(&full, modes.shapes(), r).expect("rom");
-        let (reference, _) = tip_history(&rom, &loads, 1e-10, 1e-2, Method::Dopri5);
+        let tight = settings(1e-10, 1e-2, None);
+        let (reference, _) = tip_history(&rom, case, Method::Dopri5, &tight, false);
         for (method, name, rtol) in [
             (Method::Dopri5, "Dormand–Prince", 1e-4),
             (Method::Dopri5, "Dormand–Prince", 1e-6),
             (Method::Radau, "Radau IIA (5)", 1e-4),
             (Method::Radau, "Radau IIA (5)", 1e-6),
         ] {
-            let (h, st) = tip_history(&rom, &loads, rtol, 1e-2, method);
+            let s = settings(rtol, 1e-2, None);
+            let (h, st) = tip_history(&rom, case, method, &s, false);
             let (t, s) = measure(budget, batches, || {
-                black_box(tip_history(&rom, &loads, rtol, 1e-2, method));
+                black_box(tip_history(&rom, case, method, &s, false));
             });
             row(
                 &format!("reduced r = {r}"),
@@ -218,26 +202,23 @@ fn main() {
     );
     println!("| n | model | steps | RHS | Jacobians | LU | tip error (m) | wall time | per step | ratio to full |");
     println!("|---|---|---|---|---|---|---|---|---|---|");
+    // Radau with steps capped at 6 ms (1.2 output intervals): the setting of `flexwing
+    // reproduce`, where the cap sets the step and the loose rtol lets the Jacobian and the
+    // factorizations be reused.
+    let capped = settings(1e-2, 1.0, Some(6e-3));
+    let tight = settings(1e-9, 1.0, None);
     for n in [10, 20, 40, 80, 160, 320] {
-        let full = table4(n);
-        let loads = full
-            .apply(
-                &[Load::PointForce {
-                    span: 1.0,
-                    force: Force::Dead { fx: 0.0, fy: 10.0 },
-                }],
-                "loads",
-            )
-            .expect("loads");
+        let (full, loads, time, t_out) = sine_case(n);
+        let case = (&loads, time.as_slice(), t_out.as_slice());
         let modes = Modes::undeformed(&full).expect("modes");
         let rom = ReducedModel::first(&full, modes.shapes(), 2).expect("rom");
         let mut t_full = f64::NAN;
         // The full model at n = 320 (640 states) needs seconds per run: left out.
         if n <= 160 {
-            let (reference, _) = tip_history(&full, &loads, 1e-9, 1.0, Method::Radau);
-            let (h, stats) = tip_history(&full, &loads, 1e-2, 1.0, Method::RadauCapped);
+            let (reference, _) = tip_history(&full, case, Method::Radau, &tight, false);
+            let (h, stats) = tip_history(&full, case, Method::Radau, &capped, false);
             let (t, _) = measure(budget, batches, || {
-                black_box(tip_history(&full, &loads, 1e-2, 1.0, Method::RadauCapped));
+                black_box(tip_history(&full, case, Method::Radau, &capped, false));
             });
             t_full = t;
             println!(
@@ -251,10 +232,10 @@ fn main() {
                 fmt_time(t / stats.steps as f64)
             );
         }
-        let (reference, _) = tip_history(&rom, &loads, 1e-9, 1.0, Method::Radau);
-        let (h, stats) = tip_history(&rom, &loads, 1e-2, 1.0, Method::RadauCapped);
+        let (reference, _) = tip_history(&rom, case, Method::Radau, &tight, false);
+        let (h, stats) = tip_history(&rom, case, Method::Radau, &capped, false);
         let (t, _) = measure(budget, batches, || {
-            black_box(tip_history(&rom, &loads, 1e-2, 1.0, Method::RadauCapped));
+            black_box(tip_history(&rom, case, Method::Radau, &capped, false));
         });
         println!(
             "| {n} | reduced r = 2 | {} | {} | {} | {} | {:.1e} | {} | {} | {} |",

@@ -14,7 +14,7 @@ use std::time::Duration;
 mod common;
 use common::{fmt_time, measure};
 
-use flexwing::model::{Force, FullModel, Load, ReducedModel};
+use flexwing::model::{FullModel, Load, ReducedModel};
 use flexwing::solve::integrate::{Dopri5, Dopri5Options, OdeSystem, Tolerances};
 use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, Modes, TimeFunction};
 use nalgebra::DMatrix;
@@ -27,18 +27,15 @@ fn table1(n: usize) -> FullModel {
     flexwing::paper::table1_beam(n).expect("valid beam")
 }
 
+/// The loads of case (b) (the library's preset).
 fn tip_force() -> Vec<Load> {
-    vec![Load::PointForce {
-        span: 1.0,
-        force: Force::Dead { fx: 0.0, fy: 10.0 },
-    }]
+    flexwing::paper::sine_case(1).expect("case (b)").loads
 }
 
+/// The time histories of case (b)'s loads (the library's preset).
 fn sine() -> Vec<TimeFunction> {
-    vec![TimeFunction::Sine {
-        omega: 20.0,
-        phase: 0.0,
-    }]
+    let case = flexwing::paper::sine_case(1).expect("case (b)");
+    case.time.into_iter().flatten().collect()
 }
 
 fn slope(t: f64, prev: Option<(usize, f64)>, n: usize) -> String {

@@ -89,10 +89,8 @@ fn loads_of(case: Case, tip: f64) -> Vec<Load> {
                 },
             },
         ],
-        Case::Tip => vec![Load::PointForce {
-            span: 1.0,
-            force: Force::Dead { fx: 0.0, fy: tip },
-        }],
+        // Table 3's load (examples/paper_tip_force.toml) at `tip` N.
+        Case::Tip => vec![flexwing::paper::table4_tip_force(tip)],
         Case::ArcLength => vec![
             Load::PointForce {
                 span: 1.0,

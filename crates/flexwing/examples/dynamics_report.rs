@@ -7,11 +7,8 @@
 
 use std::time::Instant;
 
-use flexwing::model::{Force, FullModel, Load, ReducedModel, StructuralModel};
-use flexwing::solve::integrate::{
-    Bdf, BdfOptions, Dopri5, Dopri5Options, ImplicitMidpoint, MidpointOptions, OdeSystem,
-    Tolerances, Trajectory,
-};
+use flexwing::model::{FullModel, ReducedModel, StructuralModel};
+use flexwing::solve::integrate::{integrate, IntegratorSettings, Method, OdeSystem, Trajectory};
 use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, Modes, TimeFunction};
 
 fn table4(n: usize) -> FullModel {
@@ -23,13 +20,8 @@ fn tip(full: &FullModel, q: &[f64]) -> [f64; 2] {
     [p[0], p[1]]
 }
 
-#[derive(Clone, Copy, Debug)]
-enum Method {
-    Bdf,
-    Midpoint,
-    Dopri5,
-}
-
+/// Integrate with `method` at relative tolerance `rtol` (coordinate tolerance `rtol/100`) and,
+/// for the midpoint rule, a fixed `step`.
 fn run<M: StructuralModel>(
     eom: &mut EquationsOfMotion<'_, M>,
     y0: &[f64],
@@ -38,33 +30,14 @@ fn run<M: StructuralModel>(
     rtol: f64,
     step: Option<f64>,
 ) -> (Trajectory, String, f64) {
-    let atol = eom.state_atol(rtol * 1e-2);
-    let tol = Tolerances { rtol, atol };
-    let start = Instant::now();
-    let r = match method {
-        Method::Bdf => Bdf {
-            options: BdfOptions {
-                tolerances: tol,
-                ..Default::default()
-            },
-        }
-        .integrate(eom, 0.0, y0, t_out, &mut |_| {}),
-        Method::Midpoint => ImplicitMidpoint {
-            options: MidpointOptions {
-                tolerances: tol,
-                step,
-                ..Default::default()
-            },
-        }
-        .integrate(eom, 0.0, y0, t_out, &mut |_| {}),
-        Method::Dopri5 => Dopri5 {
-            options: Dopri5Options {
-                tolerances: tol,
-                ..Default::default()
-            },
-        }
-        .integrate(eom, 0.0, y0, t_out, &mut |_| {}),
+    let settings = IntegratorSettings {
+        rtol,
+        atol: rtol * 1e-2,
+        step,
+        ..Default::default()
     };
+    let start = Instant::now();
+    let r = integrate(method, &settings, eom, 0.0, y0, t_out, &mut |_| {});
     let wall = start.elapsed().as_secs_f64();
     let (traj, stats) = r.expect("integration");
     (
@@ -141,21 +114,11 @@ fn main() {
     );
 
     // Table 6: exact against finite-difference γ at the state of the sine case at t = 1 s.
-    let full20 = table4(20);
-    let sine = full20
-        .apply(
-            &[Load::PointForce {
-                span: 1.0,
-                force: Force::Dead { fx: 0.0, fy: 10.0 },
-            }],
-            "loads",
-        )
-        .unwrap();
-    let tf = vec![TimeFunction::Sine {
-        omega: 20.0,
-        phase: 0.0,
-    }];
-    let t_out: Vec<f64> = (0..=200).map(|k| k as f64 * 0.005).collect();
+    let case = flexwing::paper::sine_case(20).unwrap();
+    let full20 = case.model.clone();
+    let sine = full20.apply(&case.loads, "loads").unwrap();
+    let tf: Vec<TimeFunction> = case.time.iter().flatten().cloned().collect();
+    let t_out = case.output_times.clone();
     let mut eom = EquationsOfMotion::new(
         &full20,
         &sine,

@@ -11,7 +11,8 @@
 //!
 //! The modules form a chain: [`beam`] (section properties, discretization, stiffness calibration)
 //! → [`model`] (kinematics, mass matrix, generalized forces) → [`solve`] (modes, statics,
-//! dynamics); [`paper`] holds the paper's beams.
+//! dynamics) → [`analysis`] (what a run is: validated plans in, outcomes out; the public way to
+//! run any analysis); [`paper`] holds the paper's beams.
 //!
 //! ```
 //! use flexwing::beam::{Beam, Calibration, Discretization, Profile, SectionProperties};
@@ -31,11 +32,23 @@
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
+pub mod analysis;
 pub mod beam;
 mod error;
 pub mod model;
 pub mod paper;
 pub mod solve;
+pub mod text;
 pub mod wings;
 
 pub use error::{Error, InputError, Result, SolveError, StaticFailure};
+
+/// `prefix.key`, or `key` alone with an empty prefix: the name of a field of the caller's input
+/// for error messages (`field("dynamic", "rtol")` is `dynamic.rtol`).
+pub(crate) fn field(prefix: &str, key: &str) -> String {
+    if prefix.is_empty() {
+        key.to_string()
+    } else {
+        format!("{prefix}.{key}")
+    }
+}

@@ -1,6 +1,8 @@
-//! The beams of the results section of Veronese, Ribeiro & Moreira (COBEM 2021), ready to use:
-//! for examples, benchmarks and `flexwing reproduce`. The library's validation tests define their
-//! own copies from the paper, so that a mistake here cannot hide behind them.
+//! The beams and the dynamic case (b) of the results section of Veronese, Ribeiro & Moreira
+//! (COBEM 2021), ready to use: the one definition of the benchmarks and examples. The paper study
+//! (`flexwing-paper`) builds the same cases from the example case files and checks them against
+//! these; the library's validation tests define their own copies from the paper, on purpose, so
+//! that a mistake here cannot hide behind them.
 //!
 //! ```
 //! let model = flexwing::paper::table4_beam(20)?;
@@ -8,11 +10,13 @@
 //! # Ok::<(), flexwing::InputError>(())
 //! ```
 
+use crate::analysis::dynamics::DynamicPlan;
 use crate::beam::{
     Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties, TorsionProperties,
 };
 use crate::error::InputError;
-use crate::model::FullModel;
+use crate::model::{Force, FullModel, Load};
+use crate::solve::TimeFunction;
 
 /// Span of the Table 1 beam (m).
 pub const TABLE1_LENGTH: f64 = 16.0;
@@ -60,6 +64,31 @@ pub fn table4_beam(n: usize) -> Result<FullModel, InputError> {
     model(TABLE4_LENGTH, &table4_section(), n)
 }
 
+/// A dead vertical force `fy` (N) at the tip of the Table 4 beam.
+pub fn table4_tip_force(fy: f64) -> Load {
+    Load::PointForce {
+        span: TABLE4_LENGTH,
+        force: Force::Dead { fx: 0.0, fy },
+    }
+}
+
+/// Case (b), section 5.2.5 (Figure 6, Table 8): the Table 4 beam with `n` elements, from rest,
+/// under the dead tip force `10 sin(20 t)` N, 1 s, outputs every 5 ms, the full model with the
+/// exact gyroscopic term and the default integrator (as `examples/paper_sine.toml` without its
+/// reduced models).
+///
+/// # Errors
+/// As [`table4_beam`].
+pub fn sine_case(n: usize) -> Result<DynamicPlan, InputError> {
+    let times = (0..=200).map(|k| k as f64 * 0.005).collect();
+    let mut plan = DynamicPlan::new(table4_beam(n)?, vec![table4_tip_force(10.0)], 1.0, times);
+    plan.time = vec![Some(TimeFunction::Sine {
+        omega: 20.0,
+        phase: 0.0,
+    })];
+    Ok(plan)
+}
+
 fn model(length: f64, section: &SectionProperties, n: usize) -> Result<FullModel, InputError> {
     let beam = Beam::new(
         length,
@@ -84,5 +113,9 @@ mod tests {
         let total: f64 = t4.beam().masses().iter().sum();
         assert!((total - 0.2).abs() < 1e-12);
         assert!(table4_beam(0).is_err());
+        let b = sine_case(20).unwrap();
+        assert!(b.validate("loads", "dynamic").is_ok());
+        assert_eq!(b.output_times.len(), 201);
+        assert_eq!(b.output_times[200], 1.0);
     }
 }

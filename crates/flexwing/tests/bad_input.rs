@@ -6,6 +6,10 @@ use common::*;
 use flexwing::beam::{Beam, Calibration, Discretization, InertiaAxis, Profile, TorsionProperties};
 use flexwing::model::{Force, FullModel, Load};
 
+fn stations_of(x: &[f64]) -> Discretization {
+    Discretization::Stations(x.to_vec())
+}
+
 fn field_of(r: Result<Beam, flexwing::InputError>) -> String {
     r.expect_err("must be rejected").field
 }
@@ -30,6 +34,21 @@ fn beam_errors_name_the_field() {
         "beam.elements"
     );
     assert_eq!(field_of(Beam::new(f64::NAN, &good, &d, cal)), "beam.length");
+    // Under the caller's own name for the beam.
+    assert_eq!(
+        field_of(Beam::named("wing", -1.0, &good, &d, cal)),
+        "wing.length"
+    );
+    let mut negative = good.clone();
+    negative.ei = Profile::Uniform(-1.0);
+    assert_eq!(
+        field_of(Beam::named("wing", 16.0, &negative, &d, cal)),
+        "wing.section.EI"
+    );
+    assert_eq!(
+        field_of(Beam::named("", 16.0, &good, &stations_of(&[0.0, 8.0]), cal)),
+        "stations"
+    );
     let stations = |x: Vec<f64>| Discretization::Stations(x);
     assert_eq!(
         field_of(Beam::new(
@@ -136,7 +155,21 @@ fn load_errors_name_the_load() {
         )
         .unwrap_err()
         .field,
-        "loads[0].torque"
+        // The load itself cannot act on this beam (it was `loads[0].torque`, a name no caller
+        // uses; the value of a moment or torque is `value`, as in `Load::Torque { value }`).
+        "loads[0]"
+    );
+    assert_eq!(
+        m.apply(
+            &[Load::Moment {
+                span: 1.0,
+                value: f64::NAN
+            }],
+            "loads"
+        )
+        .unwrap_err()
+        .field,
+        "loads[0].value"
     );
     assert!(m
         .apply(

@@ -5,7 +5,7 @@
 mod common;
 
 use common::*;
-use flexwing::beam::{Calibration, Profile};
+use flexwing::beam::Calibration;
 use flexwing::model::{Force, FullModel, Load, ReducedModel, StructuralModel};
 use flexwing::solve::integrate::{
     Bdf, BdfOptions, Dopri5, Dopri5Options, ImplicitMidpoint, MidpointOptions, OdeSystem, Radau,
@@ -15,15 +15,6 @@ use flexwing::solve::{
     solve_static, Damping, EquationsOfMotion, Gyroscopic, Modes, StaticOptions, TimeFunction,
 };
 use nalgebra::{DMatrix, DVector};
-
-fn table4(n: usize) -> FullModel {
-    model(
-        1.0,
-        &bending_only(Profile::Uniform(50.0), Profile::Uniform(0.2)),
-        n,
-        Calibration::TipLoad,
-    )
-}
 
 fn tip(full: &FullModel, q: &[f64]) -> [f64; 2] {
     let p = full.node_positions(&full.kinematics(q))[full.n_elements()];
@@ -383,20 +374,11 @@ fn reduced_model_with_every_mode_reproduces_the_full_trajectory() {
 
 #[test]
 fn midpoint_converges_at_second_order_in_the_time_step() {
-    let full = table4(10);
-    let loads = full
-        .apply(
-            &[Load::PointForce {
-                span: 1.0,
-                force: Force::Dead { fx: 0.0, fy: 10.0 },
-            }],
-            "loads",
-        )
-        .unwrap();
-    let tf = vec![TimeFunction::Sine {
-        omega: 20.0,
-        phase: 0.0,
-    }];
+    let SineCase {
+        full,
+        loads,
+        time: tf,
+    } = sine_case(10);
     let t = times(0.2, 0.01);
     let history = |h: f64| {
         let mut eom =
@@ -475,20 +457,11 @@ fn paper_case_a_simplified_model_departs_from_the_full_model() {
 #[test]
 fn paper_case_b_reduced_models_converge_to_the_full_model() {
     // Tip force 10 sin(20 t) N from rest, 1 s, output every 0.005 s; full n = 20 against r = 1…4.
-    let full = table4(20);
-    let loads = full
-        .apply(
-            &[Load::PointForce {
-                span: 1.0,
-                force: Force::Dead { fx: 0.0, fy: 10.0 },
-            }],
-            "loads",
-        )
-        .unwrap();
-    let tf = vec![TimeFunction::Sine {
-        omega: 20.0,
-        phase: 0.0,
-    }];
+    let SineCase {
+        full,
+        loads,
+        time: tf,
+    } = sine_case(20);
     let t = times(1.0, 0.005);
     let mut eom =
         EquationsOfMotion::new(&full, &loads, tf.clone(), Gyroscopic::Exact, &Damping::None)
@@ -535,20 +508,11 @@ fn tip_history_converges_at_second_order_in_n() {
     // and far smaller than the spatial one at these n); reference n = 64.
     let t = times(0.2, 0.01);
     let history = |n: usize| {
-        let full = table4(n);
-        let loads = full
-            .apply(
-                &[Load::PointForce {
-                    span: 1.0,
-                    force: Force::Dead { fx: 0.0, fy: 10.0 },
-                }],
-                "loads",
-            )
-            .unwrap();
-        let tf = vec![TimeFunction::Sine {
-            omega: 20.0,
-            phase: 0.0,
-        }];
+        let SineCase {
+            full,
+            loads,
+            time: tf,
+        } = sine_case(n);
         let mut eom =
             EquationsOfMotion::new(&full, &loads, tf, Gyroscopic::Exact, &Damping::None).unwrap();
         let traj = midpoint(&mut eom, &vec![0.0; 2 * n], &t, 2e-4);
@@ -581,20 +545,11 @@ fn tip_history_converges_at_second_order_in_n() {
 fn paper_case_b_radau_agrees_with_a_tight_bdf_reference() {
     // Case (b) on the full model, n = 20: the converged reference is BDF2 at rtol 1e-8 (measured
     // 3e-8 m from rtol 1e-9 in the benchmark's terms: far below what is asserted here).
-    let full = table4(20);
-    let loads = full
-        .apply(
-            &[Load::PointForce {
-                span: 1.0,
-                force: Force::Dead { fx: 0.0, fy: 10.0 },
-            }],
-            "loads",
-        )
-        .unwrap();
-    let tf = vec![TimeFunction::Sine {
-        omega: 20.0,
-        phase: 0.0,
-    }];
+    let SineCase {
+        full,
+        loads,
+        time: tf,
+    } = sine_case(20);
     let t = times(1.0, 0.005);
     let mut eom =
         EquationsOfMotion::new(&full, &loads, tf, Gyroscopic::Exact, &Damping::None).unwrap();
@@ -662,20 +617,11 @@ fn radau_free_vibration_energy_drift_is_small_but_not_zero() {
 fn radau_on_reduced_models_matches_dormand_prince() {
     // Case (b) with r = 2 and r = 4: the reduced models are not stiff, and both integrators at
     // tight tolerances must agree (independent methods: explicit and implicit).
-    let full = table4(20);
-    let loads = full
-        .apply(
-            &[Load::PointForce {
-                span: 1.0,
-                force: Force::Dead { fx: 0.0, fy: 10.0 },
-            }],
-            "loads",
-        )
-        .unwrap();
-    let tf = vec![TimeFunction::Sine {
-        omega: 20.0,
-        phase: 0.0,
-    }];
+    let SineCase {
+        full,
+        loads,
+        time: tf,
+    } = sine_case(20);
     let t = times(1.0, 0.005);
     let modes = Modes::undeformed(&full).unwrap();
     for r in [2, 4] {
@@ -725,20 +671,11 @@ fn paper_case_b_matches_an_independent_python_implementation() {
         })
         .collect();
     assert_eq!(reference.len(), 201);
-    let full = table4(20);
-    let loads = full
-        .apply(
-            &[Load::PointForce {
-                span: 1.0,
-                force: Force::Dead { fx: 0.0, fy: 10.0 },
-            }],
-            "loads",
-        )
-        .unwrap();
-    let tf = vec![TimeFunction::Sine {
-        omega: 20.0,
-        phase: 0.0,
-    }];
+    let SineCase {
+        full,
+        loads,
+        time: tf,
+    } = sine_case(20);
     let t: Vec<f64> = reference.iter().map(|r| r[0]).collect();
     let mut eom =
         EquationsOfMotion::new(&full, &loads, tf, Gyroscopic::Exact, &Damping::None).unwrap();

@@ -5,7 +5,7 @@
 mod common;
 
 use common::*;
-use flexwing::beam::{Calibration, Profile};
+use flexwing::beam::Calibration;
 use flexwing::model::{Force, Load, ReducedModel, StructuralModel};
 use flexwing::solve::{solve_static, sweep_static, Modes, StaticOptions};
 use nalgebra::DMatrix;
@@ -13,15 +13,6 @@ use std::f64::consts::PI;
 
 const L: f64 = 1.0;
 const EI: f64 = 50.0;
-
-fn table4(n: usize) -> flexwing::model::FullModel {
-    model(
-        L,
-        &bending_only(Profile::Uniform(EI), Profile::Uniform(0.2)),
-        n,
-        Calibration::TipLoad,
-    )
-}
 
 #[test]
 fn tip_moment_rolls_the_beam_into_a_circle() {

@@ -6,7 +6,7 @@ mod common;
 
 use common::elastica::two_followers;
 use common::*;
-use flexwing::beam::{Calibration, Profile};
+use flexwing::beam::Profile;
 use flexwing::model::{DistributedForce, Force, FullModel, Load, ReducedModel, StructuralModel};
 use flexwing::solve::{sweep_static, Modes, StaticOptions, StaticSolution};
 
@@ -22,15 +22,6 @@ fn read(file: &str) -> Vec<Vec<f64>> {
                 .collect()
         })
         .collect()
-}
-
-fn table4(n: usize) -> FullModel {
-    model(
-        1.0,
-        &bending_only(Profile::Uniform(50.0), Profile::Uniform(0.2)),
-        n,
-        Calibration::TipLoad,
-    )
 }
 
 /// Sweep the first load's scale over `column` of `rows` (other loads at scale 1).

@@ -9,8 +9,10 @@ pub mod statics;
 use std::fmt::Display;
 use std::path::{Path, PathBuf};
 
+use flexwing::analysis::Stop;
 use flexwing::beam::Calibration;
 use flexwing::model::FullModel;
+use flexwing::text::short;
 
 /// Why a command failed.
 #[derive(Debug)]
@@ -51,11 +53,6 @@ pub fn default_out_dir(case: &Path) -> PathBuf {
         .file_stem()
         .map_or_else(|| "case".into(), |s| s.to_string_lossy().into_owned());
     Path::new("results").join(stem)
-}
-
-/// `-0.0` and `0.0` print differently; results never need the sign of a zero.
-pub fn clean(v: f64) -> f64 {
-    v + 0.0
 }
 
 /// The case-file spelling of a calibration.
@@ -115,4 +112,42 @@ pub fn status_text(incomplete: &[Incomplete]) -> String {
         .iter()
         .map(|i| format!("incomplete: {}: {}\n", i.what, i.message))
         .collect()
+}
+
+/// One line saying why a run stopped. `sweep` is the name of the swept load of a static sweep,
+/// `initial` the names of the loads of a static initial state.
+pub fn stop_message(stop: &Stop, sweep: Option<&str>, initial: &[String]) -> String {
+    match stop {
+        Stop::Integration(e) => e.to_string(),
+        Stop::InitialState(e) => format!(
+            "the initial static deflection under {} failed: {e}",
+            initial.join(", ")
+        ),
+        Stop::StaticPoint {
+            point,
+            points,
+            scale,
+            reached,
+            error,
+        } => match sweep {
+            Some(name) => {
+                let reached = reached
+                    .map(|r| format!(", converged up to scale {}", short(r)))
+                    .unwrap_or_default();
+                format!(
+                    "stopped at sweep point {} of {points} ({name} scale {}{reached}): {error}",
+                    point + 1,
+                    short(*scale),
+                )
+            }
+            None => error.to_string(),
+        },
+        Stop::Equations(e) => e.to_string(),
+        Stop::EnergyLimit { time, ratio, limit } => format!(
+            "stopped at t = {} s: the energy grew to {ratio:.3} times its initial value \
+             (a blown-up run; limit {limit})",
+            short(*time)
+        ),
+        other => format!("{other:?}"),
+    }
 }

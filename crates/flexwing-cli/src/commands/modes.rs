@@ -5,17 +5,15 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
+use flexwing::analysis::modes::{self, ModeResult, ModesPlan};
+use flexwing::analysis::NoProgress;
 use flexwing::model::FullModel;
-use flexwing::solve::{ModeShape, Modes};
 use serde::Serialize;
 
-use super::{calibration_name, clean, default_out_dir, model_line, Failure};
-use crate::case::Case;
+use super::{calibration_name, default_out_dir, model_line, Failure};
 use crate::output;
 use crate::plot::{self, ModePlot};
-
-/// Default number of modes reported when neither the case nor `--count` says.
-const DEFAULT_COUNT: usize = 10;
+use flexwing_case::Case;
 
 /// Options of `flexwing modes`.
 #[derive(Debug, Args)]
@@ -42,85 +40,38 @@ pub struct ModesArgs {
     pub json: bool,
 }
 
-/// One reported mode.
-#[derive(Debug, Clone)]
-pub struct ModeResult {
-    /// Mode number, 1-based.
-    pub mode: usize,
-    /// Circular frequency (rad/s).
-    pub omega: f64,
-    /// Frequency (Hz).
-    pub frequency_hz: f64,
-    /// Share of the strain energy in the bending springs.
-    pub bending_fraction: f64,
-    /// Nodal shape (mass-normalized).
-    pub shape: ModeShape,
-}
-
 /// Run the command.
 pub fn run(args: &ModesArgs) -> Result<(), Failure> {
     let name = args.case.display().to_string();
     let case = Case::load(&args.case).map_err(Failure::input)?;
-    let beam = case
-        .to_beam()
-        .map_err(|e| Failure::input(format!("{name}: {e}")))?;
-    let model = FullModel::new(beam);
-    let count = mode_count(args.count, case.modes.count, model.n_dofs())
-        .map_err(|e| Failure::input(format!("{name}: {e}")))?;
-    let modes = Modes::undeformed(&model)
-        .map_err(|e| Failure::run(format!("{name}: modal analysis failed: {e}")))?;
-    let results: Vec<ModeResult> = (0..count.min(modes.n_modes()))
-        .map(|k| mode_result(&model, &modes, k))
-        .collect();
+    // `--count` wins over `[modes] count`.
+    let plan = match args.count {
+        Some(n) => ModesPlan::new(case.model().map_err(Failure::input)?, Some(n), "--count")
+            .map_err(|e| Failure::input(format!("{name}: {e}")))?,
+        None => case.modes_plan().map_err(Failure::input)?,
+    };
+    let model = &plan.model;
+    let results = modes::run(&plan, &mut NoProgress)
+        .map_err(|e| Failure::run(format!("{name}: modal analysis failed: {e}")))?
+        .modes;
 
     let dir = args
         .out
         .clone()
         .unwrap_or_else(|| default_out_dir(&args.case));
     let files =
-        write_files(&dir, &case, &args.case, &model, &results, args.plot).map_err(Failure::Run)?;
+        write_files(&dir, &case, &args.case, model, &results, args.plot).map_err(Failure::Run)?;
 
     let text = if args.json {
-        json_report(&name, &case, &model, &results, &files)
+        json_report(&name, &case, model, &results, &files)
     } else {
-        table_report(&case, &model, &results, &files)
+        table_report(&case, model, &results, &files)
     };
     let mut stdout = std::io::stdout().lock();
     stdout
         .write_all(text.as_bytes())
         .and_then(|()| stdout.flush())
         .map_err(|e| Failure::run(format!("cannot write to standard output: {e}")))
-}
-
-/// `--count` wins over `[modes] count`; both must be in `1..=n_dofs`.
-fn mode_count(cli: Option<usize>, case: Option<usize>, n_dofs: usize) -> Result<usize, String> {
-    let (field, count) = match (cli, case) {
-        (Some(n), _) => ("--count", n),
-        (None, Some(n)) => ("modes.count", n),
-        (None, None) => return Ok(DEFAULT_COUNT.min(n_dofs)),
-    };
-    if (1..=n_dofs).contains(&count) {
-        Ok(count)
-    } else {
-        Err(format!(
-            "{field}: must be between 1 and the number of degrees of freedom ({n_dofs}), got {count}"
-        ))
-    }
-}
-
-fn mode_result(model: &FullModel, modes: &Modes, k: usize) -> ModeResult {
-    let mut shape = modes.shape(model, k);
-    for v in [&mut shape.x, &mut shape.dx, &mut shape.dy, &mut shape.twist] {
-        v.iter_mut().for_each(|x| *x = clean(*x));
-    }
-    let omega = modes.omega()[k];
-    ModeResult {
-        mode: k + 1,
-        omega,
-        frequency_hz: omega / (2.0 * std::f64::consts::PI),
-        bending_fraction: modes.bending_energy_fraction(model, k),
-        shape,
-    }
 }
 
 #[derive(Serialize)]
@@ -311,19 +262,6 @@ fn json_report(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn count_defaults_and_limits() {
-        assert_eq!(mode_count(None, None, 32), Ok(10));
-        assert_eq!(mode_count(None, None, 4), Ok(4));
-        assert_eq!(mode_count(Some(3), Some(9), 32), Ok(3));
-        assert!(mode_count(None, Some(0), 32)
-            .unwrap_err()
-            .starts_with("modes.count:"));
-        assert!(mode_count(Some(33), None, 32)
-            .unwrap_err()
-            .starts_with("--count:"));
-    }
 
     #[test]
     fn mode_types() {

@@ -7,8 +7,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::{tick_format, titled, write_figure, DrawResult, Figure, COLOURS, FONT};
-use crate::commands::modes::ModeResult;
 use crate::output;
+use flexwing::analysis::modes::ModeResult;
 
 /// Most modes drawn in one figure.
 pub const MAX_PLOTTED_MODES: usize = 6;

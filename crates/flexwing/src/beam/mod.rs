@@ -96,24 +96,44 @@ impl Beam {
         discretization: &Discretization,
         calibration: Calibration,
     ) -> Result<Self, InputError> {
+        Self::named("beam", length, section, discretization, calibration)
+    }
+
+    /// As [`Beam::new`], with errors named under the caller's `prefix` for the beam:
+    /// `{prefix}.length`, `{prefix}.elements` or `{prefix}.stations`, `{prefix}.section.EI`,
+    /// `{prefix}.section.mass_per_length`, `{prefix}.section.GJ`, `{prefix}.section.polar_inertia`,
+    /// `{prefix}.section.d0` (the keys of a case file's `[beam]`; [`Beam::new`] uses `beam`).
+    ///
+    /// # Errors
+    /// As [`Beam::new`].
+    pub fn named(
+        prefix: &str,
+        length: f64,
+        section: &SectionProperties,
+        discretization: &Discretization,
+        calibration: Calibration,
+    ) -> Result<Self, InputError> {
+        let field = |key: &str| crate::field(prefix, key);
         if !(length.is_finite() && length > 0.0) {
             return Err(InputError::new(
-                "beam.length",
+                field("length"),
                 format!("must be a finite positive number, got {length}"),
             ));
         }
-        let nodes = stations(length, discretization)?;
+        let nodes = stations(prefix, length, discretization)?;
         section
             .ei
-            .validate("beam.section.EI", length, Sign::Positive)?;
-        section
-            .mass_per_length
-            .validate("beam.section.mass_per_length", length, Sign::Positive)?;
+            .validate(&field("section.EI"), length, Sign::Positive)?;
+        section.mass_per_length.validate(
+            &field("section.mass_per_length"),
+            length,
+            Sign::Positive,
+        )?;
         if let Some(t) = &section.torsion {
-            t.gj.validate("beam.section.GJ", length, Sign::Positive)?;
+            t.gj.validate(&field("section.GJ"), length, Sign::Positive)?;
             t.polar_inertia
-                .validate("beam.section.polar_inertia", length, Sign::NonNegative)?;
-            t.offset.validate("beam.section.d0", length, Sign::Any)?;
+                .validate(&field("section.polar_inertia"), length, Sign::NonNegative)?;
+            t.offset.validate(&field("section.d0"), length, Sign::Any)?;
         }
         let n = nodes.len() - 1;
         let lengths: Vec<f64> = nodes.windows(2).map(|w| w[1] - w[0]).collect();
@@ -126,7 +146,7 @@ impl Beam {
                 (masses, vec![0.0; n], vec![0.0; n], None)
             }
             Some(t) => {
-                check_inertia_about_elastic_axis(t, m, length)?;
+                check_inertia_about_elastic_axis(&field("section.polar_inertia"), t, m, length)?;
                 // Per element: ∫ m, ∫ m d0 and ∫ I_ea, exact (Simpson on each linear piece:
                 // the integrands are polynomials of degree ≤ 3 there).
                 let mut sums = vec![[0.0; 3]; n];
@@ -151,7 +171,7 @@ impl Beam {
                     let j = (i_ea - mass * d0 * d0).max(0.0);
                     if !(i_ea > 0.0) {
                         return Err(InputError::new(
-                            "beam.section.polar_inertia",
+                            field("section.polar_inertia"),
                             format!(
                                 "element {} (x = {}..{} m) has no torsional inertia: \
                                  polar_inertia and d0 are both zero there",
@@ -234,15 +254,16 @@ impl Beam {
 /// O(n) and would go further.)
 pub const MAX_ELEMENTS: usize = 10_000;
 
-fn stations(length: f64, d: &Discretization) -> Result<Vec<f64>, InputError> {
+fn stations(prefix: &str, length: f64, d: &Discretization) -> Result<Vec<f64>, InputError> {
+    let field = |key: &str| crate::field(prefix, key);
     let count = match d {
         Discretization::Uniform(n) => *n,
         Discretization::Stations(x) => x.len().saturating_sub(1),
     };
     if count > MAX_ELEMENTS {
         let field = match d {
-            Discretization::Uniform(_) => "beam.elements",
-            Discretization::Stations(_) => "beam.stations",
+            Discretization::Uniform(_) => field("elements"),
+            Discretization::Stations(_) => field("stations"),
         };
         return Err(InputError::new(
             field,
@@ -253,14 +274,14 @@ fn stations(length: f64, d: &Discretization) -> Result<Vec<f64>, InputError> {
         Discretization::Uniform(n) => {
             if *n == 0 {
                 return Err(InputError::new(
-                    "beam.elements",
+                    field("elements"),
                     "must be at least 1, got 0",
                 ));
             }
             Ok((0..=*n).map(|i| length * i as f64 / *n as f64).collect())
         }
         Discretization::Stations(x) => {
-            let f = "beam.stations";
+            let f = field("stations");
             if x.len() < 2 {
                 return Err(InputError::new(
                     f,
@@ -301,6 +322,7 @@ fn stations(length: f64, d: &Discretization) -> Result<Vec<f64>, InputError> {
 
 /// With the inertia given about the elastic axis, `I_cg = I_ea − m d0²` must not be negative.
 fn check_inertia_about_elastic_axis(
+    field: &str,
     t: &TorsionProperties,
     m: &Profile,
     length: f64,
@@ -323,7 +345,7 @@ fn check_inertia_about_elastic_axis(
             let i_cg = t.polar_inertia.at(x) - m.at(x) * t.offset.at(x).powi(2);
             if i_cg < -1e-12 * t.polar_inertia.at(x).abs().max(1e-300) {
                 return Err(InputError::new(
-                    "beam.section.polar_inertia",
+                    field,
                     format!(
                         "about the elastic axis it must be at least m·d0², but at x = {x} m \
                          I_ea = {} and m·d0² = {} (negative inertia about the mass centre)",

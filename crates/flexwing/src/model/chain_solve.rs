@@ -1,6 +1,11 @@
 //! The velocity solve `M(q) q̇ = p` in O(n), by a backward Riccati sweep along the chain and a
 //! forward substitution, without ever forming `M` (the idea of the articulated-body algorithm).
 //!
+//! # References
+//! R. Featherstone, *Rigid Body Dynamics Algorithms*, Springer (2008), ch. 7 (the articulated-body
+//! algorithm: a backward sweep of articulated inertias from the tip, then a forward sweep); here
+//! the same two sweeps solve the planar chain's linear–quadratic problem below.
+//!
 //! # Derivation
 //!
 //! Work in absolute angle rates, one pair per element, `u_i = (θ̇_i, ψ̇_i)`. The mass-centre

@@ -228,16 +228,17 @@ impl FullModel {
                     push(place, kind);
                 }
                 Load::Moment { span, value } => {
-                    push(at(*span)?, ItemKind::Moment(finite("moment", *value)?));
+                    push(at(*span)?, ItemKind::Moment(finite("value", *value)?));
                 }
                 Load::Torque { span, value } => {
-                    let kind = ItemKind::Torque(finite("torque", *value)?);
                     if !self.torsion {
                         return Err(InputError::new(
-                            f("torque"),
-                            "the beam has no torsion data (GJ), so it cannot carry a torque",
+                            format!("{field}[{i}]"),
+                            "a torque needs torsion, but the beam is bending-only (it has no \
+                             torsional stiffness GJ)",
                         ));
                     }
+                    let kind = ItemKind::Torque(finite("value", *value)?);
                     push(at(*span)?, kind);
                 }
                 Load::Distributed(d) => {

@@ -12,6 +12,7 @@ mod kinetic;
 mod loads;
 mod mass;
 mod reduced;
+mod shape;
 
 pub use full::{FullModel, Workspace};
 pub use kinematics::Kinematics;
@@ -33,6 +34,7 @@ pub(crate) fn suffix_sum_in_blocks<D: num_dual::DualNum<Primitive = f64> + Copy>
     }
 }
 pub use reduced::{ReducedModel, ReducedWorkspace};
+pub use shape::Shape;
 
 use nalgebra::{DMatrix, DVector};
 

@@ -13,6 +13,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::{AppliedLoads, FullModel, StructuralModel, Workspace};
 use crate::error::InputError;
+use crate::solve::Damping;
 
 /// The full model projected on `r` of its natural modes: `M_r(η) = Φᵀ M(Φη) Φ`, `K_r = Φᵀ K Φ`,
 /// `Q_r = Φᵀ Q(Φη)`. Positions and displacements are always recovered through `q = Φ η`, so the
@@ -32,7 +33,7 @@ impl ReducedModel {
     /// shapes as columns (`Modes::shapes()`).
     ///
     /// # Errors
-    /// No index, a repeated index, or one beyond the number of modes (field `reduced.modes`).
+    /// No index, a repeated index, or one beyond the number of modes (field `indices`).
     ///
     /// # Panics
     /// If `shapes` does not have `full.n_dofs()` rows.
@@ -46,7 +47,7 @@ impl ReducedModel {
             full.n_dofs(),
             "mode shapes of another model"
         );
-        let f = "reduced.modes";
+        let f = "indices";
         if indices.is_empty() {
             return Err(InputError::new(f, "needs at least one mode"));
         }
@@ -96,7 +97,7 @@ impl ReducedModel {
     /// Project on the first `r` columns of `shapes`.
     ///
     /// # Errors
-    /// `r = 0` or `r` larger than the number of modes (field `reduced.modes`).
+    /// `r = 0` or `r` larger than the number of modes (field `r`).
     ///
     /// ```
     /// use flexwing::beam::{Beam, Calibration, Discretization, Profile, SectionProperties};
@@ -114,7 +115,7 @@ impl ReducedModel {
     pub fn first(full: &FullModel, shapes: &DMatrix<f64>, r: usize) -> Result<Self, InputError> {
         if r == 0 || r > shapes.ncols() {
             return Err(InputError::new(
-                "reduced.modes",
+                "r",
                 format!(
                     "must be between 1 and {} (the number of modes), got {r}",
                     shapes.ncols()
@@ -496,6 +497,33 @@ fn cholesky_solve(l: &DMatrix<f64>, b: &mut [f64]) {
     }
 }
 
+/// The damping of a reduced model: the projection of the full model's.
+impl ReducedModel {
+    /// The damping of this model that projects the full model's `damping`, `C_r = Φ_rᵀ C Φ_r`.
+    ///
+    /// Rayleigh damping projects onto itself (`Φᵀ M(0) Φ = M_r(0)`, `Φᵀ K Φ = K_r`). Modal damping
+    /// `C = M₀ Φ diag(2 ζ_k ω_k) Φᵀ M₀` projects onto `diag(2 ζ_k ω_k)` over the retained modes,
+    /// but [`Damping::Modal`] numbers a model's ratios by that model's own modes, which for a
+    /// reduced model are the retained modes in order of frequency: so mode `j` of the reduced
+    /// model gets the ratio of the `j`-th smallest retained index (0 if `damping` gives none for
+    /// it).
+    pub fn project_damping(&self, damping: &Damping) -> Damping {
+        match damping {
+            Damping::Modal { ratios } => {
+                let mut sorted = self.indices.clone();
+                sorted.sort_unstable();
+                Damping::Modal {
+                    ratios: sorted
+                        .iter()
+                        .map(|&k| ratios.get(k).copied().unwrap_or(0.0))
+                        .collect(),
+                }
+            }
+            other => other.clone(),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -590,5 +618,24 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn modal_damping_of_a_reduced_model_follows_its_modes() {
+        let full = crate::paper::table4_beam(6).unwrap();
+        let modes = crate::solve::Modes::undeformed(&full).unwrap();
+        let rom = ReducedModel::new(&full, modes.shapes(), &[4, 0, 2]).unwrap();
+        let d = Damping::Modal {
+            ratios: vec![0.1, 0.2, 0.3],
+        };
+        let Damping::Modal { ratios } = rom.project_damping(&d) else {
+            panic!("not modal")
+        };
+        assert_eq!(ratios, [0.1, 0.3, 0.0]);
+        let r = Damping::Rayleigh {
+            alpha: 1.0,
+            beta: 2.0,
+        };
+        assert_eq!(rom.project_damping(&r), r);
     }
 }

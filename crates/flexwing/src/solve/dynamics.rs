@@ -14,6 +14,7 @@ use nalgebra::{DMatrix, DVector};
 use super::integrate::OdeSystem;
 use crate::error::InputError;
 use crate::model::{AppliedLoads, StructuralModel};
+use crate::text::short;
 
 /// How the gyroscopic term `γ = ∂T/∂x|_ẋ = −½ ∂(pᵀ M⁻¹ p)/∂x|_p` is obtained.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,6 +29,27 @@ pub enum Gyroscopic {
     },
     /// Neglected: the paper's "simplified model" (eq. 18). Energy is then not conserved.
     Neglected,
+}
+
+impl Gyroscopic {
+    /// The usual step `h` of [`Gyroscopic::FiniteDifference`] (rad), as the paper's eq. 17.
+    pub const DEFAULT_STEP: f64 = 1e-6;
+
+    /// Check the finite-difference step; `step_field` is the caller's name for it.
+    ///
+    /// # Errors
+    /// A finite-difference step that is not a finite positive number.
+    pub fn validate(&self, step_field: &str) -> Result<(), InputError> {
+        match *self {
+            Gyroscopic::FiniteDifference { step } if !(step > 0.0 && step.is_finite()) => {
+                Err(InputError::new(
+                    step_field,
+                    format!("must be a finite positive number, got {}", short(step)),
+                ))
+            }
+            _ => Ok(()),
+        }
+    }
 }
 
 /// Structural damping `C`.
@@ -49,6 +71,48 @@ pub enum Damping {
         /// Damping ratios of modes 1, 2, … (dimensionless).
         ratios: Vec<f64>,
     },
+}
+
+impl Damping {
+    /// Check the coefficients for a model of `n_dofs` coordinates; errors name
+    /// `{field}.alpha`, `{field}.ratios[k]`, ….
+    ///
+    /// # Errors
+    /// A coefficient or ratio that is not finite and non-negative, more ratios than modes.
+    pub fn validate(&self, field: &str, n_dofs: usize) -> Result<(), InputError> {
+        let check = |name: &str, v: f64| {
+            if v.is_finite() && v >= 0.0 {
+                Ok(())
+            } else {
+                Err(InputError::new(
+                    crate::field(field, name),
+                    format!("must be a finite non-negative number, got {}", short(v)),
+                ))
+            }
+        };
+        match self {
+            Damping::None => Ok(()),
+            Damping::Rayleigh { alpha, beta } => {
+                check("alpha", *alpha)?;
+                check("beta", *beta)
+            }
+            Damping::Modal { ratios } => {
+                if ratios.len() > n_dofs {
+                    return Err(InputError::new(
+                        crate::field(field, "ratios"),
+                        format!(
+                            "{} ratios given but the model has {n_dofs} modes",
+                            ratios.len()
+                        ),
+                    ));
+                }
+                for (i, z) in ratios.iter().enumerate() {
+                    check(&format!("ratios[{i}]"), *z)?;
+                }
+                Ok(())
+            }
+        }
+    }
 }
 
 /// Time history `f(t)` that scales a load: `Q(t) = f(t) Q₀`.
@@ -216,8 +280,8 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     ///
     /// # Errors
     /// If the number of time functions differs from the number of loads (field `loads`), a
-    /// finite-difference step is not positive, or damping coefficients are not finite and
-    /// non-negative (field `damping`).
+    /// finite-difference step is not positive (field `gyroscopic.step`), or damping coefficients
+    /// are not finite and non-negative (fields `damping.*`, [`Damping::validate`]).
     pub fn new(
         model: &'a M,
         loads: &'a AppliedLoads,
@@ -235,14 +299,7 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
                 ),
             ));
         }
-        if let Gyroscopic::FiniteDifference { step } = gyroscopic {
-            if !(step > 0.0 && step.is_finite()) {
-                return Err(InputError::new(
-                    "dynamic.gyroscopic_step",
-                    format!("must be a finite positive number, got {step}"),
-                ));
-            }
-        }
+        gyroscopic.validate("gyroscopic.step")?;
         let n = model.n_dofs();
         let mut ws = model.workspace();
         let c = damping_matrix(model, &mut ws, damping)?;
@@ -414,33 +471,13 @@ fn damping_matrix<M: StructuralModel>(
     let x0 = vec![0.0; n];
     let mut m0 = DMatrix::zeros(n, n);
     model.mass_matrix_into(&x0, ws, &mut m0);
-    let check = |name: &str, v: f64| {
-        if v.is_finite() && v >= 0.0 {
-            Ok(())
-        } else {
-            Err(InputError::new(
-                format!("damping.{name}"),
-                format!("must be a finite non-negative number, got {v}"),
-            ))
-        }
-    };
+    damping.validate("damping", n)?;
     match damping {
         Damping::None => Ok(None),
         Damping::Rayleigh { alpha, beta } => {
-            check("alpha", *alpha)?;
-            check("beta", *beta)?;
             Ok(Some(&m0 * *alpha + model.stiffness_matrix() * *beta))
         }
         Damping::Modal { ratios } => {
-            for (i, z) in ratios.iter().enumerate() {
-                check(&format!("ratios[{i}]"), *z)?;
-            }
-            if ratios.len() > n {
-                return Err(InputError::new(
-                    "damping.ratios",
-                    format!("{} ratios given but the model has {n} modes", ratios.len()),
-                ));
-            }
             let (lambda, phi) = super::generalized_symmetric_eigen(&model.stiffness_matrix(), &m0)
                 .map_err(|e| InputError::new("damping", e.to_string()))?;
             let mut c = DMatrix::zeros(n, n);
@@ -456,6 +493,12 @@ fn damping_matrix<M: StructuralModel>(
 impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
     fn dim(&self) -> usize {
         2 * self.n
+    }
+
+    /// One tolerance on the coordinates (rad) with consistent momenta, as [`Self::state_atol`].
+    fn atol_scale(&mut self, scale: &mut [f64]) {
+        // `state_atol` is linear in its tolerance: at 1 it gives the scales.
+        scale.copy_from_slice(&self.state_atol(1.0));
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {

@@ -62,25 +62,24 @@ impl Default for StaticOptions {
 }
 
 impl StaticOptions {
-    /// Check the options with fields named `static.*`; see [`StaticOptions::validate_as`].
-    pub fn validate(&self) -> Result<(), crate::InputError> {
-        self.validate_as("static")
-    }
-
     /// Check the options: finite positive tolerance and rotation step, `min_step ≤ initial_step
-    /// ≤ 1`, at least one iteration. Error fields are `{field}.tolerance` etc.
-    pub fn validate_as(&self, field: &str) -> Result<(), crate::InputError> {
+    /// ≤ 1`, at least one iteration; errors name `{prefix}.tolerance`, ….
+    pub fn validate(&self, prefix: &str) -> Result<(), crate::InputError> {
         let bad = |f: &str, v: f64, what: &str| {
             Err(crate::InputError::new(
-                format!("{field}.{f}"),
-                format!("must be {what}, got {v}"),
+                crate::field(prefix, f),
+                format!("must be {what}, got {}", crate::text::short(v)),
             ))
         };
         if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
             return bad("tolerance", self.tolerance, "a finite positive number");
         }
         if !(self.min_step > 0.0 && self.min_step <= 1.0) {
-            return bad("min_step", self.min_step, "in (0, 1]");
+            return bad(
+                "min_step",
+                self.min_step,
+                "in (0, 1] (a fraction of the load change)",
+            );
         }
         if !(self.initial_step >= self.min_step && self.initial_step <= 1.0) {
             return bad("initial_step", self.initial_step, "in [min_step, 1]");
@@ -218,7 +217,9 @@ fn follow<M: StructuralModel>(
     options: &StaticOptions,
     before: Option<(&[f64], &[f64])>,
 ) -> Result<StaticSolution, SolveError> {
-    options.validate().map_err(SolveError::from_input)?;
+    options
+        .validate("options")
+        .map_err(SolveError::from_input)?;
     let (x_start, s_start) = start;
     let nd = model.n_dofs();
     let mut ws = Newton::new(model, loads, options.clone());

@@ -4,7 +4,8 @@
 use flexwing::beam::{
     Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties, TorsionProperties,
 };
-use flexwing::model::FullModel;
+use flexwing::model::{AppliedLoads, Force, FullModel, Load};
+use flexwing::solve::TimeFunction;
 use std::path::PathBuf;
 
 pub mod elastica;
@@ -42,6 +43,49 @@ pub fn coupled(
             offset: d0,
         }),
     }
+}
+
+/// The Table 4 beam (L = 1 m, EI = 50 N·m², m = 0.2 kg/m, bending only), tip-load calibration,
+/// `n` elements: the tests' one definition, written from the paper and independent of
+/// `flexwing::paper::table4_beam` on purpose (a mistake there cannot hide behind these tests).
+pub fn table4(n: usize) -> FullModel {
+    model(
+        1.0,
+        &bending_only(Profile::Uniform(50.0), Profile::Uniform(0.2)),
+        n,
+        Calibration::TipLoad,
+    )
+}
+
+/// Case (b) of the paper (section 5.2.5): the Table 4 beam under a dead tip force
+/// `10 sin(20 t)` N, from rest. The tests' one definition of it (independent of
+/// `flexwing::paper::sine_case`, as [`table4`]).
+pub struct SineCase {
+    /// The Table 4 beam.
+    pub full: FullModel,
+    /// The tip force's amplitude, resolved on the beam.
+    pub loads: AppliedLoads,
+    /// Its time history.
+    pub time: Vec<TimeFunction>,
+}
+
+/// Case (b) with `n` elements.
+pub fn sine_case(n: usize) -> SineCase {
+    let full = table4(n);
+    let loads = full
+        .apply(
+            &[Load::PointForce {
+                span: 1.0,
+                force: Force::Dead { fx: 0.0, fy: 10.0 },
+            }],
+            "loads",
+        )
+        .expect("loads");
+    let time = vec![TimeFunction::Sine {
+        omega: 20.0,
+        phase: 0.0,
+    }];
+    SineCase { full, loads, time }
 }
 
 pub fn model(length: f64, section: &SectionProperties, n: usize, cal: Calibration) -> FullModel {

@@ -4,16 +4,18 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use super::{ModelRun, Outcome};
-use crate::case::Case;
+use flexwing::analysis::dynamics::ModelRun;
+
+use super::Outcome;
 use crate::commands::statics::report::short;
 use crate::output;
 use crate::plot::{self, HistoryPlot, HistorySeries, ModelShapes, ShapePlot};
+use flexwing_case::Case;
 
 #[derive(Serialize)]
 #[allow(non_snake_case)]
-struct TipRow<'a> {
-    model: &'a str,
+struct TipRow {
+    model: String,
     t_s: f64,
     tip_x_m: f64,
     tip_y_m: f64,
@@ -24,8 +26,8 @@ struct TipRow<'a> {
 }
 
 #[derive(Serialize)]
-struct NodeRow<'a> {
-    model: &'a str,
+struct NodeRow {
+    model: String,
     t_s: f64,
     node: usize,
     x_m: f64,
@@ -34,8 +36,8 @@ struct NodeRow<'a> {
 }
 
 #[derive(Serialize)]
-struct SummaryRow<'a> {
-    model: &'a str,
+struct SummaryRow {
+    model: String,
     dofs: usize,
     integrator: &'static str,
     steps: usize,
@@ -59,7 +61,7 @@ pub fn write_files(
     with_plot: bool,
 ) -> anyhow::Result<Vec<PathBuf>> {
     output::create_dir(dir)?;
-    let runs = &outcome.runs;
+    let runs = outcome.runs();
     let mut files = Vec::new();
 
     let tip = dir.join("dynamic_tip.csv");
@@ -67,7 +69,7 @@ pub fn write_files(
         &tip,
         runs.iter().flat_map(|r| {
             r.samples.iter().map(move |p| TipRow {
-                model: &r.label,
+                model: r.kind.label(),
                 t_s: p.t,
                 tip_x_m: p.tip_x,
                 tip_y_m: p.tip_y,
@@ -88,13 +90,13 @@ pub fn write_files(
                 .iter()
                 .filter(|s| outcome.node_indices.binary_search(&s.index).is_ok())
                 .flat_map(move |s| {
-                    (0..s.x.len()).map(move |i| NodeRow {
-                        model: &r.label,
+                    (0..s.shape.x.len()).map(move |i| NodeRow {
+                        model: r.kind.label(),
                         t_s: s.t,
                         node: i,
-                        x_m: s.x[i],
-                        y_m: s.y[i],
-                        twist_rad: s.twist[i],
+                        x_m: s.shape.x[i],
+                        y_m: s.shape.y[i],
+                        twist_rad: s.shape.twist[i],
                     })
                 })
         }),
@@ -105,7 +107,7 @@ pub fn write_files(
     output::write_csv(
         &summary,
         runs.iter().map(|r| SummaryRow {
-            model: &r.label,
+            model: r.kind.label(),
             dofs: r.dofs,
             integrator: r.integrator.name(),
             steps: r.stats.steps,
@@ -114,14 +116,14 @@ pub fn write_files(
             jacobian_evaluations: r.stats.jacobian_evaluations,
             factorizations: r.stats.factorizations,
             wall_time_s: r.wall_time_s,
-            ratio_to_first: outcome.ratio_to_first(r),
+            ratio_to_first: outcome.result.ratio_to_first(r),
             max_tip_difference_m: r.comparison.map(|c| c.max_tip_difference),
             max_relative_error_tip_x: r.comparison.and_then(|c| c.relative_x),
             max_relative_error_tip_y: r.comparison.and_then(|c| c.relative_y),
-            status: if r.error.is_some() {
-                "incomplete"
-            } else {
+            status: if r.status.is_complete() {
                 "complete"
+            } else {
+                "incomplete"
             },
         }),
     )?;
@@ -158,15 +160,16 @@ fn legend(run: &ModelRun, first: bool) -> String {
         1 => "1 dof".to_string(),
         n => format!("{n} dofs"),
     };
+    let label = run.kind.label();
     let kind = if first {
-        format!("{} ({dofs})", run.label)
+        format!("{label} ({dofs})")
     } else {
-        format!("{} (dashed, {dofs})", run.label)
+        format!("{label} (dashed, {dofs})")
     };
-    match (&run.error, run.samples.last()) {
-        (Some(_), Some(s)) => format!("{kind}: stopped at t = {} s", short(s.t)),
-        (Some(_), None) => format!("{kind}: failed"),
-        (None, _) => kind,
+    match (run.status.is_complete(), run.samples.last()) {
+        (false, Some(s)) => format!("{kind}: stopped at t = {} s", short(s.t)),
+        (false, None) => format!("{kind}: failed"),
+        (true, _) => kind,
     }
 }
 
@@ -176,7 +179,7 @@ fn history_plot(outcome: &Outcome, what: &str) -> HistoryPlot {
         end_time: outcome.end_time,
         has_torsion: outcome.has_torsion,
         series: outcome
-            .runs
+            .runs()
             .iter()
             .enumerate()
             .map(|(k, r)| HistorySeries {
@@ -194,13 +197,13 @@ fn history_plot(outcome: &Outcome, what: &str) -> HistoryPlot {
 /// The first model's deformed shapes at the plot's output times, coloured from dark (early) to
 /// light (late); the legend names the first and the last.
 fn snapshot_plot(outcome: &Outcome, what: &str) -> ShapePlot {
-    let first = outcome.runs.first();
+    let first = outcome.runs().first();
     let snapshots: Vec<_> = first
         .iter()
         .flat_map(|r| r.snapshots.iter())
         .filter(|s| outcome.plot_indices.binary_search(&s.index).is_ok())
         .collect();
-    let label = first.map_or_else(String::new, |r| format!(" of the {} model", r.label));
+    let label = first.map_or_else(String::new, |r| format!(" of the {} model", r.kind.label()));
     let count = snapshots.len();
     ShapePlot {
         title: format!("Deformed shapes{label}, dark to light in time: {what}"),
@@ -217,7 +220,13 @@ fn snapshot_plot(outcome: &Outcome, what: &str) -> ShapePlot {
                     String::new()
                 },
                 dashed: false,
-                shapes: vec![s.x.iter().copied().zip(s.y.iter().copied()).collect()],
+                shapes: vec![s
+                    .shape
+                    .x
+                    .iter()
+                    .copied()
+                    .zip(s.shape.y.iter().copied())
+                    .collect()],
             })
             .collect(),
         gradient: true,

@@ -4,6 +4,7 @@
 
 use std::time::{Duration, Instant};
 
+use flexwing::analysis;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// Time after which the bar appears.
@@ -14,28 +15,26 @@ const TICKS: u64 = 1000;
 /// Progress over the models of a run.
 pub struct Progress {
     enabled: bool,
-    end_time: f64,
-    n_models: usize,
     start: Instant,
     shown: bool,
     bar: Option<ProgressBar>,
 }
 
 impl Progress {
-    /// A reporter for `n_models` runs to `end_time` (s); `enabled` when a bar may be drawn.
-    pub fn new(enabled: bool, end_time: f64, n_models: usize) -> Self {
+    /// A reporter; `enabled` when a bar may be drawn.
+    pub fn new(enabled: bool) -> Self {
         Self {
             enabled,
-            end_time,
-            n_models,
             start: Instant::now(),
             shown: false,
             bar: None,
         }
     }
+}
 
-    /// Begin model `k` (0-based) labelled `label`.
-    pub fn start_model(&mut self, k: usize, label: &str) {
+impl analysis::Progress for Progress {
+    /// Begin model `k` (0-based) of `n_models`, labelled `label`.
+    fn start(&mut self, k: usize, n_models: usize, label: &str) {
         if !self.enabled {
             return;
         }
@@ -50,12 +49,12 @@ impl Progress {
         ) {
             bar.set_style(style);
         }
-        bar.set_prefix(format!("{label} ({}/{})", k + 1, self.n_models));
+        bar.set_prefix(format!("{label} ({}/{n_models})", k + 1));
         self.bar = Some(bar);
     }
 
-    /// The integration of the current model reached time `t` (s).
-    pub fn update(&mut self, t: f64) {
+    /// The integration of the current model reached this fraction of the simulated time.
+    fn advance(&mut self, fraction: f64) {
         let Some(bar) = &self.bar else {
             return;
         };
@@ -63,12 +62,11 @@ impl Progress {
             self.shown = true;
             bar.set_draw_target(ProgressDrawTarget::stderr());
         }
-        let fraction = (t / self.end_time).clamp(0.0, 1.0);
         bar.set_position((fraction * TICKS as f64) as u64);
     }
 
     /// The current model is done: clear its bar.
-    pub fn finish_model(&mut self) {
+    fn finish(&mut self) {
         if let Some(bar) = self.bar.take() {
             bar.finish_and_clear();
         }

@@ -3,13 +3,14 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use flexwing::model::Load;
+use flexwing::analysis::dynamics::{DynamicPlan, Initial, ModelRun, Sample};
+use flexwing::solve::integrate::Method;
 use flexwing::solve::{Damping, Gyroscopic, TimeFunction};
 use serde::Serialize;
 
-use super::{ModelRun, Outcome, Sample};
-use crate::case::{Case, DynamicPlan, InitialPlan};
+use super::Outcome;
 use crate::commands::statics::report::{describe_load, short};
+use flexwing_case::Case;
 
 const MISSING: &str = "-";
 
@@ -49,12 +50,12 @@ pub fn describe_time(f: &TimeFunction) -> String {
 }
 
 /// One line per load: name, load, time history, and whether it acts during the motion.
-pub fn describe_loads(case: &Case, loads: &[Load], plan: &DynamicPlan) -> Vec<String> {
+pub fn describe_loads(case: &Case, plan: &DynamicPlan) -> Vec<String> {
     let initial = match &plan.initial {
-        InitialPlan::Static { loads, .. } => loads.clone(),
+        Initial::Static { loads } => loads.clone(),
         _ => Vec::new(),
     };
-    loads
+    plan.loads
         .iter()
         .enumerate()
         .map(|(i, l)| {
@@ -62,8 +63,8 @@ pub fn describe_loads(case: &Case, loads: &[Load], plan: &DynamicPlan) -> Vec<St
                 .name
                 .clone()
                 .unwrap_or_else(|| format!("loads[{i}]"));
-            let when = match plan.active.iter().position(|&a| a == i) {
-                Some(k) => describe_time(&plan.time_functions[k]),
+            let when = match &plan.time[i] {
+                Some(f) => describe_time(f),
                 None if initial.contains(&i) => {
                     " (inactive: only for the initial static deflection)".into()
                 }
@@ -74,17 +75,17 @@ pub fn describe_loads(case: &Case, loads: &[Load], plan: &DynamicPlan) -> Vec<St
         .collect()
 }
 
-/// One line describing the initial state.
-pub fn describe_initial(initial: &InitialPlan) -> String {
+/// One line describing the initial state; `names` are those of the loads of a static one.
+pub fn describe_initial(initial: &Initial, names: &[String]) -> String {
     match initial {
-        InitialPlan::Rest => "at rest, undeformed".into(),
-        InitialPlan::Static { names, .. } => format!(
+        Initial::Static { .. } => format!(
             "each model's static equilibrium under {}, released at rest",
             names.join(", ")
         ),
-        InitialPlan::Given { .. } => "the given q and qdot (reduced models: their projections \
+        Initial::Given { .. } => "the given q and qdot (reduced models: their projections \
              η = Φᵀ M(0) q, η̇ = Φᵀ M(0) q̇)"
             .into(),
+        Initial::Rest => "at rest, undeformed".into(),
     }
 }
 
@@ -106,10 +107,10 @@ fn last(run: &ModelRun) -> Option<&Sample> {
 }
 
 fn status(run: &ModelRun) -> &'static str {
-    if run.error.is_some() {
-        "incomplete"
-    } else {
+    if run.status.is_complete() {
         "complete"
+    } else {
+        "incomplete"
     }
 }
 
@@ -170,7 +171,7 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
         ),
         (
             "ratio to first",
-            Box::new(|r| opt(outcome.ratio_to_first(r), &|v| format!("{v:.3}"))),
+            Box::new(|r| opt(outcome.result.ratio_to_first(r), &|v| format!("{v:.3}"))),
         ),
         (
             "t reached (s)",
@@ -219,31 +220,31 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
         ("status", Box::new(|r| status(r).into())),
     ]);
 
+    let runs = outcome.runs();
     let cells: Vec<Vec<String>> = rows
         .iter()
-        .map(|(_, f)| outcome.runs.iter().map(f).collect())
+        .map(|(_, f)| runs.iter().map(f).collect())
         .collect();
     let head = rows
         .iter()
         .map(|(h, _)| h.chars().count())
         .max()
         .unwrap_or(0);
-    let widths: Vec<usize> = outcome
-        .runs
+    let widths: Vec<usize> = runs
         .iter()
         .enumerate()
         .map(|(k, r)| {
             cells
                 .iter()
                 .map(|row| row[k].chars().count())
-                .chain([r.label.chars().count(), 8])
+                .chain([r.kind.label().chars().count(), 8])
                 .max()
                 .unwrap_or(8)
         })
         .collect();
     let mut line = format!("{:head$}", "");
-    for (r, w) in outcome.runs.iter().zip(&widths) {
-        let _ = write!(line, "  {:>w$}", r.label);
+    for (r, w) in runs.iter().zip(&widths) {
+        let _ = write!(line, "  {:>w$}", r.kind.label());
     }
     let _ = writeln!(s, "{}", line.trim_end());
     for ((h, _), row) in rows.iter().zip(&cells) {
@@ -286,7 +287,7 @@ impl PlanLines {
             short(st.rtol),
             short(st.atol)
         );
-        if plan.models.iter().any(|m| m.integrator.name() == "bdf") {
+        if plan.integrator == Method::Bdf {
             let _ = write!(tolerances, ", BDF maximum order {}", st.max_order);
         }
         if let Some(h) = st.step {
@@ -295,12 +296,9 @@ impl PlanLines {
         if let Some(h) = st.max_step {
             let _ = write!(tolerances, ", steps at most {} s", short(h));
         }
-        if let Some(Gyroscopic::FiniteDifference { step }) = plan
-            .models
-            .iter()
-            .map(|m| m.gyroscopic)
-            .find(|g| matches!(g, Gyroscopic::FiniteDifference { .. }))
-        {
+        let uses_gyroscopic =
+            plan.full || !plan.reduced.is_empty() || !plan.reduced_modes.is_empty();
+        if let (true, Gyroscopic::FiniteDifference { step }) = (uses_gyroscopic, plan.gyroscopic) {
             let _ = write!(tolerances, ", finite-difference γ step {}", short(step));
         }
         Self {
@@ -325,9 +323,9 @@ struct JsonReport<'a> {
 
 #[derive(Serialize)]
 struct JsonModel<'a> {
-    label: &'a str,
+    label: String,
     dofs: usize,
-    modes: Option<&'a [usize]>,
+    modes: Option<Vec<usize>>,
     integrator: &'static str,
     gyroscopic: &'static str,
     stats: JsonStats,
@@ -373,13 +371,13 @@ struct JsonEnergy {
     total_J: Vec<f64>,
 }
 
-fn json_model<'a>(outcome: &Outcome, r: &'a ModelRun) -> JsonModel<'a> {
+fn json_model<'a>(outcome: &'a Outcome, r: &'a ModelRun) -> JsonModel<'a> {
     let column = |f: fn(&Sample) -> f64| r.samples.iter().map(f).collect::<Vec<f64>>();
     let st = &r.stats;
     JsonModel {
-        label: &r.label,
+        label: r.kind.label(),
         dofs: r.dofs,
-        modes: r.modes.as_deref(),
+        modes: r.kind.modes(),
         integrator: r.integrator.name(),
         gyroscopic: gyroscopic_name(r.gyroscopic),
         stats: JsonStats {
@@ -391,14 +389,14 @@ fn json_model<'a>(outcome: &Outcome, r: &'a ModelRun) -> JsonModel<'a> {
             newton_iterations: st.newton_iterations,
         },
         wall_time_s: r.wall_time_s,
-        ratio_to_first: outcome.ratio_to_first(r),
+        ratio_to_first: outcome.result.ratio_to_first(r),
         max_tip_difference_m: r.comparison.map(|c| c.max_tip_difference),
         max_relative_error: r.comparison.map(|c| JsonRelative {
             tip_x: c.relative_x,
             tip_y: c.relative_y,
         }),
         status: status(r),
-        error: r.error.as_deref(),
+        error: outcome.message_of(r),
         t_s: column(|p| p.t),
         tip: JsonTip {
             x_m: column(|p| p.tip_x),
@@ -422,7 +420,7 @@ pub fn json(outcome: &Outcome, files: &[PathBuf]) -> String {
         has_torsion: outcome.has_torsion,
         end_time_s: outcome.end_time,
         models: outcome
-            .runs
+            .runs()
             .iter()
             .map(|r| json_model(outcome, r))
             .collect(),

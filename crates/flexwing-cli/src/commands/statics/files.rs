@@ -5,14 +5,16 @@ use std::path::{Path, PathBuf};
 use flexwing::model::FullModel;
 use serde::Serialize;
 
-use super::{ModelRun, Outcome};
-use crate::case::Case;
+use flexwing::analysis::statics::ModelRun;
+
+use super::Outcome;
 use crate::output;
 use crate::plot::{self, ModelShapes, ShapePlot};
+use flexwing_case::Case;
 
 #[derive(Serialize)]
-struct TipRow<'a> {
-    model: &'a str,
+struct TipRow {
+    model: String,
     point: usize,
     scale: f64,
     tip_x_m: f64,
@@ -24,8 +26,8 @@ struct TipRow<'a> {
 }
 
 #[derive(Serialize)]
-struct NodeRow<'a> {
-    model: &'a str,
+struct NodeRow {
+    model: String,
     point: usize,
     scale: f64,
     node: usize,
@@ -35,8 +37,8 @@ struct NodeRow<'a> {
 }
 
 #[derive(Serialize)]
-struct SummaryRow<'a> {
-    model: &'a str,
+struct SummaryRow {
+    model: String,
     dofs: usize,
     wall_time_s: f64,
     ratio_to_full: Option<f64>,
@@ -59,7 +61,7 @@ pub fn write_files(
     with_plot: bool,
 ) -> anyhow::Result<Vec<PathBuf>> {
     output::create_dir(dir)?;
-    let runs = &outcome.runs;
+    let runs = outcome.runs();
     let mut files = Vec::new();
 
     let tip = dir.join("static_tip.csv");
@@ -69,7 +71,7 @@ pub fn write_files(
             r.points.iter().enumerate().map(move |(k, p)| {
                 let (x, y, twist) = p.tip();
                 TipRow {
-                    model: &r.label,
+                    model: r.kind.label(),
                     point: k + 1,
                     scale: p.scale,
                     tip_x_m: x,
@@ -89,14 +91,14 @@ pub fn write_files(
         &nodes,
         runs.iter().flat_map(|r| {
             r.points.iter().enumerate().flat_map(move |(k, p)| {
-                (0..p.x.len()).map(move |i| NodeRow {
-                    model: &r.label,
+                (0..p.shape.x.len()).map(move |i| NodeRow {
+                    model: r.kind.label(),
                     point: k + 1,
                     scale: p.scale,
                     node: i,
-                    x_m: p.x[i],
-                    y_m: p.y[i],
-                    twist_rad: p.twist[i],
+                    x_m: p.shape.x[i],
+                    y_m: p.shape.y[i],
+                    twist_rad: p.shape.twist[i],
                 })
             })
         }),
@@ -107,16 +109,16 @@ pub fn write_files(
     output::write_csv(
         &summary,
         runs.iter().map(|r| SummaryRow {
-            model: &r.label,
+            model: r.kind.label(),
             dofs: r.dofs,
             wall_time_s: r.wall_time_s,
-            ratio_to_full: outcome.ratio_to_full(r),
-            max_tip_difference_m: Outcome::max_tip_difference(r),
+            ratio_to_full: outcome.result.ratio_to_full(r),
+            max_tip_difference_m: r.max_tip_difference(),
         }),
     )?;
     files.push(summary);
 
-    if let Some(modes) = &outcome.loaded_modes {
+    if let Some(modes) = outcome.loaded_modes() {
         let path = dir.join("loaded_frequencies.csv");
         output::write_csv(
             &path,
@@ -165,15 +167,18 @@ fn shape_plot(outcome: &Outcome, full: &FullModel, case: &Case) -> ShapePlot {
         title: format!("Static deformed shapes: {what}{points}"),
         length: full.beam().length(),
         models: outcome
-            .runs
+            .runs()
             .iter()
             .map(|r| ModelShapes {
                 label: legend(r),
-                dashed: r.modes.is_some(),
+                dashed: r.kind.modes().is_some(),
                 shapes: r
                     .points
                     .iter()
-                    .map(|p| p.x.iter().copied().zip(p.y.iter().copied()).collect())
+                    .map(|p| {
+                        let s = &p.shape;
+                        s.x.iter().copied().zip(s.y.iter().copied()).collect()
+                    })
                     .collect(),
             })
             .collect(),
@@ -182,12 +187,13 @@ fn shape_plot(outcome: &Outcome, full: &FullModel, case: &Case) -> ShapePlot {
 }
 
 fn legend(run: &ModelRun) -> String {
-    let kind = if run.modes.is_some() {
-        format!("{} (dashed, {} dofs)", run.label, run.dofs)
+    let label = run.kind.label();
+    let kind = if run.kind.modes().is_some() {
+        format!("{label} (dashed, {} dofs)", run.dofs)
     } else {
-        format!("{} ({} dofs)", run.label, run.dofs)
+        format!("{label} ({} dofs)", run.dofs)
     };
-    if run.error.is_some() {
+    if !run.status.is_complete() {
         format!("{kind}: stopped after {} points", run.points.len())
     } else {
         kind

@@ -7,7 +7,9 @@ use flexwing::beam::Profile;
 use flexwing::model::{DistributedForce, Force, Load};
 use serde::Serialize;
 
-use super::{ModelRun, Outcome, PointResult};
+use flexwing::analysis::statics::{ModelRun, PointResult};
+
+use super::Outcome;
 pub use crate::output::short;
 
 /// One line describing a load.
@@ -129,13 +131,13 @@ fn model_group(outcome: &Outcome, run: &ModelRun, rows: usize) -> Group {
         }));
     }
     columns.push(column("iter", 4, &|p| Some(p.stats.iterations.to_string())));
-    if run.modes.is_some() {
+    if run.kind.modes().is_some() {
         columns.push(column("Δtip (m)", 8, &|p| {
             p.tip_difference.map(|d| format!("{d:.2e}"))
         }));
     }
     Group {
-        title: run.label.clone(),
+        title: run.kind.label(),
         columns,
     }
 }
@@ -183,14 +185,14 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
         }
     }
     let _ = writeln!(s);
-    groups.extend(outcome.runs.iter().map(|r| model_group(outcome, r, rows)));
+    groups.extend(outcome.runs().iter().map(|r| model_group(outcome, r, rows)));
     s.push_str(&render(&groups, rows));
 
     let _ = writeln!(s);
     let w = outcome
-        .runs
+        .runs()
         .iter()
-        .map(|r| r.label.chars().count())
+        .map(|r| r.kind.label().chars().count())
         .max()
         .unwrap_or(0)
         .max(10);
@@ -199,16 +201,18 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
         "{:<w$}  {:>5}  {:>14}  {:>13}  {:>12}",
         "model", "dofs", "wall time (ms)", "ratio to full", "max Δtip (m)"
     );
-    for r in &outcome.runs {
+    for r in outcome.runs() {
         let ratio = outcome
+            .result
             .ratio_to_full(r)
             .map_or_else(|| MISSING.into(), |v| format!("{v:.3}"));
-        let diff =
-            Outcome::max_tip_difference(r).map_or_else(|| MISSING.into(), |v| format!("{v:.2e}"));
+        let diff = r
+            .max_tip_difference()
+            .map_or_else(|| MISSING.into(), |v| format!("{v:.2e}"));
         let _ = writeln!(
             s,
             "{:<w$}  {:>5}  {:>14.3}  {:>13}  {:>12}",
-            r.label,
+            r.kind.label(),
             r.dofs,
             1e3 * r.wall_time_s,
             ratio,
@@ -216,7 +220,7 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
         );
     }
 
-    if let Some(modes) = &outcome.loaded_modes {
+    if let Some(modes) = outcome.loaded_modes() {
         let at = match &outcome.sweep {
             Some(sw) => format!(
                 " (point {rows}, {} scale {})",
@@ -279,9 +283,9 @@ struct JsonSweep<'a> {
 
 #[derive(Serialize)]
 struct JsonModel<'a> {
-    label: &'a str,
+    label: String,
     dofs: usize,
-    modes: Option<&'a [usize]>,
+    modes: Option<Vec<usize>>,
     wall_time_s: f64,
     ratio_to_full: Option<f64>,
     max_tip_difference_m: Option<f64>,
@@ -344,25 +348,25 @@ pub fn json(outcome: &Outcome, files: &[PathBuf]) -> String {
             scales: &s.scales,
         }),
         models: outcome
-            .runs
+            .runs()
             .iter()
             .map(|r| JsonModel {
-                label: &r.label,
+                label: r.kind.label(),
                 dofs: r.dofs,
-                modes: r.modes.as_deref(),
+                modes: r.kind.modes(),
                 wall_time_s: r.wall_time_s,
-                ratio_to_full: outcome.ratio_to_full(r),
-                max_tip_difference_m: Outcome::max_tip_difference(r),
-                status: if r.error.is_some() {
-                    "incomplete"
-                } else {
+                ratio_to_full: outcome.result.ratio_to_full(r),
+                max_tip_difference_m: r.max_tip_difference(),
+                status: if r.status.is_complete() {
                     "complete"
+                } else {
+                    "incomplete"
                 },
-                error: r.error.as_deref(),
+                error: outcome.message_of(r),
                 points: r.points.iter().enumerate().map(json_point).collect(),
             })
             .collect(),
-        loaded_modes: outcome.loaded_modes.as_ref().map(|modes| {
+        loaded_modes: outcome.loaded_modes().map(|modes| {
             modes
                 .iter()
                 .map(|m| JsonMode {
@@ -397,9 +401,9 @@ fn json_point((k, p): (usize, &PointResult)) -> JsonPoint<'_> {
         },
         tip_difference_m: p.tip_difference,
         nodes: JsonNodes {
-            x_m: &p.x,
-            y_m: &p.y,
-            twist_rad: &p.twist,
+            x_m: &p.shape.x,
+            y_m: &p.shape.y,
+            twist_rad: &p.shape.twist,
         },
         stats: JsonStats {
             load_steps: st.load_steps,
@@ -409,21 +413,5 @@ fn json_point((k, p): (usize, &PointResult)) -> JsonPoint<'_> {
             factorizations: st.factorizations,
             residual_norm: st.residual_norm,
         },
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn short_numbers() {
-        assert_eq!(short(150.0), "150");
-        assert_eq!(short(0.0), "0");
-        assert_eq!(short(-0.0), "0");
-        assert_eq!(short(1.0 / 15.0), "0.0666667");
-        assert_eq!(short(2.5), "2.5");
-        assert_eq!(short(1.5e-7), "1.5e-7");
-        assert_eq!(short(2e7), "2e7");
     }
 }

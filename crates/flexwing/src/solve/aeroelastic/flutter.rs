@@ -123,7 +123,8 @@ impl FlutterPlan {
                 format!("must be in (0, 1), got {}", self.tolerance),
             ));
         }
-        self.static_options.validate()
+        self.static_options
+            .validate(&format!("{field}.static_options"))
     }
 }
 

@@ -89,7 +89,8 @@ impl ResponsePlan {
         }
         self.flight
             .validate(&format!("{field}.flight"), length, 0.0, self.duration)?;
-        self.static_options.validate()
+        self.static_options
+            .validate(&format!("{field}.static_options"))
     }
 }
 

@@ -68,7 +68,7 @@ impl StaticAeroPlan {
                 format!("must be in (0, 1), got {}", self.divergence_tolerance),
             ));
         }
-        self.options.validate()
+        self.options.validate(&format!("{field}.options"))
     }
 }
 

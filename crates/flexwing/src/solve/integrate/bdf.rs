@@ -128,13 +128,13 @@ impl Bdf {
         let mut traj = Trajectory::default();
         let fail = failure;
         if let Err(e) = check_output_times(t0, t_out)
-            .and_then(|_| opts.tolerances.validate("dynamic.tolerances", dim))
+            .and_then(|_| opts.tolerances.validate("options.tolerances", dim))
         {
             return fail(traj, stats, SolveError::from_input(e));
         }
         if !(1..=5).contains(&opts.max_order) {
             let e = crate::InputError::new(
-                "dynamic.max_order",
+                "options.max_order",
                 format!("must be between 1 and 5, got {}", opts.max_order),
             );
             return fail(traj, stats, SolveError::from_input(e));

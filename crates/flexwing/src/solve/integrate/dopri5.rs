@@ -120,7 +120,7 @@ impl Dopri5 {
         let mut traj = Trajectory::default();
         let fail = failure;
         if let Err(e) = check_output_times(t0, t_out)
-            .and_then(|_| opts.tolerances.validate("dynamic.tolerances", dim))
+            .and_then(|_| opts.tolerances.validate("options.tolerances", dim))
         {
             return fail(traj, stats, SolveError::from_input(e));
         }

@@ -169,11 +169,11 @@ impl ImplicitMidpoint {
         let mut traj = Trajectory::default();
         let fail = failure;
         let mut checks = check_output_times(t0, t_out)
-            .and_then(|_| opts.tolerances.validate("dynamic.tolerances", dim));
+            .and_then(|_| opts.tolerances.validate("options.tolerances", dim));
         if let Some(h) = opts.step {
             if !(h.is_finite() && h > 0.0) && checks.is_ok() {
                 checks = Err(crate::InputError::new(
-                    "dynamic.step",
+                    "options.step",
                     format!("must be a finite positive number, got {h}"),
                 ));
             }

@@ -3,6 +3,10 @@
 //! `ode15s`), the three-stage Radau IIA method of order 5 (Hairer & Wanner's `RADAU5`, for stiff
 //! systems), and the implicit midpoint rule (symplectic, for structural dynamics).
 //!
+//! One runtime choice selects them: [`Method`], with the [`IntegratorSettings`] every method reads
+//! (tolerances, step limits) and the one dispatcher [`integrate`]; each method's own type and
+//! options stay public for tuning beyond the shared settings.
+//!
 //! Each returns the solution at the requested output times (dense output, no extra steps) and its
 //! counters. A run that cannot continue returns the output produced so far with the error, so that
 //! callers can keep it and mark it incomplete.
@@ -11,12 +15,14 @@ mod bdf;
 mod dopri5;
 mod generalized_alpha;
 mod lu;
+mod method;
 mod midpoint;
 mod radau;
 
 pub use bdf::{Bdf, BdfOptions};
 pub use dopri5::{Dopri5, Dopri5Options};
 pub use generalized_alpha::{GeneralizedAlpha, GeneralizedAlphaOptions};
+pub use method::{integrate, IntegratorSettings, Method, MIN_RTOL};
 pub use midpoint::{ImplicitMidpoint, MidpointOptions};
 pub use radau::{Radau, RadauOptions};
 
@@ -33,6 +39,11 @@ pub trait OdeSystem {
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]);
     /// `jac = ∂f/∂y (t, y)` (`dim × dim`).
     fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut DMatrix<f64>);
+    /// The scale of each component's absolute tolerance (`dim` values, 1 on entry): [`integrate`]
+    /// uses `atol · scale[i]`, so that one tolerance fits components of different units.
+    fn atol_scale(&mut self, scale: &mut [f64]) {
+        scale.fill(1.0);
+    }
 }
 
 /// Counters of an integration (what SciPy reports as nfev, njev, nlu).

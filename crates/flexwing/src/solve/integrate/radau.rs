@@ -226,7 +226,7 @@ fn scaled_rms(v: &[f64], scal: &[f64]) -> f64 {
 impl Radau {
     fn validate(&self, dim: usize) -> Result<(), crate::InputError> {
         let o = &self.options;
-        o.tolerances.validate("dynamic.tolerances", dim)?;
+        o.tolerances.validate("options.tolerances", dim)?;
         let positive = |field: &str, v: f64| {
             if v.is_nan() || v <= 0.0 {
                 Err(crate::InputError::new(
@@ -237,38 +237,38 @@ impl Radau {
                 Ok(())
             }
         };
-        positive("dynamic.max_step", o.max_step)?;
+        positive("options.max_step", o.max_step)?;
         if let Some(h) = o.first_step {
             if !(h.is_finite() && h > 0.0) {
                 return Err(crate::InputError::new(
-                    "dynamic.first_step",
+                    "options.first_step",
                     format!("must be a finite positive number, got {h}"),
                 ));
             }
         }
         if o.max_newton_iterations == 0 {
             return Err(crate::InputError::new(
-                "dynamic.max_newton_iterations",
+                "options.max_newton_iterations",
                 "must be at least 1, got 0",
             ));
         }
         if o.jacobian_reuse.is_nan() || o.jacobian_reuse >= 1.0 {
             return Err(crate::InputError::new(
-                "dynamic.jacobian_reuse",
+                "options.jacobian_reuse",
                 format!("must be below 1, got {}", o.jacobian_reuse),
             ));
         }
         let (q1, q2) = o.unchanged_step_ratio;
         if !(q1 > 0.0 && q1 <= 1.0 && q2 >= 1.0 && q2.is_finite()) {
             return Err(crate::InputError::new(
-                "dynamic.unchanged_step_ratio",
+                "options.unchanged_step_ratio",
                 format!("needs 0 < lower ≤ 1 ≤ upper (finite), got ({q1}, {q2})"),
             ));
         }
         if let Some(f) = o.newton_tolerance {
             if !(f.is_finite() && f > 0.0) {
                 return Err(crate::InputError::new(
-                    "dynamic.newton_tolerance",
+                    "options.newton_tolerance",
                     format!("must be a finite positive number, got {f}"),
                 ));
             }
@@ -887,7 +887,7 @@ mod tests {
                     },
                     ..Default::default()
                 },
-                "dynamic.tolerances.rtol",
+                "options.tolerances.rtol",
             ),
             (
                 RadauOptions {
@@ -897,21 +897,21 @@ mod tests {
                     },
                     ..Default::default()
                 },
-                "dynamic.tolerances.atol",
+                "options.tolerances.atol",
             ),
             (
                 RadauOptions {
                     first_step: Some(0.0),
                     ..Default::default()
                 },
-                "dynamic.first_step",
+                "options.first_step",
             ),
             (
                 RadauOptions {
                     max_newton_iterations: 0,
                     ..Default::default()
                 },
-                "dynamic.max_newton_iterations",
+                "options.max_newton_iterations",
             ),
         ];
         for (options, field) in cases {

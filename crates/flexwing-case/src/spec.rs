@@ -1,16 +1,19 @@
 //! The serde types of the case file, one struct per TOML table. Units and defaults are documented
-//! in `docs/case-file.md`; the conversion into library types lives in `convert.rs`.
+//! in `docs/case-file.md`; the conversion into library plans lives in `beam.rs`, `loads.rs`,
+//! `statics.rs` and `dynamic.rs`. Every type also serializes, so a case round-trips through TOML
+//! (or any serde format) with the same keys.
 
-use serde::Deserialize;
+use flexwing::solve::integrate::Method;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::property::Property;
 
 /// The whole case file.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Case {
     /// Free text, echoed in the outputs.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub title: Option<String>,
     /// `[beam]`.
     pub beam: BeamSpec,
@@ -18,27 +21,30 @@ pub struct Case {
     #[serde(default)]
     pub modes: ModesSpec,
     /// `[[loads]]`: the loads of a static run, applied together.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub loads: Vec<LoadSpec>,
     /// `[static]`, optional (defaults: the full model only).
     #[serde(rename = "static", default)]
     pub statics: StaticSpec,
     /// `[dynamic]`, required by `flexwing dynamic` only.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dynamic: Option<DynamicSpec>,
+    /// The file the case was read from, for messages; not a key.
+    #[serde(skip)]
+    pub(crate) file: Option<String>,
 }
 
 /// `[beam]`: span, discretization, calibration and `[beam.section]`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct BeamSpec {
     /// Span `L` (m).
     pub length: f64,
     /// Number of equal elements; exclusive with `stations`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub elements: Option<usize>,
     /// Node stations `0 … L` (m); exclusive with `elements`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stations: Option<Vec<f64>>,
     /// Bending spring calibration.
     #[serde(default)]
@@ -48,7 +54,7 @@ pub struct BeamSpec {
 }
 
 /// `beam.calibration`.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum CalibrationSpec {
     /// The paper's tip-load-matched springs.
@@ -59,7 +65,7 @@ pub enum CalibrationSpec {
 }
 
 /// `[beam.section]`: section properties, each a number or a table over the span.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SectionSpec {
     /// Bending stiffness (N·m²).
@@ -68,21 +74,21 @@ pub struct SectionSpec {
     /// Mass per length (kg/m).
     pub mass_per_length: Property,
     /// Torsional stiffness (N·m²); its presence switches torsion on.
-    #[serde(rename = "GJ", default)]
+    #[serde(rename = "GJ", default, skip_serializing_if = "Option::is_none")]
     pub gj: Option<Property>,
     /// Polar mass moment of inertia per length (kg·m).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub polar_inertia: Option<Property>,
     /// Axis of `polar_inertia`; required with it.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub polar_inertia_about: Option<InertiaAxisSpec>,
     /// Chordwise mass-centre offset from the elastic axis (m).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub d0: Option<Property>,
 }
 
 /// `beam.section.polar_inertia_about`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum InertiaAxisSpec {
     /// About the section's mass centre (`I_cg`).
@@ -92,63 +98,63 @@ pub enum InertiaAxisSpec {
 }
 
 /// `[modes]`.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ModesSpec {
     /// Number of modes reported; default `min(10, n_dofs)`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub count: Option<usize>,
 }
 
 /// One `[[loads]]` table. Which keys a load takes depends on its `type` (and `direction`); the
 /// conversion (`loads.rs`) rejects the keys that do not belong, naming them.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct LoadSpec {
     /// Optional unique name, used by `[static.sweep]`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
     /// What kind of load.
     #[serde(rename = "type")]
     pub kind: LoadKindSpec,
     /// Position along the undeformed span (m); exclusive with `node`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub span: Option<f64>,
     /// Node index `0 ..= n`; exclusive with `span`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub node: Option<usize>,
     /// Dead or follower (point forces and distributed forces).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub direction: Option<DirectionSpec>,
     /// Global spanwise component: N (point force) or N/m (distributed).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fx: Option<Property>,
     /// Global vertical component: N (point force) or N/m (distributed).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fy: Option<Property>,
     /// Component along the element axis: N or N/m.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tangential: Option<Property>,
     /// Component along the element normal: N or N/m.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub normal: Option<Property>,
     /// Moment or torque (N·m).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub value: Option<f64>,
     /// Gravitational acceleration (m/s²).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub g: Option<f64>,
     /// Time history of the load in a dynamic run (default constant).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub time: Option<TimeSpec>,
     /// Whether the load acts during a dynamic run (default true); an inactive load stays
     /// available for `[dynamic.initial] loads`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub active: Option<bool>,
 }
 
 /// `loads[].type`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum LoadKindSpec {
     /// A point force.
@@ -164,7 +170,7 @@ pub enum LoadKindSpec {
 }
 
 /// `loads[].direction`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum DirectionSpec {
     /// Fixed global components `fx`, `fy`.
@@ -174,35 +180,35 @@ pub enum DirectionSpec {
 }
 
 /// `[static]`: which models to solve, solver options, loaded modes and the sweep.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct StaticSpec {
     /// Solve the full model.
     #[serde(default = "yes")]
     pub full: bool,
     /// Reduced models on the first `r` modes, one per entry.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub reduced: Vec<usize>,
     /// Reduced models on explicit 1-based mode lists.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub reduced_modes: Vec<Vec<usize>>,
     /// `StaticOptions::tolerance`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tolerance: Option<f64>,
     /// `StaticOptions::max_iterations`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_iterations: Option<usize>,
     /// `StaticOptions::min_step`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min_step: Option<f64>,
     /// `StaticOptions::line_search`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub line_search: Option<bool>,
     /// Number of loaded modes reported about the full model's final equilibrium.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub modes: Option<usize>,
     /// `[static.sweep]`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sweep: Option<SweepSpec>,
 }
 
@@ -227,58 +233,58 @@ impl Default for StaticSpec {
 }
 
 /// `[static.sweep]`: the scale of one named load over a list of points.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SweepSpec {
     /// Name of the swept load.
     pub load: String,
     /// Explicit scale factors; exclusive with `from`/`to`/`steps`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scales: Option<Vec<f64>>,
     /// First scale of an evenly spaced sweep.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub from: Option<f64>,
     /// Last scale of an evenly spaced sweep.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub to: Option<f64>,
     /// Number of points of an evenly spaced sweep, both ends included (≥ 2).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub steps: Option<usize>,
 }
 
 /// `loads[].time`: the time history `f(t)` that scales a load, `Q(t) = f(t) Q₀`. Which keys it
 /// takes depends on `type`; the conversion (`dynamic.rs`) rejects the others, naming them.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct TimeSpec {
     /// Which function.
     #[serde(rename = "type")]
     pub kind: TimeKindSpec,
     /// Circular frequency of a sine (rad/s).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub omega: Option<f64>,
     /// Phase of a sine (rad).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub phase: Option<f64>,
     /// Switch time of a step (s).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub time: Option<f64>,
     /// Start of a ramp (s).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub start: Option<f64>,
     /// End of a ramp (s).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub end: Option<f64>,
     /// Times of a table (s).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub t: Option<Vec<f64>>,
     /// Values of a table (dimensionless factors).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub value: Option<Vec<f64>>,
 }
 
 /// `loads[].time.type`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum TimeKindSpec {
     /// `f = 1`.
@@ -294,16 +300,16 @@ pub enum TimeKindSpec {
 }
 
 /// `[dynamic]`: time span, output times, models, integrator, damping and `[dynamic.initial]`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct DynamicSpec {
     /// Simulated time (s), from 0.
     pub end_time: f64,
     /// Evenly spaced output times (s); exclusive with `output_times`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub output_step: Option<f64>,
     /// Explicit output times (s); exclusive with `output_step`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub output_times: Option<Vec<f64>>,
     /// Simulate the full model.
     #[serde(default = "yes")]
@@ -312,48 +318,48 @@ pub struct DynamicSpec {
     #[serde(default)]
     pub simplified: bool,
     /// Reduced models on the first `r` modes, one per entry.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub reduced: Vec<usize>,
     /// Reduced models on explicit 1-based mode lists.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub reduced_modes: Vec<Vec<usize>>,
     /// How the gyroscopic term of the full and reduced models is obtained.
     #[serde(default)]
     pub gyroscopic: GyroscopicSpec,
     /// Step `h` of the finite-difference gyroscopic term (rad).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gyroscopic_step: Option<f64>,
     /// The time integrator.
     #[serde(default)]
     pub integrator: IntegratorSpec,
     /// Relative tolerance.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rtol: Option<f64>,
     /// Absolute tolerance on the coordinates (rad).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub atol: Option<f64>,
     /// Largest BDF order.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_order: Option<usize>,
     /// Fixed step of the implicit midpoint rule (s).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub step: Option<f64>,
     /// Budget of integrator steps (accepted and rejected) per model.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_steps: Option<usize>,
     /// Largest step of the adaptive integrators (s).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_step: Option<f64>,
     /// Structural damping; none without it.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub damping: Option<DampingSpec>,
     /// `[dynamic.initial]`; at rest without it.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub initial: Option<InitialSpec>,
 }
 
 /// `dynamic.gyroscopic`.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum GyroscopicSpec {
     /// Exact.
@@ -365,43 +371,70 @@ pub enum GyroscopicSpec {
     Neglected,
 }
 
-/// `dynamic.integrator`.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum IntegratorSpec {
-    /// BDF for the full models, Dormand–Prince for reduced models.
-    #[default]
-    Auto,
-    /// Variable-order BDF/NDF.
-    Bdf,
-    /// Implicit midpoint rule.
-    Midpoint,
-    /// Dormand–Prince 5(4).
-    Dopri5,
-    /// Radau IIA of order 5 (`RADAU5`).
-    Radau,
+/// `dynamic.integrator`: `"auto"` (the library's default method, [`Method::default`]) or the
+/// name of a [`Method`] (`"radau"`, `"bdf"`, `"dopri5"`, `"midpoint"`), read through the
+/// library's own serde names, so that a new method is a new case-file value.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct IntegratorSpec(pub Option<Method>);
+
+impl IntegratorSpec {
+    /// The method chosen.
+    pub fn method(self) -> Method {
+        self.0.unwrap_or_default()
+    }
+}
+
+impl Serialize for IntegratorSpec {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self.0 {
+            None => s.serialize_str("auto"),
+            Some(m) => m.serialize(s),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for IntegratorSpec {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::{Error, IntoDeserializer};
+        let name = String::deserialize(d)?;
+        if name == "auto" {
+            return Ok(Self(None));
+        }
+        let as_method: Result<Method, serde::de::value::Error> =
+            Method::deserialize(name.as_str().into_deserializer());
+        as_method.map(|m| Self(Some(m))).map_err(|_| {
+            let names: Vec<String> = std::iter::once("auto")
+                .chain(Method::ALL.iter().map(|m| m.name()))
+                .map(|n| format!("`{n}`"))
+                .collect();
+            D::Error::custom(format!(
+                "unknown variant `{name}`, expected one of {}",
+                names.join(", ")
+            ))
+        })
+    }
 }
 
 /// `dynamic.damping`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct DampingSpec {
     /// Which damping.
     #[serde(rename = "type")]
     pub kind: DampingKindSpec,
     /// Mass-proportional Rayleigh coefficient (1/s).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub alpha: Option<f64>,
     /// Stiffness-proportional Rayleigh coefficient (s).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub beta: Option<f64>,
     /// Modal damping ratios of modes 1, 2, ….
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ratios: Option<Vec<f64>>,
 }
 
 /// `dynamic.damping.type`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum DampingKindSpec {
     /// No damping.
@@ -413,25 +446,25 @@ pub enum DampingKindSpec {
 }
 
 /// `[dynamic.initial]`: the state at `t = 0`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct InitialSpec {
     /// Which initial state.
     #[serde(rename = "type")]
     pub kind: InitialKindSpec,
     /// Names of the loads of the initial static solution.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub loads: Option<Vec<String>>,
     /// Joint rotations of the full model (rad).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub q: Option<Vec<f64>>,
     /// Joint rotation rates of the full model (rad/s).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub qdot: Option<Vec<f64>>,
 }
 
 /// `dynamic.initial.type`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum InitialKindSpec {
     /// Undeformed, at rest.

@@ -1,20 +1,43 @@
-//! The one place where a case file becomes library types. The library validates values
-//! (positivity, NaN, table coverage, increasing stations); this module only checks what the
-//! library cannot see: which keys were given together.
+//! `[beam]` into the library's beam and full model, and `[modes]` into a modal plan. The library
+//! validates values (positivity, NaN, table coverage, increasing stations); this module only
+//! checks what the library cannot see: which keys were given together.
 
+use flexwing::analysis::modes::ModesPlan;
 use flexwing::beam::{
     Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties, TorsionProperties,
 };
+use flexwing::model::FullModel;
 use flexwing::InputError;
 
 use super::spec::{BeamSpec, CalibrationSpec, Case, InertiaAxisSpec, SectionSpec};
+use crate::CaseError;
 
 impl Case {
+    /// The full model of `[beam]`.
+    ///
+    /// # Errors
+    /// Keys that do not go together (`elements` and `stations`, torsion data without `GJ`), and
+    /// the library's checks of the values ([`Beam::new`]).
+    pub fn model(&self) -> Result<FullModel, CaseError> {
+        self.to_beam()
+            .map(FullModel::new)
+            .map_err(|e| self.error(e))
+    }
+
+    /// The modal analysis of `[beam]` and `[modes]`, validated.
+    ///
+    /// # Errors
+    /// As [`Case::model`]; `modes.count` outside `1 ..= n_dofs`.
+    pub fn modes_plan(&self) -> Result<ModesPlan, CaseError> {
+        ModesPlan::new(self.model()?, self.modes.count, "modes.count").map_err(|e| self.error(e))
+    }
+
     /// The lumped-mass beam of `[beam]`, validated by [`Beam::new`].
-    pub fn to_beam(&self) -> Result<Beam, InputError> {
+    pub(crate) fn to_beam(&self) -> Result<Beam, InputError> {
         let b = &self.beam;
         let section = section(&b.section)?;
-        Beam::new(
+        Beam::named(
+            "beam",
             b.length,
             &section,
             &discretization(b)?,

@@ -1,57 +1,19 @@
-//! The paper's beams, the numbers it prints (for the "paper" columns, clearly labelled as such),
-//! and the independent references checked into the library's test data (for the "reference"
-//! columns). Every other number of the report is computed by the run.
+//! The independent references of the study (the "reference" columns), read through this one
+//! place: the continuous coupled beam, the elastica and the independent Python implementation of
+//! the dynamics, checked into the library's test data (`crates/flexwing/tests/data/`, each
+//! folder with a README giving its provenance) and embedded at build time.
 
 use anyhow::{anyhow, Context, Result};
-use flexwing::model::FullModel;
-
-/// Table 1 beam (coupled, L = 16 m) with `n` elements: the library's preset
-/// ([`flexwing::paper::table1_section`] documents its polar inertia).
-pub fn table1_beam(n: usize) -> Result<FullModel> {
-    Ok(flexwing::paper::table1_beam(n)?)
-}
-
-/// Table 4 beam (bending only, L = 1 m) with `n` elements: the library's preset.
-pub fn table4_beam(n: usize) -> Result<FullModel> {
-    Ok(flexwing::paper::table4_beam(n)?)
-}
-
-/// Table 2 as printed: per mode, (lumped n = 16, semi-analytical, error %) and the same at n = 32.
-pub const TABLE2: [[f64; 6]; 9] = [
-    [2.21, 2.21, 0.02, 2.21, 2.21, 0.01],
-    [9.55, 9.55, 0.01, 9.55, 9.55, 0.00],
-    [13.78, 13.80, 0.10, 13.79, 13.80, 0.03],
-    [27.39, 27.40, 0.02, 27.40, 27.40, 0.01],
-    [36.38, 36.66, 0.76, 36.59, 36.66, 0.19],
-    [46.69, 46.95, 0.56, 46.88, 46.95, 0.16],
-    [63.14, 64.02, 1.38, 63.79, 64.02, 0.37],
-    [65.05, 66.52, 2.21, 65.96, 66.52, 0.84],
-    [80.53, 86.71, 7.14, 83.08, 86.71, 4.19],
-];
-
-/// Table 3 (tip force, n = 20): CPU time of the reduced models relative to the full one.
-pub const TABLE3_RATIOS: [(usize, f64); 2] = [(2, 0.32), (3, 0.36)];
-/// Table 5 (two forces, n = 10): CPU time of the reduced models relative to the full one.
-pub const TABLE5_RATIOS: [(usize, f64); 2] = [(2, 0.34), (3, 0.32)];
-/// Table 6: mean absolute and relative error of the finite-difference gradient, its CPU ratio.
-pub const TABLE6: (f64, f64, f64) = (8.99e-10, 1.26e-8, 0.084);
-/// Table 7: CPU time of the simplified model relative to the full one (n = 10).
-pub const TABLE7_RATIO: f64 = 0.197;
-/// Table 8: CPU time of the reduced model (r = 2) relative to the full one (n = 20).
-pub const TABLE8_RATIO: f64 = 0.146;
-/// Figure 5: the largest relative error of the simplified model the paper reports.
-pub const FIGURE5_MAX_ERROR: f64 = 0.04;
 
 const CONTINUOUS_TABLE1: &str =
-    include_str!("../../../../flexwing/tests/data/continuous_beam/table1_coupled.csv");
+    include_str!("../../flexwing/tests/data/continuous_beam/table1_coupled.csv");
 const DYNAMICS_CASE_B: &str =
-    include_str!("../../../../flexwing/tests/data/dynamics_reference/case_b_tip.csv");
-const ELASTICA_DEAD_TIP: &str =
-    include_str!("../../../../flexwing/tests/data/elastica/dead_tip.csv");
+    include_str!("../../flexwing/tests/data/dynamics_reference/case_b_tip.csv");
+const ELASTICA_DEAD_TIP: &str = include_str!("../../flexwing/tests/data/elastica/dead_tip.csv");
 const ELASTICA_TWO_LOADS: &str =
-    include_str!("../../../../flexwing/tests/data/elastica/paper_two_loads.csv");
+    include_str!("../../flexwing/tests/data/elastica/paper_two_loads.csv");
 const ELASTICA_TWO_LOADS_SHAPES: &str =
-    include_str!("../../../../flexwing/tests/data/elastica/paper_two_loads_shapes.csv");
+    include_str!("../../flexwing/tests/data/elastica/paper_two_loads_shapes.csv");
 
 /// Where the references come from, for the report.
 pub const REFERENCE_NOTE: &str = "Continuous coupled beam: exact frequency equation solved to 40 \
@@ -104,9 +66,13 @@ pub fn elastica_tip(p: f64) -> Result<(f64, f64)> {
 }
 
 /// One point of the two-force elastica: `F1` (N), tip `(x, y)`, mid-span `(x, y)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TwoLoadsPoint {
+    /// The tip force F1 (N).
     pub f1: f64,
+    /// Tip position (m).
     pub tip: (f64, f64),
+    /// Mid-span position (m).
     pub mid: (f64, f64),
 }
 

@@ -8,14 +8,30 @@ use std::fmt;
 
 use flexwing::beam::Profile;
 use serde::de::{self, Deserialize, Deserializer, MapAccess, Visitor};
+use serde::ser::{Serialize, SerializeStruct, Serializer};
 
-/// `EI = 2.0e4` or `EI = { x = [0.0, 10.0], value = [4.0e4, 1.0e4] }`.
+/// `EI = 2.0e4` or `EI = { x = [0.0, 10.0], value = [4.0e4, 1.0e4] }`: the library's
+/// [`Profile`], written as a number or a table.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Property(pub Profile);
 
 impl<'de> Deserialize<'de> for Property {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         deserializer.deserialize_any(PropertyVisitor)
+    }
+}
+
+impl Serialize for Property {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match &self.0 {
+            Profile::Uniform(v) => s.serialize_f64(*v),
+            Profile::Table { x, value } => {
+                let mut table = s.serialize_struct("Property", 2)?;
+                table.serialize_field("x", x)?;
+                table.serialize_field("value", value)?;
+                table.end()
+            }
+        }
     }
 }
 

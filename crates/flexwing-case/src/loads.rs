@@ -16,8 +16,9 @@ impl Case {
     ///
     /// # Errors
     /// A key that does not belong to the load's type or direction, a missing key, a repeated or
-    /// empty name, a node beyond the tip, a torque on a bending-only beam.
-    pub fn to_loads(&self, beam: &Beam) -> Result<Vec<Load>, InputError> {
+    /// empty name, a node beyond the tip. The values (positions on the beam, finite numbers, a
+    /// torque on a bending-only beam) are checked by the library when the loads are applied.
+    pub(crate) fn to_loads(&self, beam: &Beam) -> Result<Vec<Load>, InputError> {
         check_names(&self.loads)?;
         self.loads
             .iter()
@@ -32,17 +33,6 @@ impl Case {
             .iter()
             .position(|l| l.name.as_deref() == Some(name))
     }
-}
-
-/// The library names the value of a moment or torque `moment`/`torque`; the case file calls it
-/// `value`. Everything else already has the case file's name.
-pub fn case_field(mut e: InputError) -> InputError {
-    for library in [".moment", ".torque"] {
-        if let Some(stem) = e.field.strip_suffix(library) {
-            e.field = format!("{stem}.value");
-        }
-    }
-    e
 }
 
 fn check_names(loads: &[LoadSpec]) -> Result<(), InputError> {
@@ -167,19 +157,10 @@ fn load(i: usize, spec: &LoadSpec, beam: &Beam) -> Result<Load, InputError> {
             span: position(i, spec, beam)?,
             value: value(i, spec, "the moment about z (N·m)")?,
         },
-        LoadKindSpec::Torque => {
-            if !beam.has_torsion() {
-                return Err(InputError::new(
-                    field("type"),
-                    "a \"torque\" needs torsion, but the beam is bending-only \
-                     (give GJ in [beam.section])",
-                ));
-            }
-            Load::Torque {
-                span: position(i, spec, beam)?,
-                value: value(i, spec, "the torque about the beam axis (N·m)")?,
-            }
-        }
+        LoadKindSpec::Torque => Load::Torque {
+            span: position(i, spec, beam)?,
+            value: value(i, spec, "the torque about the beam axis (N·m)")?,
+        },
         LoadKindSpec::Distributed => {
             let [a, b] = components(i, spec, "distributed force")?;
             let profile = |p: Option<&Profile>| p.cloned().unwrap_or(Profile::Uniform(0.0));
@@ -290,10 +271,13 @@ mod tests {
     const BEAM: &str =
         "[beam]\nlength = 1.0\nelements = 4\n\n[beam.section]\nEI = 50\nmass_per_length = 0.2\n";
 
+    /// The loads of `extra`, applied to the beam (as every analysis does).
     fn loads(extra: &str) -> Result<Vec<Load>, String> {
-        let case = Case::parse(&format!("{BEAM}{extra}"), "x.toml")?;
-        let beam = case.to_beam().map_err(|e| e.to_string())?;
-        case.to_loads(&beam).map_err(|e| e.to_string())
+        let case = Case::from_toml_str(&format!("{BEAM}{extra}")).map_err(|e| e.to_string())?;
+        let model = flexwing::model::FullModel::new(case.to_beam().map_err(|e| e.to_string())?);
+        let loads = case.to_loads(model.beam()).map_err(|e| e.to_string())?;
+        model.apply(&loads, "loads").map_err(|e| e.to_string())?;
+        Ok(loads)
     }
 
     #[test]
@@ -338,7 +322,10 @@ mod tests {
                 "loads[0].fy: a point force takes a number",
             ),
             ("type = \"moment\"\nspan = 1\n", "loads[0].value: missing"),
-            ("type = \"torque\"\nspan = 1\nvalue = 1\n", "loads[0].type:"),
+            (
+                "type = \"torque\"\nspan = 1\nvalue = 1\n",
+                "loads[0]: a torque needs torsion",
+            ),
             (
                 "type = \"distributed\"\ndirection = \"dead\"\n",
                 "loads[0].fx: missing",
@@ -355,13 +342,5 @@ mod tests {
         let one = "[[loads]]\nname = \"A\"\ntype = \"gravity\"\n";
         let msg = loads(&format!("{one}{one}")).unwrap_err();
         assert!(msg.starts_with("loads[1].name: \"A\" is already"), "{msg}");
-    }
-
-    #[test]
-    fn library_field_names_become_case_keys() {
-        let e = case_field(InputError::new("loads[3].moment", "must be finite"));
-        assert_eq!(e.field, "loads[3].value");
-        let e = case_field(InputError::new("loads[3].fy", "must be finite"));
-        assert_eq!(e.field, "loads[3].fy");
     }
 }

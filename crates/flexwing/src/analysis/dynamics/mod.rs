@@ -1,0 +1,281 @@
+//! Non-linear dynamics: time histories of the full model, the simplified model (gyroscopic term
+//! neglected) and reduced models, from rest, from a static deflection or from a given state,
+//! under time-varying loads ([`crate::solve::EquationsOfMotion`], integrated by
+//! [`crate::solve::integrate::integrate`]).
+//!
+//! A model whose integration stops does not stop the analysis: the other models are simulated,
+//! and each run keeps the output times it reached with the reason it stopped.
+
+mod guard;
+mod outcome;
+mod run;
+
+pub use guard::{integrate_guarded, EnergyGuard, GuardedRun};
+pub use outcome::{Comparison, DynamicOutcome, ModelRun, Sample, Snapshot};
+pub use run::run;
+
+use super::models::{reduced_models, ModelKind};
+use crate::error::InputError;
+use crate::model::{FullModel, Load};
+use crate::solve::integrate::{IntegratorSettings, Method};
+use crate::solve::{Damping, Gyroscopic, TimeFunction};
+use crate::text::short;
+
+/// Most output times of a run: every output time keeps a sample per model in memory.
+pub const MAX_OUTPUT_TIMES: usize = 100_000;
+
+/// A dynamic analysis. Build it with [`DynamicPlan::new`], set the fields, and check it with
+/// [`DynamicPlan::validate`] under the caller's names.
+#[derive(Debug, Clone)]
+pub struct DynamicPlan {
+    /// The full model.
+    pub model: FullModel,
+    /// Every load: those acting during the motion and those that only set the initial state.
+    pub loads: Vec<Load>,
+    /// The time history `f(t)` of each load during the motion, `Q(t) = f(t) Q₀` (one per load);
+    /// `None` for a load that does not act during the motion. Errors name
+    /// `{loads_field}[i].time`.
+    pub time: Vec<Option<TimeFunction>>,
+    /// End of the simulated time (s); the run starts at 0.
+    pub end_time: f64,
+    /// Output times (s), strictly increasing, within `[0, end_time]`.
+    pub output_times: Vec<f64>,
+    /// Simulate the full model. Default `true`.
+    pub full: bool,
+    /// Simulate the full model with the gyroscopic term neglected. Default `false`.
+    pub simplified: bool,
+    /// Reduced models on the first `r` modes, one per entry.
+    pub reduced: Vec<usize>,
+    /// Reduced models on listed modes (1-based), one per list.
+    pub reduced_modes: Vec<Vec<usize>>,
+    /// How the gyroscopic term of the full and reduced models is obtained (the simplified model
+    /// neglects it). The finite-difference step's errors name `{prefix}.gyroscopic_step`.
+    pub gyroscopic: Gyroscopic,
+    /// The time integrator of every model.
+    pub integrator: Method,
+    /// Tolerances and options of the integrator; errors name `{prefix}.rtol`, ….
+    pub settings: IntegratorSettings,
+    /// Structural damping of the full model; reduced models get its projection
+    /// ([`crate::model::ReducedModel::project_damping`]).
+    pub damping: Damping,
+    /// The state at `t = 0`.
+    pub initial: Initial,
+    /// Indices of the output times at which each model's deformed shape is recorded as a
+    /// [`Snapshot`] (the tip is recorded at every output time). Default: none.
+    pub snapshots: Vec<usize>,
+}
+
+/// The state at `t = 0`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Initial {
+    /// Undeformed, at rest.
+    Rest,
+    /// Each model's static equilibrium under these loads (indices into
+    /// [`DynamicPlan::loads`]) at their full value, at rest.
+    Static {
+        /// The loads of the static deflection.
+        loads: Vec<usize>,
+    },
+    /// Given joint rotations and rates of the full model; reduced models start from their
+    /// projections `η = Φᵀ M(0) q`, `η̇ = Φᵀ M(0) q̇`.
+    Given {
+        /// Joint rotations (rad).
+        q: Vec<f64>,
+        /// Joint rotation rates (rad/s).
+        qdot: Vec<f64>,
+    },
+}
+
+impl DynamicPlan {
+    /// The full model from rest under `loads`, each constant in time, over `[0, end_time]`
+    /// with the given output times and the default integrator.
+    pub fn new(model: FullModel, loads: Vec<Load>, end_time: f64, output_times: Vec<f64>) -> Self {
+        let time = vec![Some(TimeFunction::Constant); loads.len()];
+        Self {
+            model,
+            loads,
+            time,
+            end_time,
+            output_times,
+            full: true,
+            simplified: false,
+            reduced: Vec::new(),
+            reduced_modes: Vec::new(),
+            gyroscopic: Gyroscopic::Exact,
+            integrator: Method::default(),
+            settings: IntegratorSettings::default(),
+            damping: Damping::None,
+            initial: Initial::Rest,
+            snapshots: Vec::new(),
+        }
+    }
+
+    /// Check the plan; errors name the loads `{loads_field}[i]…` and everything else
+    /// `{prefix}.…` (a case file: `loads` and `dynamic`).
+    ///
+    /// # Errors
+    /// A value out of range (end time, output times, tolerances, damping, time histories over
+    /// `[0, end_time]`, the finite-difference step), a load the model cannot carry, nothing to
+    /// simulate, reduced models on modes the model does not have, an initial state of the wrong
+    /// size or of unknown loads.
+    pub fn validate(&self, loads_field: &str, prefix: &str) -> Result<(), InputError> {
+        let field = |key: &str| crate::field(prefix, key);
+        let end = self.end_time;
+        if !(end > 0.0 && end.is_finite()) {
+            return Err(InputError::new(
+                field("end_time"),
+                format!("must be a finite positive number, got {}", short(end)),
+            ));
+        }
+        self.check_output_times(prefix)?;
+        self.settings.validate(prefix)?;
+        self.gyroscopic.validate(&field("gyroscopic_step"))?;
+        let n_dofs = self.model.n_dofs();
+        let reduced = reduced_models(&self.reduced, &self.reduced_modes, n_dofs, prefix)?;
+        if !self.full && !self.simplified && reduced.is_empty() {
+            return Err(InputError::new(
+                field("full"),
+                format!(
+                    "nothing to simulate: full = false, simplified = false and no reduced models \
+                     (give {} or {})",
+                    field("reduced"),
+                    field("reduced_modes")
+                ),
+            ));
+        }
+        self.model.apply(&self.loads, loads_field)?;
+        if self.time.len() != self.loads.len() {
+            return Err(InputError::new(
+                loads_field,
+                format!(
+                    "{} loads but {} time histories",
+                    self.loads.len(),
+                    self.time.len()
+                ),
+            ));
+        }
+        for (i, f) in self.time.iter().enumerate() {
+            if let Some(f) = f {
+                f.validate(&format!("{loads_field}[{i}].time"), 0.0, end)?;
+            }
+        }
+        self.damping.validate(&field("damping"), n_dofs)?;
+        self.check_initial(&field("initial"))
+    }
+
+    fn check_output_times(&self, prefix: &str) -> Result<(), InputError> {
+        let field = crate::field(prefix, "output_times");
+        let (times, end) = (&self.output_times, self.end_time);
+        if times.is_empty() {
+            return Err(InputError::new(field, "must not be empty"));
+        }
+        if times.len() > MAX_OUTPUT_TIMES {
+            return Err(InputError::new(
+                field,
+                format!(
+                    "gives {} output times; at most {MAX_OUTPUT_TIMES} are allowed",
+                    times.len()
+                ),
+            ));
+        }
+        for (i, &t) in times.iter().enumerate() {
+            let at = format!("{field}[{i}]");
+            let reason = if !t.is_finite() {
+                format!("must be finite, got {}", short(t))
+            } else if t < 0.0 {
+                format!("{} is before the start time 0", short(t))
+            } else if t > end {
+                format!("{} is after end_time {}", short(t), short(end))
+            } else if i > 0 && t <= times[i - 1] {
+                format!(
+                    "{} is not after output_times[{}] = {}; output times must increase",
+                    short(t),
+                    i - 1,
+                    short(times[i - 1])
+                )
+            } else {
+                continue;
+            };
+            return Err(InputError::new(at, reason));
+        }
+        Ok(())
+    }
+
+    fn check_initial(&self, field: &str) -> Result<(), InputError> {
+        let n_dofs = self.model.n_dofs();
+        match &self.initial {
+            Initial::Rest => Ok(()),
+            Initial::Static { loads } => {
+                if loads.is_empty() {
+                    return Err(InputError::new(
+                        format!("{field}.loads"),
+                        "missing: a static initial state needs the loads it is the \
+                         equilibrium under",
+                    ));
+                }
+                match loads.iter().position(|&i| i >= self.loads.len()) {
+                    Some(k) => Err(InputError::new(
+                        format!("{field}.loads[{k}]"),
+                        format!("there is no load {} (of {})", loads[k], self.loads.len()),
+                    )),
+                    None => Ok(()),
+                }
+            }
+            Initial::Given { q, qdot } => {
+                for (key, v) in [("q", q), ("qdot", qdot)] {
+                    if v.len() != n_dofs {
+                        return Err(InputError::new(
+                            format!("{field}.{key}"),
+                            format!(
+                                "needs {n_dofs} values (one per coordinate of the full model), \
+                                 got {}",
+                                v.len()
+                            ),
+                        ));
+                    }
+                    if let Some(k) = v.iter().position(|x| !x.is_finite()) {
+                        return Err(InputError::new(
+                            format!("{field}.{key}[{k}]"),
+                            format!("must be finite, got {}", short(v[k])),
+                        ));
+                    }
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// The models simulated, in order: full, simplified, then the reduced models of `reduced`
+    /// and `reduced_modes`.
+    ///
+    /// # Errors
+    /// As [`DynamicPlan::validate`] for the reduced models.
+    pub fn models(&self) -> Result<Vec<ModelKind>, InputError> {
+        let reduced = reduced_models(&self.reduced, &self.reduced_modes, self.model.n_dofs(), "")?;
+        let full = self.full.then_some(ModelKind::Full);
+        let simplified = self.simplified.then_some(ModelKind::Simplified);
+        Ok(full
+            .into_iter()
+            .chain(simplified)
+            .chain(reduced.into_iter().map(|(k, _)| k))
+            .collect())
+    }
+
+    /// How the gyroscopic term of a model of this kind is obtained.
+    pub fn gyroscopic_of(&self, kind: &ModelKind) -> Gyroscopic {
+        match kind {
+            ModelKind::Simplified => Gyroscopic::Neglected,
+            _ => self.gyroscopic,
+        }
+    }
+
+    /// Indices (in [`DynamicPlan::loads`]) of the loads that act during the motion.
+    pub fn active(&self) -> Vec<usize> {
+        (0..self.loads.len())
+            .filter(|&i| self.time.get(i).is_some_and(Option::is_some))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests;
