@@ -50,6 +50,7 @@ impl Case {
         s.rtol = d.rtol.unwrap_or(s.rtol);
         s.atol = d.atol.unwrap_or(s.atol);
         s.max_order = d.max_order.unwrap_or(s.max_order);
+        s.spectral_radius = d.spectral_radius.unwrap_or(s.spectral_radius);
         s.step = d.step;
         s.max_steps = d.max_steps.unwrap_or(s.max_steps);
         s.max_step = d.max_step;
@@ -221,11 +222,19 @@ fn check_integrator_keys(d: &DynamicSpec, method: Method) -> Result<(), InputErr
             "is an option of the BDF integrator; it needs integrator = \"bdf\"",
         ));
     }
-    if d.step.is_some() && method != Method::Midpoint {
+    if d.step.is_some() && !matches!(method, Method::Midpoint | Method::GeneralizedAlpha) {
         return Err(InputError::new(
             "dynamic.step",
-            "is the fixed step of the implicit midpoint rule; it needs \
-             integrator = \"midpoint\" (the other integrators choose their steps)",
+            "is the fixed step of the implicit midpoint rule and generalized-α; it needs \
+             integrator = \"midpoint\" or \"generalized-alpha\" (the other integrators choose \
+             their steps)",
+        ));
+    }
+    if d.spectral_radius.is_some() && method != Method::GeneralizedAlpha {
+        return Err(InputError::new(
+            "dynamic.spectral_radius",
+            "is an option of the generalized-α integrator; it needs \
+             integrator = \"generalized-alpha\"",
         ));
     }
     if d.max_step.is_some() && d.step.is_some() {

@@ -341,9 +341,12 @@ pub struct DynamicSpec {
     /// Largest BDF order.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_order: Option<usize>,
-    /// Fixed step of the implicit midpoint rule (s).
+    /// Fixed step of the implicit midpoint rule or generalized-α (s).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub step: Option<f64>,
+    /// Spectral radius `ρ∞` of generalized-α.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spectral_radius: Option<f64>,
     /// Budget of integrator steps (accepted and rejected) per model.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_steps: Option<usize>,

@@ -52,6 +52,16 @@ impl ModelKind {
     }
 }
 
+/// How many of the lowest modes the reduced models among `kinds` project on (the highest mode
+/// index they use), `None` if there is no reduced model: only those are computed, by Lanczos
+/// at large `n` (`Modes::lowest`).
+pub(crate) fn modes_needed(kinds: &[ModelKind]) -> Option<usize> {
+    kinds
+        .iter()
+        .filter_map(|k| k.modes().and_then(|m| m.iter().copied().max()))
+        .max()
+}
+
 /// The reduced models of `reduced` (first `r` modes) and `reduced_modes` (1-based lists) for a
 /// model with `n_modes` modes, in that order, after checking them; errors name
 /// `{prefix}.reduced[i]` and `{prefix}.reduced_modes[i]`.

@@ -81,7 +81,7 @@ pub struct ModesOutcome {
 pub fn run(plan: &ModesPlan, progress: &mut dyn Progress) -> Result<ModesOutcome, SolveError> {
     progress.start(0, 1, "modes");
     let model = &plan.model;
-    let modes = Modes::undeformed(model);
+    let modes = Modes::lowest(model, plan.count);
     progress.finish();
     let modes = modes?;
     Ok(ModesOutcome {

@@ -313,8 +313,11 @@ pub fn run(plan: &StaticPlan, progress: &mut dyn Progress) -> Result<StaticOutco
     let full = &plan.model;
     let applied = full.apply(&plan.loads, "loads")?;
     let kinds = plan.models()?;
-    let needs_modes = plan.modes.is_some() || kinds.iter().any(|k| k.modes().is_some());
-    let unloaded = needs_modes.then(|| Modes::undeformed(full)).transpose()?;
+    let count = super::models::modes_needed(&kinds)
+        .into_iter()
+        .chain(plan.modes)
+        .max();
+    let unloaded = count.map(|c| Modes::lowest(full, c)).transpose()?;
     let solver = Solver {
         full,
         applied: &applied,
@@ -436,8 +439,8 @@ fn loaded_modes(
     }
     let last = run.points.last()?;
     Some(
-        Modes::loaded(full, &last.q, applied, &last.scales).map(|modes| {
-            (0..count.min(modes.n_modes()))
+        Modes::lowest_loaded(full, &last.q, applied, &last.scales, count).map(|modes| {
+            (0..count.min(modes.n_modes()).min(unloaded.n_modes()))
                 .map(|k| LoadedMode {
                     mode: k + 1,
                     omega: modes.omega()[k],

@@ -50,10 +50,8 @@ pub fn run(plan: &DynamicPlan, progress: &mut dyn Progress) -> Result<DynamicOut
         .filter_map(|&i| plan.time[i].clone())
         .collect();
     let kinds = plan.models()?;
-    let modes = kinds
-        .iter()
-        .any(|k| k.modes().is_some())
-        .then(|| Modes::undeformed(full))
+    let modes = super::super::models::modes_needed(&kinds)
+        .map(|count| Modes::lowest(full, count))
         .transpose()?;
     let mut snapshots = plan.snapshots.clone();
     snapshots.sort_unstable();

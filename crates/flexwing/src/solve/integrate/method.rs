@@ -1,13 +1,14 @@
 //! One runtime choice of integrator: the [`Method`] enum, the [`IntegratorSettings`] every method
 //! reads (tolerances belong to the problem, not to a method), and [`integrate`], the one
-//! dispatcher to [`Radau`], [`Bdf`], [`Dopri5`] and [`ImplicitMidpoint`].
+//! dispatcher to [`Radau`], [`Bdf`], [`Dopri5`], [`ImplicitMidpoint`] and [`GeneralizedAlpha`].
 //!
 //! Adding a method: one variant of [`Method`], its name in [`Method::name`] and [`Method::ALL`],
 //! and one arm in [`integrate`] that builds its options from the settings.
 
 use super::{
-    Bdf, BdfOptions, Dopri5, Dopri5Options, ImplicitMidpoint, IntegrationResult, MidpointOptions,
-    OdeSystem, Radau, RadauOptions, Tolerances,
+    Bdf, BdfOptions, Dopri5, Dopri5Options, GeneralizedAlpha, GeneralizedAlphaOptions,
+    ImplicitMidpoint, IntegrationResult, MidpointOptions, OdeSystem, Radau, RadauOptions,
+    Tolerances,
 };
 use crate::error::InputError;
 use crate::text::short;
@@ -32,19 +33,32 @@ pub enum Method {
     /// The implicit midpoint rule: symplectic, with the fixed step [`IntegratorSettings::step`]
     /// or adaptive by step doubling.
     Midpoint,
+    /// Generalized-α (first-order form of Jansen, Whiting & Hulbert): second order, with the
+    /// numerical damping of unresolved high modes set by
+    /// [`IntegratorSettings::spectral_radius`]; the fixed step [`IntegratorSettings::step`] or
+    /// adaptive.
+    GeneralizedAlpha,
 }
 
 impl Method {
     /// Every method, in the order of the documentation.
-    pub const ALL: [Method; 4] = [Method::Radau, Method::Bdf, Method::Dopri5, Method::Midpoint];
+    pub const ALL: [Method; 5] = [
+        Method::Radau,
+        Method::Bdf,
+        Method::Dopri5,
+        Method::Midpoint,
+        Method::GeneralizedAlpha,
+    ];
 
-    /// The method's name as written in a case file (`radau`, `bdf`, `dopri5`, `midpoint`).
+    /// The method's name as written in a case file (`radau`, `bdf`, `dopri5`, `midpoint`,
+    /// `generalized-alpha`).
     pub fn name(self) -> &'static str {
         match self {
             Method::Radau => "radau",
             Method::Bdf => "bdf",
             Method::Dopri5 => "dopri5",
             Method::Midpoint => "midpoint",
+            Method::GeneralizedAlpha => "generalized-alpha",
         }
     }
 }
@@ -71,11 +85,16 @@ pub struct IntegratorSettings {
     pub max_steps: usize,
     /// Largest step (s) of the adaptive methods; unlimited without it. Default `None`.
     pub max_step: Option<f64>,
-    /// Fixed step (s) of the implicit midpoint rule; adaptive without it. Default `None`.
+    /// Fixed step (s) of the implicit midpoint rule and generalized-α; adaptive without it.
+    /// Default `None`.
     pub step: Option<f64>,
     /// Largest order of BDF, 1 to 5. Default 2 (orders above 2 are not A-stable, see
     /// [`BdfOptions::max_order`]).
     pub max_order: usize,
+    /// Spectral radius `ρ∞` of generalized-α at `h ω → ∞`, in `[0, 1]`: the fraction of an
+    /// unresolved high mode that survives one step (1: no numerical damping, 0: the most).
+    /// Default 0.5.
+    pub spectral_radius: f64,
 }
 
 impl Default for IntegratorSettings {
@@ -87,6 +106,7 @@ impl Default for IntegratorSettings {
             max_step: None,
             step: None,
             max_order: 2,
+            spectral_radius: 0.5,
         }
     }
 }
@@ -131,6 +151,15 @@ impl IntegratorSettings {
             return Err(InputError::new(
                 field("max_order"),
                 format!("must be between 1 and 5, got {}", self.max_order),
+            ));
+        }
+        if !(0.0..=1.0).contains(&self.spectral_radius) {
+            return Err(InputError::new(
+                field("spectral_radius"),
+                format!(
+                    "must be a number in [0, 1], got {}",
+                    short(self.spectral_radius)
+                ),
             ));
         }
         if let Some(h) = self.step {
@@ -235,6 +264,17 @@ pub fn integrate<S: OdeSystem>(
             },
         }
         .integrate(system, t0, y0, t_out, progress),
+        Method::GeneralizedAlpha => GeneralizedAlpha {
+            options: GeneralizedAlphaOptions {
+                tolerances,
+                spectral_radius: settings.spectral_radius,
+                step: settings.step,
+                max_steps,
+                max_step,
+                ..GeneralizedAlphaOptions::default()
+            },
+        }
+        .integrate(system, t0, y0, t_out, progress),
     }
 }
 
@@ -282,6 +322,13 @@ mod tests {
             ),
             (
                 IntegratorSettings {
+                    spectral_radius: 1.5,
+                    ..Default::default()
+                },
+                "d.spectral_radius: must be a number in [0, 1], got 1.5",
+            ),
+            (
+                IntegratorSettings {
                     max_steps: 0,
                     ..Default::default()
                 },
@@ -304,6 +351,9 @@ mod tests {
     #[test]
     fn names_are_distinct() {
         let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
-        assert_eq!(names, ["radau", "bdf", "dopri5", "midpoint"]);
+        assert_eq!(
+            names,
+            ["radau", "bdf", "dopri5", "midpoint", "generalized-alpha"]
+        );
     }
 }
