@@ -303,6 +303,7 @@ fn actual_defaults() -> BTreeMap<(&'static str, &'static str), String> {
     put("dynamic", "rtol", s.rtol.to_string());
     put("dynamic", "atol", s.atol.to_string());
     put("dynamic", "max_order", s.max_order.to_string());
+    put("dynamic", "spectral_radius", s.spectral_radius.to_string());
     put("dynamic", "max_steps", s.max_steps.to_string());
     let time = |spec: &str| {
         let text = BASE.replace("{ type = \"constant\" }", spec);
