@@ -305,7 +305,8 @@ impl StructuralModel for FullModel {
             kinetic_at: vec![f64::NAN; self.n_dofs()],
             duals: KineticBuffers::new(self),
             chain: ChainScratch::new(self.n),
-            identity: DMatrix::identity(self.n_dofs(), self.n_dofs()),
+            // Allocated on first use by the dense derivatives (n² entries).
+            identity: DMatrix::zeros(0, 0),
         }
     }
 
@@ -389,6 +390,10 @@ impl StructuralModel for FullModel {
         dp: &mut DMatrix<f64>,
         dgamma: &mut DMatrix<f64>,
     ) {
+        let nd = self.n_dofs();
+        if ws.identity.nrows() != nd {
+            ws.identity = DMatrix::identity(nd, nd);
+        }
         self.kinetic_directional(q, qdot, &ws.identity, &mut ws.duals, dp, dgamma);
     }
 
@@ -416,5 +421,9 @@ impl StructuralModel for FullModel {
 
     fn full_model(&self) -> &FullModel {
         self
+    }
+
+    fn as_full_model(&self) -> Option<&FullModel> {
+        Some(self)
     }
 }

@@ -518,3 +518,55 @@ impl Resultants {
         }
     }
 }
+
+impl FullModel {
+    /// The load stiffness `G = −∂Q/∂q` in the chain form of the O(n) Newton sweeps
+    /// (`model::chain_newton`, docs/model-choices.md, "O(n) Newton systems"). In absolute angles
+    /// `G` is, for element `j`, a local symmetric 2 × 2 block `local[j] = [g_θθ, g_θψ, g_ψψ]`
+    /// (levers of the forces, gravity), plus the follower forces' rates `rate[j] = ∂F_j/∂θ_j`,
+    /// which act on every inboard joint `i < j` through its lever: `G_abs[θ_i, θ_j] = −ℓ_i n_i ·
+    /// rate[j]`. The same derivative as `directional_abs`, organized per element. Returns true
+    /// when `G` is symmetric (no follower force acts).
+    pub(super) fn chain_load_stiffness(
+        &self,
+        kin: &Kinematics,
+        r: &Resultants,
+        local: &mut [[f64; 3]],
+        rate: &mut [[f64; 2]],
+    ) -> bool {
+        let n = self.n;
+        let (c, s) = (&kin.cos_theta, &kin.sin_theta);
+        let mut outboard = [0.0; 2];
+        let mut symmetric = true;
+        let w = r.gravity;
+        let mut mass_out = 0.0;
+        for j in (0..n).rev() {
+            let lever = [
+                self.ell[j] * outboard[0] + r.arm_force[j][0],
+                self.ell[j] * outboard[1] + r.arm_force[j][1],
+            ];
+            let arm = r.arm_rate[j];
+            // −∂/∂θ_j of n_j · lever_j (at fixed outboard forces).
+            let mut tt = c[j] * lever[0] + s[j] * lever[1] - (-s[j] * arm[0] + c[j] * arm[1]);
+            let (mut tp, mut pp) = (0.0, 0.0);
+            if w != 0.0 {
+                let (mj, d) = (self.mass[j], self.d0[j]);
+                let (cp, sp) = (kin.cos_psi[j], kin.sin_psi[j]);
+                tt -= w
+                    * (s[j] * self.ell[j] * mass_out
+                        + mj * (0.5 * self.ell[j] * s[j] + d * sp * c[j]));
+                if self.torsion {
+                    tp = -w * mj * d * cp * s[j];
+                    pp = -w * mj * d * sp * c[j];
+                }
+                mass_out += mj;
+            }
+            local[j] = [tt, tp, pp];
+            rate[j] = r.force_rate[j];
+            symmetric &= rate[j] == [0.0; 2] && arm == [0.0; 2];
+            outboard[0] += r.force[j][0];
+            outboard[1] += r.force[j][1];
+        }
+        symmetric
+    }
+}

@@ -2,8 +2,9 @@
 //! automatic cut-back, and a backtracking line search. Works for any [`StructuralModel`]: the
 //! full model and reduced models.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 
+use super::tangent::{Stiffness, Tangent};
 use crate::error::SolveError;
 use crate::model::{AppliedLoads, FullModel, StructuralModel};
 
@@ -72,7 +73,8 @@ pub struct StaticStats {
     pub iterations: usize,
     /// Evaluations of the residual `K x − Q(x)`.
     pub residual_evaluations: usize,
-    /// Evaluations and LU factorizations of the tangent `K − ∂Q/∂x`.
+    /// Evaluations and factorizations of the tangent `K − ∂Q/∂x` (O(n) chain sweeps for the
+    /// full model, dense LU otherwise: `solve/tangent.rs`).
     pub factorizations: usize,
     /// `‖K x − Q(x)‖∞` at the solution.
     pub residual_norm: f64,
@@ -186,9 +188,9 @@ struct Newton<'a, M: StructuralModel> {
     loads: &'a AppliedLoads,
     options: &'a StaticOptions,
     ws: M::Workspace,
-    k: DMatrix<f64>,
+    stiffness: Stiffness,
     f: DVector<f64>,
-    jac: DMatrix<f64>,
+    tangent: Tangent,
     stats: StaticStats,
 }
 
@@ -200,9 +202,9 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
             loads,
             options,
             ws: model.workspace(),
-            k: model.stiffness_matrix(),
+            stiffness: Stiffness::new(model),
             f: DVector::zeros(nd),
-            jac: DMatrix::zeros(nd, nd),
+            tangent: Tangent::new(model),
             stats: StaticStats::default(),
         }
     }
@@ -217,11 +219,11 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
             &mut self.ws,
             &mut self.f,
         );
-        &self.k * x - &self.f
+        self.stiffness.times(x) - &self.f
     }
 
     fn converged(&self, x: &DVector<f64>, r: &DVector<f64>) -> bool {
-        let scale = (&self.k * x).amax().max(self.f.amax());
+        let scale = self.stiffness.times(x).amax().max(self.f.amax());
         r.amax() <= self.options.tolerance * scale || r.amax() == 0.0
     }
 
@@ -241,17 +243,16 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
             }
             self.stats.iterations += 1;
             self.stats.factorizations += 1;
-            self.model.load_jacobian_into(
-                x.as_slice(),
-                self.loads,
-                scales,
-                &mut self.ws,
-                &mut self.jac,
-            );
-            let tangent = &self.k - &self.jac;
-            let Some(dx) = tangent.lu().solve(&(-&r)) else {
+            let factored =
+                self.tangent
+                    .factor(self.model, &mut self.ws, x.as_slice(), self.loads, scales);
+            let mut dx = -&r;
+            if factored {
+                self.tangent.solve(self.model, &mut dx);
+            }
+            if !factored || !dx.iter().all(|v| v.is_finite()) {
                 return Err((it + 1, r.amax()));
-            };
+            }
             let r0 = r.norm();
             let mut alpha = 1.0;
             loop {
