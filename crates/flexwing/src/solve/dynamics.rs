@@ -690,14 +690,16 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
         true
     }
 
-    /// The joint momenta's error scale is set by the root's, so a Newton error small in it can
-    /// still be a large velocity error of the outboard elements; left in the state, such errors
-    /// grow through the gyroscopic term until Newton fails (docs/model-choices.md, "O(n)
-    /// Newton systems"; measured on case (b) with Radau at rtol 1e-2: n = 1000 needs 1e-3,
-    /// n = 3000 1e-5). The chain's Newton iteration is exact, so each iteration divides the
-    /// error by ~1e9 and the tighter tolerance costs about one iteration.
+    /// The joint momenta's error scale is set by the root's (`p_1` is the angular momentum of
+    /// the whole beam), so a Newton error small in it can be a large velocity error of the
+    /// outboard elements, which, left in the state, grows through the gyroscopic term until
+    /// Newton fails (docs/model-choices.md, "O(n) Newton systems"). The bound keeps that error
+    /// in proportion, `1e5 · M_nn(0)/M_11(0)` (the tip joint's inertia over the root's, ~n⁻³:
+    /// no bound below a few hundred elements); the constant is measured on case (b) with Radau
+    /// at rtol 1e-2 (n = 1000 needs ≤ 1e-3, n = 3000 ≤ 1e-5). The chain's Newton iteration is
+    /// exact, so each iteration divides the error by ~1e9 and the bound costs at most one.
     fn newton_tolerance(&self) -> Option<f64> {
-        Some(1e-6)
+        self.chain.as_ref().map(|c| c.newton_tolerance())
     }
 }
 

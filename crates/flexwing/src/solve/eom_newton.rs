@@ -34,6 +34,8 @@ pub(crate) struct ChainNewton {
     /// Rayleigh `(α, β)`; `(0, 0)` for other damping (left out of the approximation).
     rayleigh: (f64, f64),
     gyroscopic: bool,
+    /// Newton stopping tolerance the joint-momentum scale asks for (`dynamics.rs`).
+    tolerance: f64,
     /// Scratch of length `n_dofs`.
     qdot: Vec<f64>,
     a: Vec<f64>,
@@ -54,7 +56,12 @@ impl ChainNewton {
             _ => (0.0, 0.0),
         };
         let z = || vec![0.0; nd];
+        let mut diagonal = z();
+        model.mass_diagonal_into(&model.kinematics(&z()), &mut diagonal);
+        let n = model.n_elements();
+        let tolerance = 1e5 * diagonal[n - 1] / diagonal[0];
         Self {
+            tolerance,
             lin: ChainLinearization::new(model),
             ws: model.workspace(),
             real: Vec::new(),
@@ -69,6 +76,12 @@ impl ChainNewton {
             v: vec![Complex::new(0.0, 0.0); nd],
             vr: z(),
         }
+    }
+
+    /// The Newton stopping tolerance the joint momenta's scale asks for: `1e5 M_nn(0)/M_11(0)`
+    /// (bending joints; `dynamics.rs`).
+    pub(crate) fn newton_tolerance(&self) -> f64 {
+        self.tolerance
     }
 
     /// Linearize at the state `y = (x, p)` under `loads` scaled by `scales`; false if `M(x)` is
