@@ -12,7 +12,7 @@ use crate::model::{AppliedLoads, ChainFactor, ChainLinearization, Shift, Structu
 /// From this many coordinates on, the full model's tangent is factored by the chain sweep rather
 /// than formed and factored densely (measured, `benches/statics.rs`: docs/performance.md,
 /// "Statics at large n").
-pub const CHAIN_TANGENT_MIN_DOFS: usize = 1;
+pub const CHAIN_TANGENT_MIN_DOFS: usize = 10;
 
 /// `K` as an operator: diagonal (the full model; never formed) or dense.
 pub(crate) enum Stiffness {

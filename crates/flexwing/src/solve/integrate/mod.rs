@@ -4,7 +4,9 @@
 //! systems), and the implicit midpoint rule (symplectic, for structural dynamics).
 //!
 //! Each returns the solution at the requested output times (dense output, no extra steps) and its
-//! counters. A run that cannot continue returns the output produced so far with the error, so that
+//! counters. The implicit ones solve their Newton systems `(c I − J) Δ = r` with the system's own
+//! solver when it offers one ([`OdeSystem::newton_solver`]), else by dense LU factorizations of
+//! the Jacobian (`iteration.rs`). A run that cannot continue returns the output produced so far with the error, so that
 //! callers can keep it and mark it incomplete.
 
 mod bdf;

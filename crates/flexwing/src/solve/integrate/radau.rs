@@ -3,10 +3,15 @@
 //!
 //! The `3N` Newton system of the stages is transformed with the eigenvectors `T` of the inverse
 //! coefficient matrix `A⁻¹` into one real `N × N` system `(γ/h I − J)` and one complex system
-//! `((α + iβ)/h I − J)`: one real and one complex LU per factorization instead of a `3N` one. The
-//! Jacobian is reused from step to step while Newton converges fast (contraction `θ ≤
-//! jacobian_reuse`), and the factorizations are kept when the step size changes by a factor in
-//! `[1, 1.2]`.
+//! `((α + iβ)/h I − J)`: one real and one complex LU per factorization instead of a `3N` one (or
+//! the system's own solver of both, `OdeSystem::newton_solver`: the full beam model's O(n) chain
+//! sweeps). The Jacobian is reused from step to step while Newton converges fast (contraction
+//! `θ ≤ jacobian_reuse`), and the factorizations are kept when the step size changes by a factor
+//! in `[1, 1.2]`; a system whose linearizations are cheap is linearized at every step instead.
+//!
+//! `integrate` is the driver: it keeps `RADAU5`'s control flow and calls the named parts of a
+//! step in `radau_step.rs` (iteration matrices, starting values, Newton iteration, error
+//! estimate, step-size proposal, collocation polynomial and dense output).
 //!
 //! Tolerances are transformed as in `RADAU5`: the error estimate is of order 3 while the method is
 //! of order 5, and `rtol' = 0.1 rtol^(2/3)`, `atol' = atol rtol'/rtol` make the global error
@@ -45,7 +50,8 @@ pub struct RadauOptions {
     /// step (`RADAU5`'s `THET`). Default 0.1, `RADAU5`'s advice for Jacobians that are expensive
     /// (a beam model's costs about ten right-hand sides; on the paper's case (b) it halves the
     /// Jacobian evaluations against `RADAU5`'s default 0.001). A negative value recomputes it at
-    /// every step.
+    /// every step. Not used when the system linearizes cheaply
+    /// (`NewtonSolver::cheap_linearization`): it is then linearized at every step.
     pub jacobian_reuse: f64,
     /// When the proposed new step over the current one lies in `[lower, upper]`, the step and
     /// the factorizations are kept (`RADAU5`'s `WORK(5)`, `WORK(6)`). Default `(1.0, 1.2)`;
@@ -53,7 +59,8 @@ pub struct RadauOptions {
     /// right-hand sides.
     pub unchanged_step_ratio: (f64, f64),
     /// Stopping tolerance of the Newton iteration relative to the error scale (`RADAU5`'s
-    /// `FNEWT`); `None` (default) for `max(10 ε/rtol', min(0.03, √rtol'))`.
+    /// `FNEWT`); `None` (default) for `max(10 ε/rtol', min(0.03, √rtol'))`, or the system's
+    /// bound if it is tighter (`NewtonSolver::newton_tolerance`).
     pub newton_tolerance: Option<f64>,
 }
 
@@ -75,9 +82,10 @@ impl Default for RadauOptions {
 /// The Radau IIA implicit Runge–Kutta integrator of order 5, for stiff systems.
 ///
 /// Counters: `factorizations` counts the pairs (one real, one complex LU) of `N × N` iteration
-/// matrices, as `RADAU5`'s `NDEC`; `rhs_evaluations` includes those of the error estimate and of
-/// the initial step; `newton_iterations` counts the solves of the transformed system (each costs
-/// three right-hand sides).
+/// matrices, as `RADAU5`'s `NDEC` (with a system's own solver: its factorization pairs, and
+/// `jacobian_evaluations` its linearizations); `rhs_evaluations` includes those of the error
+/// estimate and of the initial step; `newton_iterations` counts the solves of the transformed
+/// system (each costs three right-hand sides).
 #[derive(Debug, Clone, Default)]
 pub struct Radau {
     /// Options.
