@@ -8,6 +8,7 @@ use flexwing::model::{AppliedLoads, Force, FullModel, Load};
 use flexwing::solve::TimeFunction;
 use std::path::PathBuf;
 
+pub mod aero_reference;
 pub mod elastica;
 
 /// A two-point (linear root → tip) table over `[0, length]`.
