@@ -151,11 +151,15 @@ fn flutter_tables(wing: &Aeroelastic, budget: Duration, batches: usize) {
             t / t_full
         );
     }
-
 }
 
 /// A V-g sweep of 100 speeds, full and reduced.
-fn sweep_table(wing: &Aeroelastic, rom6: &Aeroelastic<ReducedModel>, budget: Duration, batches: usize) {
+fn sweep_table(
+    wing: &Aeroelastic,
+    rom6: &Aeroelastic<ReducedModel>,
+    budget: Duration,
+    batches: usize,
+) {
     println!("\nV-g sweep: 100 speeds from 0.4 to 40 m/s, 6 branches, n = 32\n");
     println!("| model | Newton iterations | time | spread |");
     println!("|---|---|---|---|");
@@ -177,11 +181,15 @@ fn sweep_table(wing: &Aeroelastic, rom6: &Aeroelastic<ReducedModel>, budget: Dur
             t.1 * 100.0
         );
     }
-
 }
 
 /// The 1−cos gust response, full and reduced, against a reference at rtol 1e-9.
-fn gust_table(wing: &Aeroelastic, rom6: &Aeroelastic<ReducedModel>, budget: Duration, batches: usize) {
+fn gust_table(
+    wing: &Aeroelastic,
+    rom6: &Aeroelastic<ReducedModel>,
+    budget: Duration,
+    batches: usize,
+) {
     println!(
         "\n1−cos gust (1 m/s, 10 m, at 25 m/s), 2 s, Radau, n = 32: tip error against rtol 1e-9\n"
     );

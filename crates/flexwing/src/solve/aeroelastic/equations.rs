@@ -22,10 +22,10 @@ use nalgebra::{Complex, DMatrix, DVector};
 use super::evaluator::{AeroDerivatives, AeroEvaluator};
 use super::flight::FlightHistory;
 use super::linear::Linearization;
+use super::schur::{AeroNewtonSystems, LagSchur, StructuredJacobian};
 use crate::error::InputError;
 use crate::model::aero::{AeroStructure, Aeroelastic};
 use crate::model::{AppliedLoads, Load};
-use super::schur::{AeroNewtonSystems, LagSchur, StructuredJacobian};
 use crate::solve::integrate::{NewtonSolver, OdeSystem};
 use crate::solve::{Damping, EquationsOfMotion, Gyroscopic, TimeFunction};
 
@@ -376,7 +376,12 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         sj.w.view_mut((0, n), (strips, n))
             .gemm(1.0, &d.wv, &self.minv, 0.0);
         sj.g.copy_from(&d.g);
-        for ((r, s), air) in sj.rates.iter_mut().zip(&self.aero.strips).zip(&self.eval.air) {
+        for ((r, s), air) in sj
+            .rates
+            .iter_mut()
+            .zip(&self.aero.strips)
+            .zip(&self.eval.air)
+        {
             *r = air.speed / s.b;
         }
         if second_order {
@@ -489,7 +494,9 @@ impl<M: AeroStructure> NewtonSolver for AeroelasticEquations<'_, M> {
         self.schur.as_mut().is_some_and(|s| s.factor_real(slot, c))
     }
     fn factor_complex(&mut self, slot: usize, c: Complex<f64>) -> bool {
-        self.schur.as_mut().is_some_and(|s| s.factor_complex(slot, c))
+        self.schur
+            .as_mut()
+            .is_some_and(|s| s.factor_complex(slot, c))
     }
     fn solve_real(&mut self, slot: usize, b: &mut [f64]) {
         if let Some(s) = self.schur.as_mut() {
