@@ -4,7 +4,8 @@
 //! n, the reduced model (r = 6), a V-g sweep of 100 speeds, and a 1−cos gust response of 2 s.
 //! Prints Markdown tables for docs/performance.md.
 //!
-//! Run: `cargo bench -p flexwing --bench aero` (add `-- --quick` for a short run).
+//! Run: `cargo bench -p flexwing --bench aero` (add `-- --quick` for a short run; name sections
+//! to run only those: `-- flutter`, `-- sweep`, `-- gust`).
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -14,6 +15,7 @@ use common::{fmt_time, measure};
 
 use flexwing::beam::Profile;
 use flexwing::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCondition};
+use flexwing::model::ReducedModel;
 use flexwing::solve::aeroelastic::{
     flutter, response, FlightHistory, FlutterPlan, Gust, GustShape, ResponsePlan,
 };
@@ -73,13 +75,35 @@ fn time_flutter<M: AeroStructure>(
 }
 
 fn main() {
-    let quick = std::env::args().any(|a| a == "--quick");
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let quick = args.iter().any(|a| a == "--quick");
+    let sections: Vec<&str> = args
+        .iter()
+        .map(String::as_str)
+        .filter(|a| ["flutter", "sweep", "gust"].contains(a))
+        .collect();
+    let want = |name: &str| sections.is_empty() || sections.contains(&name);
     let (budget, batches) = if quick {
         (Duration::from_millis(300), 3)
     } else {
         (Duration::from_millis(1500), 5)
     };
 
+    let wing = patil(32);
+    let rom6 = wing.reduced(&(0..6).collect::<Vec<_>>()).expect("rom");
+    if want("flutter") {
+        flutter_tables(&wing, budget, batches);
+    }
+    if want("sweep") {
+        sweep_table(&wing, &rom6, budget, batches);
+    }
+    if want("gust") {
+        gust_table(&wing, &rom6, budget, batches);
+    }
+}
+
+/// Flutter speed against n, and at n = 32 by plan and for reduced models.
+fn flutter_tables(wing: &Aeroelastic, budget: Duration, batches: usize) {
     println!("\nFlutter speed, full model, 6 branches through 10 speeds to 40 m/s\n");
     println!("| n | dofs | lag states | flutter speed (m/s) | frequency (rad/s) | Newton iterations | time | spread | slope |");
     println!("|---|---|---|---|---|---|---|---|---|");
@@ -101,15 +125,14 @@ fn main() {
     println!("\nFlutter speed at n = 32: plans, and the reduced model (first r wet modes)\n");
     println!("| model | branches × speeds | flutter speed (m/s) | error | Newton iterations | time | spread | ratio to full |");
     println!("|---|---|---|---|---|---|---|---|");
-    let wing = patil(32);
     let (u_full, _, t_full, s_full, it_full) =
-        time_flutter(&wing, &flutter_plan(6, 10), budget, batches);
+        time_flutter(wing, &flutter_plan(6, 10), budget, batches);
     println!(
         "| full | 6 × 10 | {u_full:.4} | – | {it_full} | {} | {:.0} % | 1 |",
         fmt_time(t_full),
         s_full * 100.0
     );
-    let (u, _, t, s, it) = time_flutter(&wing, &flutter_plan(4, 8), budget, batches);
+    let (u, _, t, s, it) = time_flutter(wing, &flutter_plan(4, 8), budget, batches);
     println!(
         "| full | 4 × 8 | {u:.4} | {:.1e} | {it} | {} | {:.0} % | {:.3} |",
         (u - u_full) / u_full,
@@ -128,19 +151,26 @@ fn main() {
             t / t_full
         );
     }
+}
 
+/// A V-g sweep of 100 speeds, full and reduced.
+fn sweep_table(
+    wing: &Aeroelastic,
+    rom6: &Aeroelastic<ReducedModel>,
+    budget: Duration,
+    batches: usize,
+) {
     println!("\nV-g sweep: 100 speeds from 0.4 to 40 m/s, 6 branches, n = 32\n");
     println!("| model | Newton iterations | time | spread |");
     println!("|---|---|---|---|");
     let sweep = flutter_plan(6, 100);
-    let rom6 = wing.reduced(&(0..6).collect::<Vec<_>>()).expect("rom");
     for (name, t) in [
         ("full", {
-            let (_, _, t, s, it) = time_flutter(&wing, &sweep, budget, batches);
+            let (_, _, t, s, it) = time_flutter(wing, &sweep, budget, batches);
             (t, s, it)
         }),
         ("reduced r = 6", {
-            let (_, _, t, s, it) = time_flutter(&rom6, &sweep, budget, batches);
+            let (_, _, t, s, it) = time_flutter(rom6, &sweep, budget, batches);
             (t, s, it)
         }),
     ] {
@@ -151,13 +181,21 @@ fn main() {
             t.1 * 100.0
         );
     }
+}
 
+/// The 1−cos gust response, full and reduced, against a reference at rtol 1e-9.
+fn gust_table(
+    wing: &Aeroelastic,
+    rom6: &Aeroelastic<ReducedModel>,
+    budget: Duration,
+    batches: usize,
+) {
     println!(
         "\n1−cos gust (1 m/s, 10 m, at 25 m/s), 2 s, Radau, n = 32: tip error against rtol 1e-9\n"
     );
     println!("| model | states | rtol | steps | Jacobians | LU | tip error (m) | time | spread |");
     println!("|---|---|---|---|---|---|---|---|---|");
-    let reference = response(&wing, &gust_plan(1e-9), "response", &mut |_| {}).expect("plan");
+    let reference = response(wing, &gust_plan(1e-9), "response", &mut |_| {}).expect("plan");
     for (name, rtol) in [
         ("full", 1e-4),
         ("full", 1e-3),
@@ -166,9 +204,9 @@ fn main() {
     ] {
         let run = || {
             if name == "full" {
-                response(&wing, &gust_plan(rtol), "response", &mut |_| {}).expect("plan")
+                response(wing, &gust_plan(rtol), "response", &mut |_| {}).expect("plan")
             } else {
-                response(&rom6, &gust_plan(rtol), "response", &mut |_| {}).expect("plan")
+                response(rom6, &gust_plan(rtol), "response", &mut |_| {}).expect("plan")
             }
         };
         let out = run();

@@ -17,15 +17,16 @@
 //! ∂ȧ_i/∂x = (V_i/b_i) B̄ (W_x,i + W_v,i A)   ∂ȧ_i/∂p = (V_i/b_i) B̄ W_v,i M⁻¹   ∂ȧ_i/∂a_i = (V_i/b_i) H̄
 //! ```
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{Complex, DMatrix, DVector};
 
 use super::evaluator::{AeroDerivatives, AeroEvaluator};
 use super::flight::FlightHistory;
 use super::linear::Linearization;
+use super::schur::{AeroNewtonSystems, LagSchur, StructuredJacobian};
 use crate::error::InputError;
 use crate::model::aero::{AeroStructure, Aeroelastic};
 use crate::model::{AppliedLoads, Load};
-use crate::solve::integrate::OdeSystem;
+use crate::solve::integrate::{NewtonSolver, OdeSystem};
 use crate::solve::{Damping, EquationsOfMotion, Gyroscopic, TimeFunction};
 
 /// The aeroelastic system linearized about a static equilibrium, with the lag of every strip
@@ -71,8 +72,18 @@ pub struct AeroelasticEquations<'a, M: AeroStructure> {
     na: usize,
     force: DVector<f64>,
     gravity_jac: DMatrix<f64>,
-    structural_jac: DMatrix<f64>,
     derivatives: AeroDerivatives,
+    /// Scratch of the Jacobian: `∂ẋ/∂x`, `M⁻¹`, `Q̃_v` (`n × n`), `ẋ`, lag rates.
+    dxdx: DMatrix<f64>,
+    minv: DMatrix<f64>,
+    qv: DMatrix<f64>,
+    xdot: Vec<f64>,
+    scratch_a: Vec<f64>,
+    /// The structured Jacobian of the dense path.
+    structured: StructuredJacobian,
+    newton_systems: AeroNewtonSystems,
+    /// The Newton solver by elimination of the lag states, made on first use.
+    schur: Option<LagSchur>,
     /// Right-hand-side evaluations.
     pub rhs_evaluations: usize,
     /// Jacobian evaluations.
@@ -131,8 +142,15 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
             na,
             force: DVector::zeros(n),
             gravity_jac: DMatrix::zeros(n, n),
-            structural_jac: DMatrix::zeros(2 * n, 2 * n),
             derivatives: AeroDerivatives::zeros(n, aero.n_strips()),
+            dxdx: DMatrix::zeros(n, n),
+            minv: DMatrix::zeros(n, n),
+            qv: DMatrix::zeros(n, n),
+            xdot: vec![0.0; n],
+            scratch_a: vec![0.0; na],
+            structured: StructuredJacobian::zeros(0, 0),
+            newton_systems: AeroNewtonSystems::Auto,
+            schur: None,
             rhs_evaluations: 0,
             jacobian_evaluations: 0,
         })
@@ -276,6 +294,110 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         }
     }
 
+    /// How the implicit integrators solve the Newton systems (default
+    /// [`AeroNewtonSystems::Auto`]); set it before integrating.
+    pub fn set_newton_systems(&mut self, choice: AeroNewtonSystems) {
+        self.newton_systems = choice;
+        self.schur = None;
+    }
+
+    /// Whether the Newton systems are solved by eliminating the lag states (`schur.rs`): with
+    /// lag states, unless [`AeroNewtonSystems::Dense`] is chosen.
+    pub fn uses_lag_schur(&self) -> bool {
+        self.na > 0
+            && match self.newton_systems {
+                AeroNewtonSystems::Auto | AeroNewtonSystems::LagSchur => true,
+                AeroNewtonSystems::Dense => false,
+            }
+    }
+
+    /// The Jacobian at `(t, y)` in the structured form of [`StructuredJacobian`] (module
+    /// documentation): `J_ss` by `EquationsOfMotion::jacobian` plus the aerodynamic terms, and
+    /// the strips' rank-one couplings to the lag states; with `second_order` also the matrices
+    /// of the reduction to the coordinates.
+    pub(crate) fn structured_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        sj: &mut StructuredJacobian,
+        second_order: bool,
+    ) {
+        self.jacobian_evaluations += 1;
+        let n = self.n;
+        let (xp, a) = y.split_at(2 * n);
+        let (x, p) = xp.split_at(n);
+        self.structural.jacobian(t, xp, &mut sj.ss);
+        self.dxdx.copy_from(&sj.ss.view((0, 0), (n, n)));
+        self.minv.copy_from(&sj.ss.view((0, n), (n, n)));
+        if let Some(g) = &self.gravity {
+            let s = self.gravity_scale(t);
+            self.aero
+                .structure()
+                .load_jacobian_into(x, g, &s, &mut self.ws, &mut self.gravity_jac);
+            let mut b = sj.ss.view_mut((n, 0), (n, n));
+            b += &self.gravity_jac;
+        }
+        // ẋ, then the aerodynamic derivatives at (x, ẋ, a).
+        let mut xdot = std::mem::take(&mut self.xdot);
+        for (i, v) in xdot.iter_mut().enumerate() {
+            *v = self.minv.row(i).iter().zip(p).map(|(m, p)| m * p).sum();
+        }
+        self.set_air(t);
+        let mut scratch_a = std::mem::take(&mut self.scratch_a);
+        self.force.fill(0.0);
+        self.eval.evaluate(
+            x,
+            &xdot,
+            a,
+            self.force.as_mut_slice(),
+            false,
+            &mut scratch_a,
+        );
+        self.xdot = xdot;
+        self.scratch_a = scratch_a;
+        self.eval.derivatives(&mut self.derivatives);
+        let d = &self.derivatives;
+        let dbar = self.eval.feedthrough();
+        // Q̃_v = Q_v + G D̄ W_v.
+        self.qv.copy_from(&d.qv);
+        self.qv.gemm(dbar, &d.g, &d.wv, 1.0);
+        // ∂ṗ/∂x += Q_x + G D̄ W_x + Q̃_v A,  ∂ṗ/∂p += Q̃_v M⁻¹.
+        let mut b = sj.ss.view_mut((n, 0), (n, n));
+        b += &d.qx;
+        b.gemm(dbar, &d.g, &d.wx, 1.0);
+        b.gemm(1.0, &self.qv, &self.dxdx, 1.0);
+        let mut b = sj.ss.view_mut((n, n), (n, n));
+        b.gemm(1.0, &self.qv, &self.minv, 1.0);
+        // The upwash per unit state: (W_x + W_v A, W_v M⁻¹).
+        let strips = d.wx.nrows();
+        let mut w = sj.w.view_mut((0, 0), (strips, n));
+        w.copy_from(&d.wx);
+        w.gemm(1.0, &d.wv, &self.dxdx, 1.0);
+        sj.w.view_mut((0, n), (strips, n))
+            .gemm(1.0, &d.wv, &self.minv, 0.0);
+        sj.g.copy_from(&d.g);
+        for ((r, s), air) in sj
+            .rates
+            .iter_mut()
+            .zip(&self.aero.strips)
+            .zip(&self.eval.air)
+        {
+            *r = air.speed / s.b;
+        }
+        if second_order {
+            // M, M A, P_p M, F = P_p M A − P_x for the reduction to the coordinates.
+            sj.wx.copy_from(&d.wx);
+            sj.wv.copy_from(&d.wv);
+            self.aero
+                .structure()
+                .mass_matrix_into(x, &mut self.ws, &mut sj.mass);
+            sj.ma.gemm(1.0, &sj.mass, &self.dxdx, 0.0);
+            sj.pm.gemm(1.0, &sj.ss.view((n, n), (n, n)), &sj.mass, 0.0);
+            sj.f.copy_from(&sj.ss.view((n, 0), (n, n)));
+            sj.f.gemm(1.0, &sj.pm, &self.dxdx, -1.0);
+        }
+    }
+
     fn set_air(&mut self, t: f64) {
         let u = self.flight.speed(t);
         let alpha = self.flight.root_angle(t);
@@ -315,59 +437,24 @@ impl<M: AeroStructure> OdeSystem for AeroelasticEquations<'_, M> {
     }
 
     fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
-        self.jacobian_evaluations += 1;
+        let mut sj = std::mem::replace(&mut self.structured, StructuredJacobian::zeros(0, 0));
+        if sj.ss.nrows() != 2 * self.n {
+            sj = StructuredJacobian::zeros(self.n, self.aero.n_strips());
+        }
+        self.structured_jacobian(t, y, &mut sj, false);
         let n = self.n;
-        let na = self.na;
-        let (xp, a) = y.split_at(2 * n);
-        let x = &xp[..n];
-        self.structural.jacobian(t, xp, &mut self.structural_jac);
         jac.fill(0.0);
-        jac.view_mut((0, 0), (2 * n, 2 * n))
-            .copy_from(&self.structural_jac);
-        if let Some(g) = &self.gravity {
-            let s = self.gravity_scale(t);
-            self.aero
-                .structure()
-                .load_jacobian_into(x, g, &s, &mut self.ws, &mut self.gravity_jac);
-            let mut b = jac.view_mut((n, 0), (n, n));
-            b += &self.gravity_jac;
-        }
-        // ẋ, then the aerodynamic derivatives at (x, ẋ, a).
-        let dxdx = self.structural_jac.view((0, 0), (n, n)).clone_owned();
-        let minv = self.structural_jac.view((0, n), (n, n)).clone_owned();
-        let p = &xp[n..];
-        let xdot = &minv * DVector::from_column_slice(p);
-        self.set_air(t);
-        let mut scratch_f = vec![0.0; n];
-        let mut scratch_a = vec![0.0; na];
-        self.eval
-            .evaluate(x, xdot.as_slice(), a, &mut scratch_f, false, &mut scratch_a);
-        self.eval.derivatives(&mut self.derivatives);
-        let d = &self.derivatives;
-        let dbar = self.eval.feedthrough();
-        let qv = &d.qv + &d.g * &d.wv * dbar;
-        let mut dpdx = &d.qx + &d.g * &d.wx * dbar;
-        dpdx += &qv * &dxdx;
-        {
-            let mut b = jac.view_mut((n, 0), (n, n));
-            b += &dpdx;
-        }
-        {
-            let mut b = jac.view_mut((n, n), (n, n));
-            b += &qv * &minv;
-        }
+        jac.view_mut((0, 0), (2 * n, 2 * n)).copy_from(&sj.ss);
         if let Some(lag) = self.eval.lag() {
             let ns = lag.n_states();
-            let wxa = &d.wx + &d.wv * &dxdx;
-            let wvm = &d.wv * &minv;
-            for (i, s) in self.aero.strips.iter().enumerate() {
-                let rate = self.eval.air[i].speed / s.b;
+            for (i, &rate) in sj.rates.iter().enumerate() {
                 let r0 = 2 * n + i * ns;
                 for k in 0..ns {
                     for c in 0..n {
-                        jac[(n + c, r0 + k)] = d.g[(c, i)] * lag.c[k];
-                        jac[(r0 + k, c)] = rate * lag.b[k] * wxa[(i, c)];
-                        jac[(r0 + k, n + c)] = rate * lag.b[k] * wvm[(i, c)];
+                        jac[(n + c, r0 + k)] = sj.g[(c, i)] * lag.c[k];
+                    }
+                    for c in 0..2 * n {
+                        jac[(r0 + k, c)] = rate * lag.b[k] * sj.w[(i, c)];
                     }
                     for j in 0..ns {
                         jac[(r0 + k, r0 + j)] = rate * lag.h[(k, j)];
@@ -375,11 +462,56 @@ impl<M: AeroStructure> OdeSystem for AeroelasticEquations<'_, M> {
                 }
             }
         }
+        self.structured = sj;
+    }
+
+    fn newton_solver(&mut self) -> Option<&mut dyn NewtonSolver> {
+        if !self.uses_lag_schur() {
+            return None;
+        }
+        if self.schur.is_none() {
+            let lag = self.eval.lag()?.clone();
+            self.schur = Some(LagSchur::new(self.n, self.aero.n_strips(), lag));
+        }
+        Some(self)
+    }
+}
+
+/// The Newton systems by elimination of the lag states (`schur.rs`), offered by
+/// [`OdeSystem::newton_solver`] when [`AeroelasticEquations::uses_lag_schur`].
+impl<M: AeroStructure> NewtonSolver for AeroelasticEquations<'_, M> {
+    fn linearize(&mut self, t: f64, y: &[f64]) -> bool {
+        let Some(mut schur) = self.schur.take() else {
+            return false;
+        };
+        self.structured_jacobian(t, y, &mut schur.jac, true);
+        let finite = schur.jac.is_finite();
+        schur.linearized();
+        self.schur = Some(schur);
+        finite
+    }
+    fn factor_real(&mut self, slot: usize, c: f64) -> bool {
+        self.schur.as_mut().is_some_and(|s| s.factor_real(slot, c))
+    }
+    fn factor_complex(&mut self, slot: usize, c: Complex<f64>) -> bool {
+        self.schur
+            .as_mut()
+            .is_some_and(|s| s.factor_complex(slot, c))
+    }
+    fn solve_real(&mut self, slot: usize, b: &mut [f64]) {
+        if let Some(s) = self.schur.as_mut() {
+            s.solve_real(slot, b);
+        }
+    }
+    fn solve_complex(&mut self, slot: usize, re: &mut [f64], im: &mut [f64]) {
+        if let Some(s) = self.schur.as_mut() {
+            s.solve_complex(slot, re, im);
+        }
     }
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::beam::{
         Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties,

@@ -8,9 +8,11 @@ mod equations;
 mod evaluator;
 mod flight;
 mod linear;
+mod schur;
 
 pub use equations::{AeroelasticEquations, LinearSystem};
 pub use flight::{FlightHistory, Gust, GustShape};
+pub use schur::AeroNewtonSystems;
 mod statics;
 
 pub use statics::{

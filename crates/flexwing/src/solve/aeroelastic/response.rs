@@ -1,10 +1,12 @@
 //! Time response of the aeroelastic system to gusts and to changes of speed or root angle
 //! (docs/aeroelastic-model.md §5), with the existing Radau IIA integrator and the exact Jacobian
-//! of `equations.rs`. The run starts from the static aeroelastic equilibrium of the initial
-//! flight condition, at rest, with the lag states in steady state.
+//! of `equations.rs` (Newton systems by elimination of the lag states, `schur.rs`). The run starts
+//! from the static aeroelastic equilibrium of the initial flight condition, at rest, with the lag
+//! states in steady state.
 
 use super::equations::AeroelasticEquations;
 use super::flight::FlightHistory;
+use super::schur::AeroNewtonSystems;
 use super::statics::SteadyAeroModel;
 use crate::error::{InputError, SolveError};
 use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic};
@@ -34,6 +36,8 @@ pub struct ResponsePlan {
     pub max_step: f64,
     /// Options of the static solver for the initial equilibrium.
     pub static_options: StaticOptions,
+    /// How Radau's Newton systems are solved (default: lag states eliminated, `schur.rs`).
+    pub newton_systems: AeroNewtonSystems,
 }
 
 impl ResponsePlan {
@@ -50,6 +54,7 @@ impl ResponsePlan {
             rtol: 1e-6,
             max_step: f64::INFINITY,
             static_options: StaticOptions::default(),
+            newton_systems: AeroNewtonSystems::Auto,
         }
     }
 
@@ -171,6 +176,7 @@ pub fn response<M: AeroStructure>(
         &plan.damping,
         &format!("{field}.flight"),
     )?;
+    eqs.set_newton_systems(plan.newton_systems);
     let a0 = eqs.steady_states(0.0, &x0);
     let y0 = eqs.state(&x0, &vec![0.0; n], &a0);
     let steps = (plan.duration / plan.output_step).round().max(1.0) as usize;

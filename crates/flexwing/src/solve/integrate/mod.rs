@@ -31,6 +31,7 @@ pub use midpoint::{ImplicitMidpoint, MidpointOptions};
 pub use radau::{Radau, RadauOptions};
 
 pub(crate) use iteration::IterationMatrices;
+pub(crate) use lu::{ComplexLu, DenseLu};
 
 use nalgebra::{Complex, DMatrix};
 
