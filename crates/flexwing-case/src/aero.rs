@@ -120,16 +120,15 @@ impl Case {
 
     fn checked_flutter_plan(&self) -> Result<FlutterPlan, InputError> {
         let (spec, model, aero) = self.aero_parts()?;
-        let speeds = match &spec.sweep {
-            Some(sw) => speed_sweep(sw, "aero.sweep")?.speeds,
-            None => {
-                return Err(InputError::new(
+        let speeds =
+            match &spec.sweep {
+                Some(sw) => speed_sweep(sw, "aero.sweep")?.speeds,
+                None => return Err(InputError::new(
                     "aero.sweep",
                     "missing: flexwing flutter sweeps the free-stream speed; give [aero.sweep] \
                      with speeds = [...] or from, to and steps",
-                ))
-            }
-        };
+                )),
+            };
         let loads = self.aero_loads(&model)?;
         let f = self.flutter.clone().unwrap_or_default();
         let mut plan = FlutterPlan::new(model, aero, speeds);
@@ -153,8 +152,7 @@ impl Case {
     /// No `[aero]` or `[dynamic]`, keys that do not go together, a structural initial state,
     /// and every error of [`AeroDynamicPlan::validate`], named as in the case file.
     pub fn aero_dynamic_plan(&self) -> Result<AeroDynamicPlan, CaseError> {
-        self.checked_aero_dynamic_plan()
-            .map_err(|e| self.error(e))
+        self.checked_aero_dynamic_plan().map_err(|e| self.error(e))
     }
 
     fn checked_aero_dynamic_plan(&self) -> Result<AeroDynamicPlan, InputError> {
@@ -204,7 +202,9 @@ impl Case {
             lift_slope: spec
                 .lift_slope
                 .as_ref()
-                .map_or(Profile::Uniform(2.0 * std::f64::consts::PI), |p| p.0.clone()),
+                .map_or(Profile::Uniform(2.0 * std::f64::consts::PI), |p| {
+                    p.0.clone()
+                }),
             zero_lift_angle: or_zero(spec.zero_lift_angle.as_ref()),
             cm0: or_zero(spec.cm0.as_ref()),
             cd0: or_zero(spec.cd0.as_ref()),

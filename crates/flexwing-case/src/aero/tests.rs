@@ -94,7 +94,13 @@ fn every_key_reaches_its_field() {
     assert_eq!(h.initial.speed, 20.0);
     assert_eq!(
         h.speed_change,
-        Some((5.0, TimeFunction::Ramp { start: 0.1, end: 0.5 }))
+        Some((
+            5.0,
+            TimeFunction::Ramp {
+                start: 0.1,
+                end: 0.5
+            }
+        ))
     );
     assert_eq!(
         h.root_angle_change,
@@ -116,8 +122,14 @@ fn every_key_reaches_its_field() {
 #[test]
 fn defaults() {
     let text = CASE
-        .replace("lift_slope = 6.0\nzero_lift_angle = -0.01\ncm0 = -0.02\ncd0 = 0.01\n", "")
-        .replace("[flutter]\nreduced = [4]\nmodes = 3\ntolerance = 1e-7\npk = true\n", "");
+        .replace(
+            "lift_slope = 6.0\nzero_lift_angle = -0.01\ncm0 = -0.02\ncd0 = 0.01\n",
+            "",
+        )
+        .replace(
+            "[flutter]\nreduced = [4]\nmodes = 3\ntolerance = 1e-7\npk = true\n",
+            "",
+        );
     let c = case(&text);
     let f = c.flutter_plan().unwrap();
     let s = &f.aero.section;
@@ -133,28 +145,61 @@ fn errors_name_the_case_files_keys() {
     type Edit = (&'static str, &'static str);
     let cases: [(Edit, &str, &str); 19] = [
         (("chord = 1.0", "chord = -1.0"), "flutter", "aero.chord: "),
-        (("density = 0.0889", "density = 0"), "flutter", "aero.density: "),
         (
-            ("{ model = \"peters\", states = 6 }", "{ model = \"peters\" }"),
+            ("density = 0.0889", "density = 0"),
+            "flutter",
+            "aero.density: ",
+        ),
+        (
+            (
+                "{ model = \"peters\", states = 6 }",
+                "{ model = \"peters\" }",
+            ),
             "flutter",
             "aero.aerodynamics.states: missing",
         ),
         (
-            ("{ model = \"peters\", states = 6 }", "{ model = \"wagner\", states = 2 }"),
+            (
+                "{ model = \"peters\", states = 6 }",
+                "{ model = \"wagner\", states = 2 }",
+            ),
             "flutter",
             "aero.aerodynamics.states: is the state count of Peters",
         ),
         (
-            ("{ model = \"peters\", states = 6 }", "{ model = \"peters\", states = 40 }"),
+            (
+                "{ model = \"peters\", states = 6 }",
+                "{ model = \"peters\", states = 40 }",
+            ),
             "flutter",
             "aero.aerodynamics.states: Peters' inflow needs 1 to 16",
         ),
-        (("root_angle = 0.05", "root_angle = 3"), "flutter", "aero.flight.root_angle: "),
-        (("from = 4", "from = 0"), "flutter", "aero.sweep.speeds[0]: must be positive"),
-        (("steps = 10", "steps = 1"), "flutter", "aero.sweep.steps: must be at least 2"),
+        (
+            ("root_angle = 0.05", "root_angle = 3"),
+            "flutter",
+            "aero.flight.root_angle: ",
+        ),
+        (
+            ("from = 4", "from = 0"),
+            "flutter",
+            "aero.sweep.speeds[0]: must be positive",
+        ),
+        (
+            ("steps = 10", "steps = 1"),
+            "flutter",
+            "aero.sweep.steps: must be at least 2",
+        ),
         (("to = 40\n", ""), "flutter", "aero.sweep.to: missing"),
-        (("modes = 3", "modes = 9"), "flutter", "flutter.modes: must be between 1 and 4"),
-        (("tolerance = 1e-7", "tolerance = 0"), "flutter", "flutter.tolerance: "),
+        (
+            ("modes = 3", "modes = 9"),
+            "flutter",
+            "flutter.modes: must be between 1 and 4",
+        ),
+        (
+            ("tolerance = 1e-7", "tolerance = 0"),
+            "flutter",
+            "flutter.tolerance: ",
+        ),
         (
             ("length = 10\n", ""),
             "dynamic",
@@ -171,18 +216,36 @@ fn errors_name_the_case_files_keys() {
             "aero.flight.speed_change: missing",
         ),
         (
-            ("root_angle_function = { type = \"step\", time = 0.2 }\n", ""),
+            (
+                "root_angle_function = { type = \"step\", time = 0.2 }\n",
+                "",
+            ),
             "dynamic",
             "aero.flight.root_angle_function: missing",
         ),
         (
-            ("{ type = \"ramp\", start = 0.1, end = 0.5 }", "{ type = \"ramp\", start = 0.1 }"),
+            (
+                "{ type = \"ramp\", start = 0.1, end = 0.5 }",
+                "{ type = \"ramp\", start = 0.1 }",
+            ),
             "dynamic",
             "aero.flight.speed_function.end: missing",
         ),
-        (("speed_change = 5", "speed_change = -30"), "dynamic", "aero.flight.speed_change: makes the speed negative"),
-        (("speed = 20\n", ""), "dynamic", "aero.flight.speed: missing"),
-        (("output_step = 0.1", "output_step = 0.1\nsimplified = true"), "dynamic", "dynamic.simplified: "),
+        (
+            ("speed_change = 5", "speed_change = -30"),
+            "dynamic",
+            "aero.flight.speed_change: makes the speed negative",
+        ),
+        (
+            ("speed = 20\n", ""),
+            "dynamic",
+            "aero.flight.speed: missing",
+        ),
+        (
+            ("output_step = 0.1", "output_step = 0.1\nsimplified = true"),
+            "dynamic",
+            "dynamic.simplified: ",
+        ),
     ];
     for ((from, to), analysis, expected) in cases {
         assert!(CASE.contains(from), "{from}");
@@ -201,8 +264,13 @@ fn key_combinations_of_the_runs() {
     let gravity = "\n[[loads]]\ntype = \"gravity\"\n";
     let c = case(&format!("{CASE}{gravity}"));
     let e = c.flutter_plan().unwrap_err().to_string();
-    assert!(e.starts_with("loads[0].type: with [aero], give gravity as aero.flight.gravity"), "{e}");
-    let c = case(&format!("{CASE}\n[dynamic.initial]\ntype = \"given\"\nq = [0, 0, 0, 0, 0, 0, 0, 0]\n"));
+    assert!(
+        e.starts_with("loads[0].type: with [aero], give gravity as aero.flight.gravity"),
+        "{e}"
+    );
+    let c = case(&format!(
+        "{CASE}\n[dynamic.initial]\ntype = \"given\"\nq = [0, 0, 0, 0, 0, 0, 0, 0]\n"
+    ));
     let e = c.aero_dynamic_plan().unwrap_err().to_string();
     assert!(e.starts_with("dynamic.initial.type: with [aero]"), "{e}");
     let c = case(&format!("{CASE}\n[dynamic.initial]\ntype = \"rest\"\n"));
@@ -225,16 +293,21 @@ fn key_combinations_of_the_runs() {
         .aero_static_plan()
         .unwrap_err()
         .to_string();
-    assert!(e.starts_with("static.modes: loaded modes are not available"), "{e}");
+    assert!(
+        e.starts_with("static.modes: loaded modes are not available"),
+        "{e}"
+    );
     let e = case(&CASE.replace("steps = 10", "steps = 10\nspeeds = [1, 2]"))
         .aero_static_plan()
         .unwrap_err()
         .to_string();
     assert!(e.starts_with("aero.sweep: give either"), "{e}");
-    let e = Case::from_toml_str("[beam]\nlength = 1\nelements = 2\n[beam.section]\nEI = 1\nmass_per_length = 1\n")
-        .unwrap()
-        .flutter_plan()
-        .unwrap_err()
-        .to_string();
+    let e = Case::from_toml_str(
+        "[beam]\nlength = 1\nelements = 2\n[beam.section]\nEI = 1\nmass_per_length = 1\n",
+    )
+    .unwrap()
+    .flutter_plan()
+    .unwrap_err()
+    .to_string();
     assert!(e.starts_with("aero: missing"), "{e}");
 }
