@@ -151,10 +151,7 @@ fn goland_example_gives_the_reference_flutter_point_in_json() {
     // Continuous wing (beam_goland_points.csv): 137.257140 m/s at 70.072701 rad/s. The chain
     // converges at O(1/n²) (chain_goland_points.csv: 1.70e-1 at n = 16, 4.26e-2 at n = 32, 1.06e-2
     // at n = 64 for the speed; 1.72e-2, 4.3e-3 for the frequency): bounds twice the n = 32 gap.
-    assert!(
-        (137.257140 - u) > 0.0 && (137.257140 - u) < 8.5e-2,
-        "{u}"
-    );
+    assert!((137.257140 - u) > 0.0 && (137.257140 - u) < 8.5e-2, "{u}");
     assert!((w - 70.072701).abs() < 8.6e-3, "{w}");
     // The same chain (n = 32): Theodorsen 137.214571801 m/s at 70.077015644 rad/s (30-digit
     // refinement, chain_goland_mp.csv), Jones 137.594834770 at 69.403686834 (state space), divergence
@@ -162,8 +159,14 @@ fn goland_example_gives_the_reference_flutter_point_in_json() {
     assert!((u - 137.214571801).abs() < 4e-5, "{u}");
     assert!((w - 70.077015644).abs() < 4e-5, "{w}");
     let own = &full["eigenvalues"]["flutter"];
-    assert!((num(&own["speed_m_s"]) - 137.594834770).abs() < 4e-5, "{own}");
-    assert!((num(&own["frequency_rad_s"]) - 69.403686834).abs() < 4e-5, "{own}");
+    assert!(
+        (num(&own["speed_m_s"]) - 137.594834770).abs() < 4e-5,
+        "{own}"
+    );
+    assert!(
+        (num(&own["frequency_rad_s"]) - 69.403686834).abs() < 4e-5,
+        "{own}"
+    );
     let d = num(&full["divergence"]["speed_m_s"]);
     assert!((d - 252.635702580).abs() < 1e-4, "{d}");
     // The divergence closed form 252.6611 m/s, O(1/n²) from the chain (2.6e-2 at n = 32).
@@ -210,14 +213,18 @@ fn quasi_steady_flutter_of_a_mid_chord_section_is_reported_unstable_at_start() {
         .find(|b| (num(&b["wet_frequency_rad_s"]) - 30.707).abs() < 0.01)
         .expect("the torsion branch is unstable from the start");
     // Re p at the first speed: the reference's printout has 4 digits.
-    assert!((num(&torsion["real_1_s"][0]) - 1.280e-5).abs() < 0.005e-5, "{torsion}");
+    assert!(
+        (num(&torsion["real_1_s"][0]) - 1.280e-5).abs() < 0.005e-5,
+        "{torsion}"
+    );
     // The p-k check (Theodorsen) is unaffected.
     assert!((num(&full["pk"]["flutter"]["speed_m_s"]) - 32.508020270).abs() < 4e-6);
     let notes = doc["notes"].as_array().unwrap();
     assert!(
-        notes
-            .iter()
-            .any(|n| n.as_str().unwrap().contains("already unstable at the first speed")),
+        notes.iter().any(|n| n
+            .as_str()
+            .unwrap()
+            .contains("already unstable at the first speed")),
         "{notes:?}"
     );
 }
@@ -232,13 +239,22 @@ fn bad_aero_input_names_the_field() {
             "aero.aerodynamics.states",
         ),
         (
-            base.replace("{ model = \"peters\", states = 6 }", "{ model = \"peters\" }"),
+            base.replace(
+                "{ model = \"peters\", states = 6 }",
+                "{ model = \"peters\" }",
+            ),
             "aero.aerodynamics.states: missing",
         ),
-        (base.replace("density = 0.0889", "density = -1.0"), "aero.density"),
+        (
+            base.replace("density = 0.0889", "density = -1.0"),
+            "aero.density",
+        ),
         (base.replace("chord = 1.0 ", "chord = 0.0 "), "aero.chord"),
         (base.replace("steps = 20", ""), "aero.sweep.steps: missing"),
-        (base.replace("from = 2.0 ", "from = 0.0 "), "aero.sweep.speeds[0]"),
+        (
+            base.replace("from = 2.0 ", "from = 0.0 "),
+            "aero.sweep.speeds[0]",
+        ),
         (base.replace("modes = 4 ", "modes = 9 "), "flutter.modes"),
         (
             base.replace("elastic_axis = 0.5", "elastic_axis = 1.5"),
