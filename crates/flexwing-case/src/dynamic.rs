@@ -23,10 +23,12 @@ impl Case {
     /// No `[dynamic]` table, keys that do not belong together, unknown load names, and every
     /// error of [`DynamicPlan::validate`], named as in the case file.
     pub fn dynamic_plan(&self) -> Result<DynamicPlan, CaseError> {
-        self.checked_dynamic_plan().map_err(|e| self.error(e))
+        self.not_aeroelastic("aero_dynamic_plan")
+            .and_then(|()| self.checked_dynamic_plan())
+            .map_err(|e| self.error(e))
     }
 
-    fn checked_dynamic_plan(&self) -> Result<DynamicPlan, InputError> {
+    pub(crate) fn checked_dynamic_plan(&self) -> Result<DynamicPlan, InputError> {
         let d = self.dynamic.as_ref().ok_or_else(|| {
             InputError::new(
                 "dynamic",
@@ -315,7 +317,7 @@ fn damping(spec: Option<&DampingSpec>) -> Result<Damping, InputError> {
 }
 
 /// The library's time function of `loads[i].time`, after checking which keys were given.
-fn time_function(field: &str, s: &TimeSpec) -> Result<TimeFunction, InputError> {
+pub(crate) fn time_function(field: &str, s: &TimeSpec) -> Result<TimeFunction, InputError> {
     let key = |k: &str| format!("{field}.{k}");
     let (name, allowed, takes): (&str, &[&str], &str) = match s.kind {
         TimeKindSpec::Constant => ("constant", &[], "no other key"),

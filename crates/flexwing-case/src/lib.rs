@@ -33,12 +33,14 @@
 //! names and node indices; the library checks every value (positive, finite, in range) when the
 //! plan is validated, naming the case-file key it came from.
 
+mod aero;
 mod beam;
 mod dynamic;
 mod error;
 mod loads;
 mod property;
 mod spec;
+mod spec_aero;
 mod statics;
 
 use std::path::Path;
@@ -51,6 +53,10 @@ pub use spec::{
     BeamSpec, CalibrationSpec, Case, DampingKindSpec, DampingSpec, DirectionSpec, DynamicSpec,
     GyroscopicSpec, InertiaAxisSpec, InitialKindSpec, InitialSpec, IntegratorSpec, LoadKindSpec,
     LoadSpec, ModesSpec, SectionSpec, StaticSpec, SweepSpec, TimeKindSpec, TimeSpec,
+};
+pub use spec_aero::{
+    AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustShapeSpec, GustSpec,
+    SpeedSweepSpec,
 };
 
 impl Case {

@@ -7,6 +7,7 @@ use flexwing::solve::integrate::Method;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::property::Property;
+use super::spec_aero::{AeroSpec, FlutterSpec};
 
 /// The whole case file.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -29,6 +30,12 @@ pub struct Case {
     /// `[dynamic]`, required by `flexwing dynamic` only.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dynamic: Option<DynamicSpec>,
+    /// `[aero]`: strip aerodynamics; with it `static` and `dynamic` are aeroelastic runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub aero: Option<AeroSpec>,
+    /// `[flutter]`, optional, for `flexwing flutter`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flutter: Option<FlutterSpec>,
     /// The file the case was read from, for messages; not a key.
     #[serde(skip)]
     pub(crate) file: Option<String>,

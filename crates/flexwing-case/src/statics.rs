@@ -16,7 +16,9 @@ impl Case {
     /// A bad beam or load, a sweep of an unknown load or spelled wrongly, and every error of
     /// [`StaticPlan::validate`], named as in the case file.
     pub fn static_plan(&self) -> Result<StaticPlan, CaseError> {
-        self.checked_static_plan().map_err(|e| self.error(e))
+        self.not_aeroelastic("aero_static_plan")
+            .and_then(|()| self.checked_static_plan())
+            .map_err(|e| self.error(e))
     }
 
     fn checked_static_plan(&self) -> Result<StaticPlan, InputError> {
@@ -44,7 +46,9 @@ impl Case {
             .ok_or_else(|| InputError::new("static.sweep.load", self.unknown_load(&spec.load)))?;
         let scales = match (&spec.scales, spec.from, spec.to, spec.steps) {
             (Some(scales), None, None, None) => scales.clone(),
-            (None, Some(from), Some(to), Some(steps)) => evenly_spaced(from, to, steps)?,
+            (None, Some(from), Some(to), Some(steps)) => {
+                evenly_spaced("static.sweep", from, to, steps)?
+            }
             (Some(_), ..) => {
                 return Err(InputError::new(
                     "static.sweep",
@@ -75,19 +79,24 @@ impl Case {
     }
 }
 
-/// `steps` scales from `from` to `to`, both ends included.
-fn evenly_spaced(from: f64, to: f64, steps: usize) -> Result<Vec<f64>, InputError> {
+/// `steps` values from `from` to `to`, both ends included; errors name `{prefix}.from`, ….
+pub(crate) fn evenly_spaced(
+    prefix: &str,
+    from: f64,
+    to: f64,
+    steps: usize,
+) -> Result<Vec<f64>, InputError> {
     for (key, v) in [("from", from), ("to", to)] {
         if !v.is_finite() {
             return Err(InputError::new(
-                format!("static.sweep.{key}"),
+                format!("{prefix}.{key}"),
                 format!("must be finite, got {v}"),
             ));
         }
     }
     if steps < 2 {
         return Err(InputError::new(
-            "static.sweep.steps",
+            format!("{prefix}.steps"),
             format!("must be at least 2 (both ends are points), got {steps}"),
         ));
     }

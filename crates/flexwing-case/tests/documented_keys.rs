@@ -17,7 +17,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/case-file.md");
     let text = std::fs::read_to_string(path).expect("docs/case-file.md");
     // The key tables of each section, in the order they appear.
-    let sections: [(&str, &[&str]); 10] = [
+    let sections: [(&str, &[&str]); 15] = [
         ("### Top level", &[""]),
         ("### `[beam]`", &["beam"]),
         ("### `[beam.section]`", &["beam.section"]),
@@ -28,6 +28,11 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
         ("### Time histories", &["loads.time"]),
         ("### `[dynamic]`", &["dynamic", "dynamic.damping"]),
         ("### `[dynamic.initial]`", &["dynamic.initial"]),
+        ("### `[aero]`", &["aero", "aero.aerodynamics"]),
+        ("### `[aero.flight]`", &["aero.flight"]),
+        ("### `[aero.flight.gust]`", &["aero.flight.gust"]),
+        ("### `[aero.sweep]`", &["aero.sweep"]),
+        ("### `[flutter]`", &["flutter"]),
     ];
     let mut tables = BTreeMap::new();
     let mut pending: Vec<&str> = Vec::new();
@@ -102,6 +107,32 @@ damping = { type = "none" }
 type = "rest"
 "#;
 
+/// BASE with every aeroelastic table (its structural plans are then refused: it is aeroelastic).
+fn base_aero() -> String {
+    format!(
+        "{BASE}{}",
+        r#"
+[aero]
+chord = 1.0
+elastic_axis = 0.5
+density = 1.2
+aerodynamics = { model = "steady" }
+
+[aero.flight]
+speed = 10.0
+
+[aero.flight.gust]
+shape = "sharp-edged"
+amplitude = 1.0
+
+[aero.sweep]
+speeds = [1.0, 2.0]
+
+[flutter]
+"#
+    )
+}
+
 /// The keys the schema accepts in `table`, from serde's message for an unknown key.
 fn schema_keys(table: &str) -> BTreeSet<String> {
     let bogus = "zzz_bogus = 1\n";
@@ -115,6 +146,16 @@ fn schema_keys(table: &str) -> BTreeSet<String> {
             BASE.replace("{ type = \"none\" }", "{ type = \"none\", zzz_bogus = 1 }")
         }
         "loads" => BASE.replace("[[loads]]\n", &format!("[[loads]]\n{bogus}")),
+        "aero.aerodynamics" => base_aero().replace(
+            "{ model = \"steady\" }",
+            "{ model = \"steady\", zzz_bogus = 1 }",
+        ),
+        t if t.starts_with("aero") || t == "flutter" => {
+            let header = format!("[{t}]\n");
+            let base = base_aero();
+            assert!(base.contains(&header), "{t}");
+            base.replacen(&header, &format!("{header}{bogus}"), 1)
+        }
         t => {
             let header = format!("[{t}]\n");
             assert!(BASE.contains(&header), "{t}");
@@ -129,6 +170,7 @@ fn schema_keys(table: &str) -> BTreeSet<String> {
         .unwrap_or_else(|| panic!("{table}: {e}"))
         .1;
     expected
+        .replace("` or `", "`, `")
         .split(", ")
         .map(|k| k.trim_matches('`').to_string())
         .collect()
@@ -141,8 +183,12 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
         let mut schema = schema_keys(table);
         // Sub-tables are documented under their own heading, not as keys.
         let subtables: &[&str] = match table.as_str() {
-            "" => &["beam", "modes", "loads", "static", "dynamic"],
+            "" => &[
+                "beam", "modes", "loads", "static", "dynamic", "aero", "flutter",
+            ],
             "beam" => &["section"],
+            "aero" => &["flight", "sweep"],
+            "aero.flight" => &["gust"],
             "static" => &["sweep"],
             "dynamic" => &["initial"],
             _ => &[],
@@ -159,7 +205,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
         let documented: BTreeSet<String> = keys.keys().cloned().collect();
         assert_eq!(documented, schema, "keys of [{table}]");
     }
-    assert_eq!(docs.len(), 11, "{:?}", docs.keys());
+    assert_eq!(docs.len(), 17, "{:?}", docs.keys());
 }
 
 /// The default the code uses for each key whose documented default is a literal.
@@ -346,7 +392,55 @@ fn actual_defaults() -> BTreeMap<(&'static str, &'static str), String> {
         panic!("given")
     };
     assert_eq!(q, [0.0; 4], "q defaults to zeros, as documented");
+    aero_defaults(&mut put);
     d
+}
+
+/// The defaults of the aeroelastic tables, from the plans of a case without those keys.
+fn aero_defaults(put: &mut impl FnMut(&'static str, &'static str, String)) {
+    use flexwing::beam::Profile;
+    // Without the gravity load (with [aero] gravity is aero.flight.gravity) and its sweep.
+    let text = base_aero()
+        .replace("[flutter]\n", "")
+        .replace(
+            "[[loads]]\nname = \"G\"\ntype = \"gravity\"\ntime = { type = \"constant\" }\n",
+            "",
+        )
+        .replace("[static.sweep]\nload = \"G\"\nscales = [1.0]\n", "");
+    let case = Case::from_toml_str(&text).unwrap();
+    let flutter = case.flutter_plan().unwrap();
+    let uniform = |p: &Profile| match p {
+        Profile::Uniform(v) => v.to_string(),
+        other => format!("{other:?}"),
+    };
+    let s = &flutter.aero.section;
+    put("aero", "zero_lift_angle", uniform(&s.zero_lift_angle));
+    put("aero", "cm0", uniform(&s.cm0));
+    put("aero", "cd0", uniform(&s.cd0));
+    assert_eq!(
+        s.lift_slope,
+        Profile::Uniform(2.0 * std::f64::consts::PI),
+        "2π"
+    );
+    put(
+        "aero.flight",
+        "root_angle",
+        flutter.flight.root_angle.to_string(),
+    );
+    assert_eq!(flutter.flight.gravity, None, "no gravity, as documented");
+    put("flutter", "full", flutter.full.to_string());
+    put("flutter", "reduced", format!("{:?}", flutter.reduced));
+    put(
+        "flutter",
+        "reduced_modes",
+        format!("{:?}", flutter.reduced_modes),
+    );
+    put("flutter", "tolerance", flutter.tolerance.to_string());
+    put("flutter", "pk", flutter.pk.to_string());
+    let dynamic = case.aero_dynamic_plan().unwrap();
+    let gust = dynamic.flight.gust.expect("a gust");
+    put("aero.flight.gust", "start", gust.start.to_string());
+    put("aero.flight.gust", "spanwise", uniform(&gust.spanwise));
 }
 
 /// A documented default that is a literal: `1e-6`, `true`, `[]`, `"auto"`, `0` (with a note

@@ -14,7 +14,7 @@ use std::process::ExitCode;
 use clap::error::ErrorKind;
 use clap::{Parser, Subcommand};
 
-use commands::{dynamic, modes, reproduce, statics, Failure};
+use commands::{dynamic, flutter, modes, reproduce, statics, Failure};
 
 /// Non-linear dynamics of very flexible beams (lumped-mass model).
 #[derive(Debug, Parser)]
@@ -72,6 +72,23 @@ enum Command {
         says \"incomplete\" and the exit status is 1. See docs/cli.md."
     )]
     Dynamic(dynamic::DynamicArgs),
+    /// Divergence and flutter speeds along a sweep in free-stream speed, full and reduced models.
+    #[command(
+        long_about = "Aeroelastic stability along the speeds of [aero.sweep]: for the full model and \
+        the reduced models of [flutter], the static aeroelastic equilibrium and the divergence \
+        speed, the eigenvalues of the linearized aeroelastic system about each equilibrium with \
+        the lowest wet modes tracked across speeds (V-g and V-ω data), and every crossing of the \
+        imaginary axis (flutter onset and offset) refined to [flutter] tolerance; with \
+        [flutter] pk = true also the p-k method with Theodorsen's C(k).\n\n\
+        Prints the divergence and flutter speeds and frequencies of every model with its wall \
+        time, then every crossing. Writes flutter_summary.csv, flutter_crossings.csv, \
+        flutter_vg.csv, flutter_equilibria.csv, flutter_nodes.csv and status.txt into the \
+        output directory; with --plot also flutter_vg.svg/.png (V-g and V-ω) and \
+        flutter_shapes.svg/.png (equilibria against U). A branch already unstable at the first \
+        speed (quasi-steady aerodynamics with the elastic axis at or aft of mid-chord) gets no \
+        flutter speed: it is listed as unstable at start. See docs/cli.md."
+    )]
+    Flutter(flutter::FlutterArgs),
     /// Regenerate every table and figure of the paper's results, beside the paper and references.
     #[command(
         long_about = "Regenerate every result of the paper's section 5 (Tables 2, 3, 5, 6, 7, 8 and \
@@ -94,6 +111,7 @@ fn main() -> ExitCode {
         Command::Modes(args) => modes::run(args),
         Command::Static(args) => statics::run(args),
         Command::Dynamic(args) => dynamic::run(args),
+        Command::Flutter(args) => flutter::run(args),
         Command::Reproduce(args) => reproduce::run(args),
     };
     match result {

@@ -2,6 +2,7 @@
 //! was at fault, which decides the exit status.
 
 pub mod dynamic;
+pub mod flutter;
 pub mod modes;
 pub mod reproduce;
 pub mod statics;
@@ -12,6 +13,7 @@ use std::path::{Path, PathBuf};
 use flexwing::analysis::Stop;
 use flexwing::beam::Calibration;
 use flexwing::model::FullModel;
+use flexwing::solve::aeroelastic::FlutterStop;
 use flexwing::text::short;
 
 /// Why a command failed.
@@ -143,6 +145,26 @@ pub fn stop_message(stop: &Stop, sweep: Option<&str>, initial: &[String]) -> Str
             None => error.to_string(),
         },
         Stop::Equations(e) => e.to_string(),
+        Stop::SpeedPoint {
+            point,
+            points,
+            speed,
+            error,
+        } => format!(
+            "stopped at speed {} of {points} (U = {} m/s): {error}",
+            point + 1,
+            short(*speed)
+        ),
+        Stop::Flutter(FlutterStop::Equilibrium { speed, error }) => format!(
+            "no static equilibrium at U = {} m/s: {error}",
+            short(*speed)
+        ),
+        Stop::Flutter(FlutterStop::BranchLost { branch, speed }) => format!(
+            "branch {} lost at U = {} m/s (Newton's method failed even at the smallest speed \
+             step; refine the sweep)",
+            branch + 1,
+            short(*speed)
+        ),
         Stop::EnergyLimit { time, ratio, limit } => format!(
             "stopped at t = {} s: the energy grew to {ratio:.3} times its initial value \
              (a blown-up run; limit {limit})",

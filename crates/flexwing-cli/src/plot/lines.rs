@@ -37,6 +37,8 @@ pub struct Series {
     pub label: String,
     /// Dashed or solid.
     pub dashed: bool,
+    /// Index into the line colours; `None`: the series' position in its panel.
+    pub colour: Option<usize>,
     /// Points; non-finite ones are skipped.
     pub points: Vec<(f64, f64)>,
 }
@@ -102,7 +104,11 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) 
         .bold_line_style(RGBColor(215, 215, 215))
         .draw()?;
     for (k, s) in panel.series.iter().enumerate() {
-        let style = COLOURS[k % COLOURS.len()].stroke_width(if s.dashed { 2 } else { 3 });
+        let style = COLOURS[s.colour.unwrap_or(k) % COLOURS.len()].stroke_width(if s.dashed {
+            2
+        } else {
+            3
+        });
         let pts: Vec<(f64, f64)> = s
             .points
             .iter()

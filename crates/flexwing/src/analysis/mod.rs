@@ -6,6 +6,9 @@
 //! | natural modes | [`modes::ModesPlan`] | [`modes::run`] | [`modes::ModesOutcome`] |
 //! | non-linear statics, load sweeps, loaded modes | [`statics::StaticPlan`] | [`statics::run`] | [`statics::StaticOutcome`] |
 //! | non-linear dynamics | [`dynamics::DynamicPlan`] | [`dynamics::run`] | [`dynamics::DynamicOutcome`] |
+//! | static aeroelasticity, divergence | [`aero::statics::AeroStaticPlan`] | [`aero::statics::run`] | [`aero::statics::AeroStaticOutcome`] |
+//! | flutter (V-g, V-ω, p-k check) | [`aero::flutter::FlutterPlan`] | [`aero::flutter::run`] | [`aero::flutter::FlutterOutcome`] |
+//! | gust and manoeuvre responses | [`aero::response::AeroDynamicPlan`] | [`aero::response::run`] | [`aero::response::AeroDynamicOutcome`] |
 //!
 //! A plan is plain data: the full model, the loads and the settings. Build it (by hand, or from a
 //! case file with the `flexwing-case` crate), then check it with its `validate`, which names the
@@ -35,6 +38,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod aero;
 pub mod dynamics;
 mod models;
 pub mod modes;

@@ -2,6 +2,7 @@
 //! solver failed where, with the values it stopped at.
 
 use crate::error::{InputError, SolveError};
+use crate::solve::aeroelastic::FlutterStop;
 
 /// How the run of one model ended. More variants may follow (a run that completed but whose
 /// energy balance is doubtful, for example), so match with a wildcard arm.
@@ -64,4 +65,18 @@ pub enum Stop {
         /// The limit of that ratio.
         limit: f64,
     },
+    /// The static aeroelastic equilibrium at speed `point` (0-based) of `points` was not found
+    /// (past divergence, or the solver failed); the speeds before it are kept.
+    SpeedPoint {
+        /// Index of the failed speed.
+        point: usize,
+        /// Number of speeds.
+        points: usize,
+        /// The free-stream speed (m/s).
+        speed: f64,
+        /// The static solver's error.
+        error: SolveError,
+    },
+    /// The flutter analysis stopped before the last speed; its data up to there are kept.
+    Flutter(FlutterStop),
 }

@@ -6,6 +6,7 @@
 //! file holds the output times that were reached, `status.txt` says which model stopped where,
 //! and the command exits with status 1.
 
+mod aero;
 mod files;
 mod progress;
 mod report;
@@ -125,6 +126,9 @@ impl Outcome {
 pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
     let name = args.case.display().to_string();
     let case = Case::load(&args.case).map_err(Failure::input)?;
+    if case.is_aeroelastic() {
+        return aero::run(args, &case);
+    }
     let mut plan = case.dynamic_plan().map_err(Failure::input)?;
     let n_out = plan.output_times.len();
     let node_indices = node_indices(n_out);

@@ -265,6 +265,7 @@ fn draw(dir: &Path, figure: &Figure) -> Result<Vec<PathBuf>> {
                             .series
                             .iter()
                             .map(|s| plot::Series {
+                                colour: None,
                                 label: s.label.clone(),
                                 dashed: s.dashed,
                                 points: s.points.clone(),

@@ -5,6 +5,7 @@
 //! file is written with the points that converged, `status.txt` says what stopped where, and the
 //! command exits with status 1.
 
+mod aero;
 mod files;
 pub(crate) mod report;
 
@@ -124,6 +125,9 @@ impl Outcome {
 pub fn run(args: &StaticArgs) -> Result<(), Failure> {
     let name = args.case.display().to_string();
     let case = Case::load(&args.case).map_err(Failure::input)?;
+    if case.is_aeroelastic() {
+        return aero::run(args, &case);
+    }
     let plan = case.static_plan().map_err(Failure::input)?;
     let result = statics::run(&plan, &mut NoProgress).map_err(|e| match e {
         Error::Input(e) => Failure::input(format!("{name}: {e}")),

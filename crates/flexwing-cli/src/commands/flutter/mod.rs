@@ -1,0 +1,207 @@
+//! `flexwing flutter`: divergence and flutter speeds along a sweep in free-stream speed, for the
+//! full model and reduced models on its wet modes (`flexwing::analysis::aero::flutter`), with the
+//! V-g/V-ω data, the static equilibria along the sweep and, optionally, the p-k check with
+//! Theodorsen's function.
+//!
+//! A model whose eigen-analysis stops early does not stop the run: the other models are analysed,
+//! every file is written with the speeds reached, `status.txt` says what stopped where, and the
+//! command exits with status 1. Equilibria that stop past the divergence speed are expected (no
+//! stable equilibrium exists there) and are reported as a note, not as a failure.
+
+mod files;
+mod report;
+
+use std::io::Write as _;
+use std::path::PathBuf;
+
+use clap::Args;
+use flexwing::analysis::aero::flutter::{self, FlutterOutcome, FlutterRun};
+use flexwing::analysis::NoProgress;
+use flexwing::model::aero::Aerodynamics;
+use flexwing::Error;
+
+use super::{default_out_dir, model_line, stop_message, Failure, Incomplete};
+use flexwing_case::Case;
+
+/// Options of `flexwing flutter`.
+#[derive(Debug, Args)]
+pub struct FlutterArgs {
+    /// Case file (TOML) with [aero] and [aero.sweep], optionally [flutter]; see
+    /// docs/case-file.md.
+    #[arg(value_name = "CASE.toml")]
+    pub case: PathBuf,
+
+    /// Directory for the result files (created if needed) [default: results/<case file stem>].
+    #[arg(long, short, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+
+    /// Also write flutter_vg.svg/.png (V-g and V-ω) and flutter_shapes.svg/.png (equilibria).
+    #[arg(long)]
+    pub plot: bool,
+
+    /// Print one JSON document on stdout instead of the tables.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Everything the reports and files need.
+#[derive(Debug)]
+pub struct Outcome {
+    /// Path of the case file as given.
+    pub case_name: String,
+    /// The case's title.
+    pub title: Option<String>,
+    /// One line describing the full model.
+    pub model_line: String,
+    /// One line describing the aerodynamics.
+    pub aero_line: String,
+    /// Span (m), for the shape plot.
+    pub length: f64,
+    /// The speeds of the sweep (m/s).
+    pub speeds: Vec<f64>,
+    /// What the analysis found.
+    pub result: FlutterOutcome,
+    /// What did not complete.
+    pub incomplete: Vec<Incomplete>,
+    /// Notes: equilibria that stopped (past divergence), branches unstable from the start.
+    pub notes: Vec<String>,
+}
+
+impl Outcome {
+    /// The analysed models, in the plan's order.
+    pub fn runs(&self) -> &[FlutterRun] {
+        &self.result.runs
+    }
+
+    /// `complete` or `incomplete`.
+    pub fn status(&self) -> &'static str {
+        if self.incomplete.is_empty() {
+            "complete"
+        } else {
+            "incomplete"
+        }
+    }
+
+    /// Why `run` did not complete, if it did not.
+    pub fn message_of(&self, run: &FlutterRun) -> Option<&str> {
+        let label = run.kind.label();
+        self.incomplete
+            .iter()
+            .find(|i| i.what == label)
+            .map(|i| i.message.as_str())
+    }
+
+    /// `LABEL: MESSAGE` of everything incomplete, joined by `; `; `None` when complete.
+    pub fn error(&self) -> Option<String> {
+        (!self.incomplete.is_empty()).then(|| {
+            self.incomplete
+                .iter()
+                .map(|i| format!("{}: {}", i.what, i.message))
+                .collect::<Vec<_>>()
+                .join("; ")
+        })
+    }
+}
+
+/// One line naming the aerodynamic model and the air.
+pub fn aero_line(aerodynamics: Aerodynamics, density: f64) -> String {
+    let model = match aerodynamics {
+        Aerodynamics::Steady => "steady strip theory".to_string(),
+        Aerodynamics::QuasiSteady => "quasi-steady (C(k) = 1) with apparent mass".to_string(),
+        Aerodynamics::Wagner => {
+            "Wagner's function (R. T. Jones, 2 states per strip) with apparent mass".to_string()
+        }
+        Aerodynamics::Peters { states } => {
+            format!("Peters' finite-state inflow ({states} states per strip) with apparent mass")
+        }
+    };
+    format!(
+        "aerodynamics: {model}, air density {} kg/m³",
+        crate::output::short(density)
+    )
+}
+
+/// Run the command.
+pub fn run(args: &FlutterArgs) -> Result<(), Failure> {
+    let name = args.case.display().to_string();
+    let case = Case::load(&args.case).map_err(Failure::input)?;
+    let plan = case.flutter_plan().map_err(Failure::input)?;
+    let result = flutter::run(&plan, &mut NoProgress).map_err(|e| match e {
+        Error::Input(e) => Failure::input(format!("{name}: {e}")),
+        e => Failure::run(format!("{name}: {e}")),
+    })?;
+    let mut incomplete = Vec::new();
+    let mut notes = Vec::new();
+    for r in &result.runs {
+        let label = r.kind.label();
+        if let Some(stop) = r.status.stop() {
+            incomplete.push(Incomplete {
+                what: label.clone(),
+                message: stop_message(stop, None, &[]),
+            });
+        }
+        for stop in &r.other_stops {
+            incomplete.push(Incomplete {
+                what: format!("{label} p-k"),
+                message: stop_message(stop, None, &[]),
+            });
+        }
+        if let Some(stop) = r.equilibria_status.stop() {
+            notes.push(format!(
+                "{label}: equilibria: {} (expected past the divergence speed; the eigen-analysis \
+                 continues about the last equilibrium found)",
+                stop_message(stop, None, &[])
+            ));
+        }
+        for (what, s) in
+            std::iter::once(("", &r.stability)).chain(r.pk.as_ref().map(|p| (" p-k", p)))
+        {
+            for &b in &s.unstable_at_start {
+                let br = &s.branches[b];
+                notes.push(format!(
+                    "{label}{what}: the branch of wet mode {} ({} rad/s at U = 0) is already \
+                     unstable at the first speed, {} m/s: no flutter speed is given (with \
+                     quasi-steady aerodynamics and the elastic axis at or aft of mid-chord the \
+                     pitch damping vanishes; use wagner or peters)",
+                    br.mode,
+                    crate::output::short(br.wet_frequency),
+                    crate::output::short(s.speeds.first().copied().unwrap_or(0.0)),
+                ));
+            }
+        }
+    }
+    let full = &plan.model;
+    let outcome = Outcome {
+        case_name: name.clone(),
+        title: case.title.clone(),
+        model_line: model_line(full),
+        aero_line: aero_line(plan.aero.aerodynamics, plan.aero.density),
+        length: full.beam().length(),
+        speeds: plan.speeds().to_vec(),
+        result,
+        incomplete,
+        notes,
+    };
+    let dir = args
+        .out
+        .clone()
+        .unwrap_or_else(|| default_out_dir(&args.case));
+    let written = files::write_files(&dir, &outcome, args.plot).map_err(Failure::Run)?;
+    let text = if args.json {
+        report::json(&outcome, &written)
+    } else {
+        report::tables(&outcome, &written)
+    };
+    let mut stdout = std::io::stdout().lock();
+    let printed = stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())
+        .map_err(|e| Failure::run(format!("cannot write to standard output: {e}")));
+    if let Some(first) = outcome.incomplete.first() {
+        return Err(Failure::run(format!(
+            "{name}: {}: {} (see status.txt)",
+            first.what, first.message
+        )));
+    }
+    printed
+}

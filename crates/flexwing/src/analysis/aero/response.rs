@@ -1,0 +1,558 @@
+//! Aeroelastic time responses of the full model and of reduced models on its wet modes: gusts
+//! (sharp-edged, 1−cos), changes of speed or root angle, other time-varying loads
+//! ([`crate::solve::aeroelastic::AeroelasticEquations`], docs/aeroelastic-model.md §3–5), with
+//! any of the integrators ([`crate::solve::integrate::integrate`]) and the outputs of a dynamic
+//! run plus the root bending moment and the lift. A run starts from the static aeroelastic
+//! equilibrium of the initial flight condition (the loads at their `t = 0` value, gravity), at
+//! rest with the lag states in steady state, or undeformed at rest.
+
+use std::time::Instant;
+
+use nalgebra::DMatrix;
+
+use super::{build, models, Aero, Built, Fields};
+use crate::analysis::dynamics::{DynamicPlan, Initial, Snapshot};
+use crate::analysis::{ModelKind, Progress, Status, Stop};
+use crate::error::{Error, InputError, SolveError};
+use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic};
+use crate::model::{AppliedLoads, Load};
+use crate::solve::aeroelastic::{AeroelasticEquations, FlightHistory, SteadyAeroModel};
+use crate::solve::integrate::{integrate, IntegratorStats, Method, OdeSystem};
+use crate::solve::{continue_static, Damping, Gyroscopic, StaticOptions, TimeFunction};
+
+/// Where an aeroelastic response starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum AeroStart {
+    /// The static aeroelastic equilibrium of the initial flight condition (steady
+    /// aerodynamics, the loads at their `t = 0` value, gravity), at rest, lag states steady.
+    #[default]
+    Equilibrium,
+    /// Undeformed, at rest, lag states steady for the undeformed wing.
+    Rest,
+}
+
+/// An aeroelastic time response. The structural part is a [`DynamicPlan`] (model, loads and
+/// their time histories, times, models, integrator, damping, snapshots), checked by its own
+/// `validate` under the analysis' names; it must not ask for the simplified model, a
+/// gyroscopic term other than the exact one (the aeroelastic equations have it exactly) or an
+/// initial state other than [`Initial::Rest`] (the start is [`AeroDynamicPlan::start`]).
+#[derive(Debug, Clone)]
+pub struct AeroDynamicPlan {
+    /// The structural plan.
+    pub structure: DynamicPlan,
+    /// Section data, air, aerodynamic model.
+    pub aero: Aero,
+    /// The flight over time: initial speed, root angle and gravity, their changes, a gust.
+    pub flight: FlightHistory,
+    /// Where the run starts.
+    pub start: AeroStart,
+    /// Options of the static solver for the initial equilibrium.
+    pub static_options: StaticOptions,
+}
+
+impl AeroDynamicPlan {
+    /// The response of `structure` in `aero` and `flight`, from the equilibrium, default static
+    /// options.
+    pub fn new(structure: DynamicPlan, aero: Aero, flight: FlightHistory) -> Self {
+        Self {
+            structure,
+            aero,
+            flight,
+            start: AeroStart::Equilibrium,
+            static_options: StaticOptions::default(),
+        }
+    }
+
+    /// Check the plan under the caller's names.
+    ///
+    /// # Errors
+    /// Those of [`DynamicPlan::validate`]; the simplified model, a gyroscopic term other than
+    /// the exact one, a structural initial state; invalid section data, air, aerodynamic model
+    /// or flight history over `[0, end_time]`; invalid static options.
+    pub fn validate(&self, fields: &Fields) -> Result<(), InputError> {
+        let s = &self.structure;
+        s.validate(fields.loads, fields.analysis)?;
+        if s.simplified {
+            return Err(InputError::new(
+                fields.analysis("simplified"),
+                "the aeroelastic equations keep the exact gyroscopic term: the simplified \
+                 model is not available with aerodynamics",
+            ));
+        }
+        if s.gyroscopic != Gyroscopic::Exact {
+            return Err(InputError::new(
+                fields.analysis("gyroscopic"),
+                "the aeroelastic equations use the exact gyroscopic term only",
+            ));
+        }
+        if s.initial != Initial::Rest {
+            return Err(InputError::new(
+                fields.analysis("initial"),
+                "an aeroelastic response starts from the static aeroelastic equilibrium of its \
+                 initial flight condition or undeformed at rest, not from a structural \
+                 initial state",
+            ));
+        }
+        self.aero.wing(&s.model, fields.aero)?;
+        self.flight
+            .validate(&fields.flight(), s.model.beam().length(), 0.0, s.end_time)?;
+        self.static_options.validate(fields.statics)
+    }
+
+    /// The models simulated, in order: full (if asked), `reduced`, `reduced_modes`.
+    ///
+    /// # Errors
+    /// As [`AeroDynamicPlan::validate`] for the models.
+    pub fn models(&self) -> Result<Vec<ModelKind>, InputError> {
+        let s = &self.structure;
+        models(s.full, &s.reduced, &s.reduced_modes, s.model.n_dofs(), "")
+    }
+}
+
+/// The outputs at one output time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AeroSample {
+    /// Time (s).
+    pub t: f64,
+    /// Tip node position (m).
+    pub tip_x: f64,
+    /// Tip node position (m).
+    pub tip_y: f64,
+    /// Twist of the tip element (rad, nose-up).
+    pub tip_twist: f64,
+    /// Root bending moment, the clamp spring's moment `K_θ,1 q_1` (N·m).
+    pub root_bending_moment: f64,
+    /// Total aerodynamic force along the ground's vertical (N).
+    pub lift: f64,
+    /// Free-stream speed `U(t)` (m/s).
+    pub speed: f64,
+    /// Kinetic energy of the structure and the fluid's apparent mass (J).
+    pub kinetic: f64,
+    /// Strain energy of the springs (J).
+    pub strain: f64,
+}
+
+/// The response of one model.
+#[derive(Debug, Clone)]
+pub struct AeroDynamicRun {
+    /// Which model.
+    pub kind: ModelKind,
+    /// Number of structural coordinates of the model.
+    pub dofs: usize,
+    /// Number of aerodynamic (lag) states.
+    pub aero_states: usize,
+    /// The integrator used.
+    pub integrator: Method,
+    /// Integrator counters (up to the stop, if any).
+    pub stats: IntegratorStats,
+    /// Wall time of the integration (s).
+    pub wall_time_s: f64,
+    /// One sample per output time reached.
+    pub samples: Vec<AeroSample>,
+    /// The deformed shape at the plan's snapshot times reached.
+    pub snapshots: Vec<Snapshot>,
+    /// Whether every output time was reached, or where and why the run stopped.
+    pub status: Status,
+    /// Largest distance of the tip from the first model's, over the output times both reached
+    /// (m); `None` for the first model.
+    pub max_tip_difference: Option<f64>,
+}
+
+/// What an aeroelastic response produced.
+#[derive(Debug, Clone)]
+pub struct AeroDynamicOutcome {
+    /// One run per model, in the order of [`AeroDynamicPlan::models`].
+    pub runs: Vec<AeroDynamicRun>,
+}
+
+impl AeroDynamicOutcome {
+    /// Whether every model reached every output time.
+    pub fn is_complete(&self) -> bool {
+        self.runs.iter().all(|r| r.status.is_complete())
+    }
+
+    /// Wall time of `run` over the first model's.
+    pub fn ratio_to_first(&self, run: &AeroDynamicRun) -> Option<f64> {
+        let first = self.runs.first()?;
+        (first.wall_time_s > 0.0).then(|| run.wall_time_s / first.wall_time_s)
+    }
+}
+
+/// Run the aeroelastic response of `plan`. `progress` hears each model's start and the fraction
+/// of its simulated time.
+///
+/// # Errors
+/// An invalid plan (fields named relative to the plan, [`Fields::RELATIVE`]), or the wet modes
+/// of a reduced model not found. A model whose run stops is in the outcome with its
+/// [`Status`] ([`Stop::InitialState`] when the initial equilibrium is not found).
+pub fn run(
+    plan: &AeroDynamicPlan,
+    progress: &mut dyn Progress,
+) -> Result<AeroDynamicOutcome, Error> {
+    let fields = Fields::RELATIVE;
+    plan.validate(&fields)?;
+    let s = &plan.structure;
+    let full = plan.aero.wing(&s.model, fields.aero)?;
+    let active = s.active();
+    let active_loads: Vec<Load> = active.iter().map(|&i| s.loads[i].clone()).collect();
+    let time_functions: Vec<TimeFunction> =
+        active.iter().filter_map(|&i| s.time[i].clone()).collect();
+    let applied = full.full().apply(&active_loads, fields.loads)?;
+    let mut snapshots = s.snapshots.clone();
+    snapshots.sort_unstable();
+    snapshots.dedup();
+    let simulator = Simulator {
+        plan,
+        active_loads: &active_loads,
+        applied: &applied,
+        time_functions: &time_functions,
+        snapshots: &snapshots,
+    };
+    let kinds = plan.models()?;
+    let mut runs = Vec::with_capacity(kinds.len());
+    for (k, kind) in kinds.iter().enumerate() {
+        let built = build(&full, kind)?;
+        progress.start(k, kinds.len(), &kind.label());
+        let run = match &built {
+            Built::Full => simulator.run(kind, &full, &s.damping, progress),
+            Built::Reduced(rom) => {
+                let damping = rom.structure().project_damping(&s.damping);
+                simulator.run(kind, rom.as_ref(), &damping, progress)
+            }
+        };
+        progress.finish();
+        runs.push(run);
+    }
+    compare_with_first(&mut runs);
+    Ok(AeroDynamicOutcome { runs })
+}
+
+/// What every model's simulation shares.
+struct Simulator<'a> {
+    plan: &'a AeroDynamicPlan,
+    active_loads: &'a [Load],
+    applied: &'a AppliedLoads,
+    time_functions: &'a [TimeFunction],
+    /// Sorted, without repeats.
+    snapshots: &'a [usize],
+}
+
+impl Simulator<'_> {
+    fn run<M: AeroStructure>(
+        &self,
+        kind: &ModelKind,
+        aero: &Aeroelastic<M>,
+        damping: &Damping,
+        progress: &mut dyn Progress,
+    ) -> AeroDynamicRun {
+        let s = &self.plan.structure;
+        let n = aero.structure().n_dofs();
+        let mut run = AeroDynamicRun {
+            kind: kind.clone(),
+            dofs: n,
+            aero_states: aero.n_aero_states(),
+            integrator: s.integrator,
+            stats: IntegratorStats::default(),
+            wall_time_s: 0.0,
+            samples: Vec::new(),
+            snapshots: Vec::new(),
+            status: Status::Complete,
+            max_tip_difference: None,
+        };
+        let x0 = match self.initial_state(aero) {
+            Ok(x) => x,
+            Err(e) => {
+                run.status = Status::Stopped(Stop::InitialState(e));
+                return run;
+            }
+        };
+        let equations = AeroelasticEquations::new(
+            aero,
+            self.applied,
+            self.time_functions.to_vec(),
+            self.plan.flight.clone(),
+            damping,
+            "flight",
+        );
+        let mut system = match equations {
+            Ok(eqs) => Scaled(eqs),
+            Err(e) => {
+                run.status = Status::Stopped(Stop::Equations(e));
+                return run;
+            }
+        };
+        let eqs = &mut system.0;
+        let a0 = eqs.steady_states(0.0, &x0);
+        let y0 = eqs.state(&x0, &vec![0.0; n], &a0);
+        let end = s.end_time;
+        let start = Instant::now();
+        let result = integrate(
+            s.integrator,
+            &s.settings,
+            &mut system,
+            0.0,
+            &y0,
+            &s.output_times,
+            &mut |t| progress.advance((t / end).clamp(0.0, 1.0)),
+        );
+        run.wall_time_s = start.elapsed().as_secs_f64();
+        let trajectory = match result {
+            Ok((trajectory, stats)) => {
+                run.stats = stats;
+                trajectory
+            }
+            Err(failure) => {
+                run.stats = failure.stats;
+                run.status = Status::Stopped(Stop::Integration(failure.error));
+                failure.trajectory
+            }
+        };
+        let full = aero.full();
+        let eqs = &mut system.0;
+        let mut dy = vec![0.0; eqs.dim()];
+        let mut next_snapshot = self.snapshots.iter().peekable();
+        for (index, (&t, y)) in trajectory.t.iter().zip(&trajectory.y).enumerate() {
+            let q = aero.structure().full_coordinates(&y[..n]);
+            let shape = full.shape(&q);
+            let (tip_x, tip_y, tip_twist) = shape.tip();
+            // The right-hand side leaves the strip forces of (t, y) behind.
+            eqs.rhs(t, y, &mut dy);
+            let (kinetic, strain) = eqs.energies(y);
+            run.samples.push(AeroSample {
+                t,
+                tip_x,
+                tip_y,
+                tip_twist,
+                root_bending_moment: full.stiffness()[0] * q[0],
+                lift: eqs.vertical_aerodynamic_force(t),
+                speed: eqs.flight().speed(t),
+                kinetic,
+                strain,
+            });
+            if next_snapshot.peek() == Some(&&index) {
+                next_snapshot.next();
+                run.snapshots.push(Snapshot { index, t, shape });
+            }
+        }
+        run
+    }
+
+    /// The model's coordinates at `t = 0`.
+    fn initial_state<M: AeroStructure>(
+        &self,
+        aero: &Aeroelastic<M>,
+    ) -> Result<Vec<f64>, SolveError> {
+        let n = aero.structure().n_dofs();
+        if self.plan.start == AeroStart::Rest {
+            return Ok(vec![0.0; n]);
+        }
+        let initial = self.plan.flight.initial;
+        let steady = aero
+            .with_aerodynamics(Aerodynamics::Steady, "aero")
+            .map_err(SolveError::from_input)?;
+        let mut loads = self.active_loads.to_vec();
+        let mut scales: Vec<f64> = self.time_functions.iter().map(|f| f.at(0.0)).collect();
+        if let Some(g) = initial.gravity {
+            loads.push(Load::Gravity { g });
+            scales.push(initial.root_angle.cos());
+        }
+        let applied = aero
+            .full()
+            .apply(&loads, "loads")
+            .map_err(SolveError::from_input)?;
+        let model = SteadyAeroModel::new(&steady, initial.root_angle);
+        scales.push(0.5 * aero.density() * initial.speed * initial.speed);
+        let zero = vec![0.0; scales.len()];
+        continue_static(
+            &model,
+            &applied,
+            (&vec![0.0; n], &zero),
+            &scales,
+            &self.plan.static_options,
+        )
+        .map(|s| s.x)
+    }
+}
+
+/// The aeroelastic equations with absolute tolerances in the units of each state (those of
+/// [`AeroelasticEquations::state_atol`]: rad for the coordinates, scaled for the momenta, the
+/// speed for the lag states), so that one `atol` fits them all as in a structural run.
+struct Scaled<'a, M: AeroStructure>(AeroelasticEquations<'a, M>);
+
+impl<M: AeroStructure> OdeSystem for Scaled<'_, M> {
+    fn dim(&self) -> usize {
+        self.0.dim()
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.0.rhs(t, y, dy)
+    }
+    fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
+        self.0.jacobian(t, y, jac)
+    }
+    fn atol_scale(&mut self, scale: &mut [f64]) {
+        // `state_atol` is linear in its tolerance: at 1 it gives the scales.
+        scale.copy_from_slice(&self.0.state_atol(1.0));
+    }
+}
+
+/// Each model's largest tip distance from the first model's, over the times both reached.
+fn compare_with_first(runs: &mut [AeroDynamicRun]) {
+    let Some((first, others)) = runs.split_first_mut() else {
+        return;
+    };
+    for run in others {
+        run.max_tip_difference = Some(
+            run.samples
+                .iter()
+                .zip(&first.samples)
+                .map(|(a, b)| (a.tip_x - b.tip_x).hypot(a.tip_y - b.tip_y))
+                .fold(0.0, f64::max),
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::tests::patil;
+    use super::*;
+    use crate::analysis::NoProgress;
+    use crate::beam::Profile;
+    use crate::model::aero::FlightCondition;
+    use crate::solve::aeroelastic::{response, Gust, GustShape, ResponsePlan};
+
+    fn gust() -> FlightHistory {
+        FlightHistory {
+            initial: FlightCondition {
+                speed: 20.0,
+                root_angle: 0.02,
+                gravity: Some(9.80665),
+            },
+            speed_change: None,
+            root_angle_change: None,
+            gust: Some(Gust {
+                shape: GustShape::OneMinusCosine { length: 10.0 },
+                amplitude: 1.0,
+                start: 0.05,
+                spanwise: Profile::Uniform(1.0),
+            }),
+        }
+    }
+
+    fn plan(aerodynamics: Aerodynamics) -> AeroDynamicPlan {
+        let (model, aero) = patil(8, aerodynamics);
+        let times: Vec<f64> = (0..=20).map(|k| 0.05 * k as f64).collect();
+        let mut s = DynamicPlan::new(model, vec![], 1.0, times);
+        s.settings.rtol = 1e-8;
+        s.settings.atol = 1e-10;
+        AeroDynamicPlan::new(s, aero, gust())
+    }
+
+    /// With Radau the run is the library's `response` (same equations, same integrator and
+    /// tolerances: a regression test of the wrapper, agreement to the integration tolerance);
+    /// another integrator agrees to its tolerance (BDF2 at rtol 1e-8: measured 2e-7 m on the
+    /// tip, bound 1e-5 m against a tip motion of ~0.3 m).
+    #[test]
+    fn runs_are_the_library_response_with_any_integrator() {
+        let p = plan(Aerodynamics::Wagner);
+        let out = run(&p, &mut NoProgress).unwrap();
+        assert!(out.is_complete(), "{:?}", out.runs[0].status);
+        let mut direct = ResponsePlan::new(gust(), 1.0, 0.05);
+        direct.rtol = 1e-8;
+        let wing = p.aero.wing(&p.structure.model, "aero").unwrap();
+        let reference = response(&wing, &direct, "r", &mut |_| {}).unwrap();
+        assert_eq!(reference.samples.len(), out.runs[0].samples.len());
+        let length = p.structure.model.beam().length();
+        for (a, b) in out.runs[0].samples.iter().zip(&reference.samples) {
+            assert!(
+                (a.tip_y - b.tip[1]).abs() < 1e-6,
+                "{} {}",
+                a.tip_y,
+                b.tip[1]
+            );
+            assert!((a.tip_x - length - b.tip[0]).abs() < 1e-6);
+            assert!((a.lift - b.lift).abs() < 1e-4 * b.lift.abs().max(1.0));
+            assert!((a.root_bending_moment - b.root_bending_moment).abs() < 1e-4 * 100.0);
+        }
+        let mut bdf = p.clone();
+        bdf.structure.integrator = Method::Bdf;
+        let other = run(&bdf, &mut NoProgress).unwrap();
+        assert!(other.is_complete());
+        for (a, b) in other.runs[0].samples.iter().zip(&out.runs[0].samples) {
+            assert!((a.tip_y - b.tip_y).abs() < 1e-5, "{} {}", a.tip_y, b.tip_y);
+        }
+        // The gust lifts the wing: the tip rises above its equilibrium.
+        let y0 = out.runs[0].samples[0].tip_y;
+        assert!(out.runs[0].samples.iter().any(|s| s.tip_y > y0 + 0.01));
+    }
+
+    /// Starting at rest (undeformed) in steady flight without gust: the wing rises towards the
+    /// equilibrium the `Equilibrium` start begins at.
+    #[test]
+    fn rest_start_and_errors() {
+        let mut p = plan(Aerodynamics::Peters { states: 4 });
+        p.flight.gust = None;
+        p.start = AeroStart::Rest;
+        p.structure.reduced = vec![4];
+        let out = run(&p, &mut NoProgress).unwrap();
+        assert!(out.is_complete());
+        assert_eq!(out.runs[0].samples[0].tip_y, 0.0);
+        assert_eq!(out.runs[0].aero_states, 32);
+        assert!(out.runs[1].max_tip_difference.unwrap() < 0.05);
+        let fields = Fields {
+            loads: "loads",
+            aero: "aero",
+            statics: "static",
+            analysis: "dynamic",
+        };
+        type Change = Box<dyn Fn(&mut AeroDynamicPlan)>;
+        let cases: Vec<(Change, &str)> = vec![
+            (
+                Box::new(|p| p.structure.simplified = true),
+                "dynamic.simplified:",
+            ),
+            (
+                Box::new(|p| p.structure.gyroscopic = Gyroscopic::Neglected),
+                "dynamic.gyroscopic:",
+            ),
+            (
+                Box::new(|p| {
+                    p.structure.initial = Initial::Given {
+                        q: vec![0.0; 16],
+                        qdot: vec![0.0; 16],
+                    }
+                }),
+                "dynamic.initial:",
+            ),
+            (
+                Box::new(|p| p.structure.end_time = -1.0),
+                "dynamic.end_time:",
+            ),
+            (Box::new(|p| p.aero.density = f64::NAN), "aero.density:"),
+            (
+                Box::new(|p| {
+                    p.flight.gust = Some(Gust {
+                        shape: GustShape::OneMinusCosine { length: -1.0 },
+                        amplitude: 1.0,
+                        start: 0.0,
+                        spanwise: Profile::Uniform(1.0),
+                    })
+                }),
+                "aero.flight.gust.length:",
+            ),
+            (
+                Box::new(|p| p.flight.speed_change = Some((-50.0, TimeFunction::Constant))),
+                "aero.flight.speed_change:",
+            ),
+            (
+                Box::new(|p| p.static_options.tolerance = 0.0),
+                "static.tolerance:",
+            ),
+        ];
+        for (change, expected) in cases {
+            let mut p = plan(Aerodynamics::Wagner);
+            change(&mut p);
+            let msg = p.validate(&fields).unwrap_err().to_string();
+            assert!(msg.starts_with(expected), "{msg}");
+        }
+    }
+}
