@@ -215,7 +215,7 @@ impl Case {
             (AeroModelSpec::Peters, None) => {
                 return Err(InputError::new(
                     "aero.aerodynamics.states",
-                    "missing: Peters' inflow needs its number of states per strip (1 to 16; \
+                    "missing: Peters' inflow needs its number of states per strip (1 to 15; \
                      4 to 8 are usual)",
                 ))
             }

@@ -172,7 +172,7 @@ fn errors_name_the_case_files_keys() {
                 "{ model = \"peters\", states = 40 }",
             ),
             "flutter",
-            "aero.aerodynamics.states: Peters' inflow needs 1 to 16",
+            "aero.aerodynamics.states: Peters' inflow needs 1 to 15",
         ),
         (
             ("root_angle = 0.05", "root_angle = 3"),
