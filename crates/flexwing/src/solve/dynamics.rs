@@ -11,6 +11,11 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use std::ops::ControlFlow;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use super::energy_audit::{AuditLimits, EnergyBalance};
 use super::integrate::OdeSystem;
 use crate::error::InputError;
 use crate::model::{AppliedLoads, StructuralModel};
@@ -269,6 +274,10 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     identity: DMatrix<f64>,
     minv: DMatrix<f64>,
     dxdx: DMatrix<f64>,
+    /// The energy audit, if on: its limits and what it found since the last [`Self::state`].
+    audit: Option<EnergyBalance>,
+    /// A flag that, once set, stops the integration after the next accepted step.
+    halt: Option<Arc<AtomicBool>>,
     /// Right-hand-side evaluations.
     pub rhs_evaluations: usize,
     /// Jacobian evaluations.
@@ -326,9 +335,66 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             force: DVector::zeros(n),
             dgamma: DMatrix::zeros(n, n),
             load_jac: DMatrix::zeros(n, n),
+            audit: None,
+            halt: None,
             rhs_evaluations: 0,
             jacobian_evaluations: 0,
         })
+    }
+
+    /// The same equations with the energy audit on (module [`super::energy_audit`]): the state
+    /// gets two more components, the work of the loads `W` and the dissipated energy `D`
+    /// (quadrature states, left out of the error control), and the balance
+    /// `H − H(0) − W + D` is checked after every accepted step; a run whose energy gain exceeds
+    /// `limits.runaway` is stopped ([`crate::SolveError::Halted`]). The audit runs from the
+    /// state last built by [`Self::state`]; [`Self::energy_balance`] says what it found.
+    pub fn with_energy_audit(mut self, limits: AuditLimits) -> Self {
+        self.set_energy_audit(Some(limits));
+        self
+    }
+
+    /// Switch the energy audit on with `limits`, or off ([`Self::with_energy_audit`]); the
+    /// state's size changes with it.
+    pub fn set_energy_audit(&mut self, limits: Option<AuditLimits>) {
+        self.audit = limits.map(|l| EnergyBalance::start(l, 0.0));
+    }
+
+    /// The same equations, stopped after the next accepted step once `flag` is set (by another
+    /// thread, a signal handler or a progress callback): the integrator returns the output so
+    /// far with [`crate::SolveError::Halted`].
+    pub fn with_halt(mut self, flag: Option<Arc<AtomicBool>>) -> Self {
+        self.set_halt(flag);
+        self
+    }
+
+    /// Set or clear the halt flag ([`Self::with_halt`]).
+    pub fn set_halt(&mut self, flag: Option<Arc<AtomicBool>>) {
+        self.halt = flag;
+    }
+
+    /// What the energy audit found since the last [`Self::state`]; `None` without the audit.
+    pub fn energy_balance(&self) -> Option<&EnergyBalance> {
+        self.audit.as_ref()
+    }
+
+    /// The work of the loads `W` and the dissipated energy `D` (J) carried by an audited state
+    /// `y`; `None` without the audit.
+    pub fn work_and_dissipation(&self, y: &[f64]) -> Option<(f64, f64)> {
+        let n2 = 2 * self.n;
+        self.audit.as_ref().map(|_| (y[n2], y[n2 + 1]))
+    }
+
+    /// The energy that an error of `atol` (rad) in every coordinate, and the matching error in
+    /// every momentum ([`Self::state_atol`]), carries (J): `Σ_k K_kk a_k²`. The energy audit
+    /// does not judge energies below it.
+    pub fn energy_resolution(&mut self, atol: f64) -> f64 {
+        let a = self.state_atol(atol);
+        (0..self.n).map(|k| self.k[(k, k)] * a[k] * a[k]).sum()
+    }
+
+    /// How the gyroscopic term is obtained.
+    pub fn gyroscopic(&self) -> Gyroscopic {
+        self.gyroscopic
     }
 
     /// Number of coordinates `x` (the state has twice as many).
@@ -341,12 +407,18 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         self.model
     }
 
-    /// State `(x, p)` for coordinates `x` and velocities `ẋ`.
+    /// State `(x, p)` for coordinates `x` and velocities `ẋ`; with the energy audit, followed
+    /// by `W = D = 0`, and the audit restarts from it.
     pub fn state(&mut self, x: &[f64], xdot: &[f64]) -> Vec<f64> {
         let mut y = x.to_vec();
         let mut p = vec![0.0; self.n];
         self.model.momentum_into(x, xdot, &mut self.ws, &mut p);
         y.extend(p);
+        if let Some(audit) = self.audit {
+            let (kinetic, strain) = self.energies(&y);
+            self.audit = Some(EnergyBalance::start(audit.limits, kinetic + strain));
+            y.extend([0.0, 0.0]);
+        }
         y
     }
 
@@ -402,18 +474,25 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
 
     /// Velocities `ẋ = M(x)⁻¹ p` of the state `y`.
     pub fn velocities(&mut self, y: &[f64]) -> Vec<f64> {
-        let (x, p) = y.split_at(self.n);
+        let (x, p) = (&y[..self.n], &y[self.n..2 * self.n]);
         self.solve_velocities(x, p);
         self.xdot.clone()
     }
 
-    /// Energies of the state `y`: (kinetic `½ pᵀ ẋ`, strain `½ xᵀ K x`) (J).
+    /// Energies of the state `y`: (kinetic `½ pᵀ ẋ`, strain `½ xᵀ K x`) (J). No allocation
+    /// for a model with a diagonal stiffness (the full model).
     pub fn energies(&mut self, y: &[f64]) -> (f64, f64) {
         let n = self.n;
-        let v = self.velocities(y);
-        let kinetic = 0.5 * y[n..].iter().zip(&v).map(|(a, b)| a * b).sum::<f64>();
-        let x = DVector::from_column_slice(&y[..n]);
-        let strain = 0.5 * x.dot(&(&self.k * &x));
+        let (x, p) = (&y[..n], &y[n..2 * n]);
+        self.solve_velocities(x, p);
+        let kinetic = 0.5 * p.iter().zip(&self.xdot).map(|(a, b)| a * b).sum::<f64>();
+        let strain = match &self.k_diag {
+            Some(k) => 0.5 * (0..n).map(|i| k[i] * x[i] * x[i]).sum::<f64>(),
+            None => {
+                let x = DVector::from_column_slice(x);
+                0.5 * x.dot(&(&self.k * &x))
+            }
+        };
         (kinetic, strain)
     }
 
@@ -492,19 +571,38 @@ fn damping_matrix<M: StructuralModel>(
 
 impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
     fn dim(&self) -> usize {
-        2 * self.n
+        2 * self.n + if self.audit.is_some() { 2 } else { 0 }
     }
 
-    /// One tolerance on the coordinates (rad) with consistent momenta, as [`Self::state_atol`].
+    /// One tolerance on the coordinates (rad) with consistent momenta, as [`Self::state_atol`];
+    /// the audit's quadrature states are not error-controlled.
     fn atol_scale(&mut self, scale: &mut [f64]) {
         // `state_atol` is linear in its tolerance: at 1 it gives the scales.
-        scale.copy_from_slice(&self.state_atol(1.0));
+        let n2 = 2 * self.n;
+        scale[..n2].copy_from_slice(&self.state_atol(1.0));
+        scale[n2..].fill(f64::INFINITY);
+    }
+
+    /// The halt flag, then the energy audit's check of the balance at the step's end.
+    fn step_accepted(&mut self, t: f64, y: &[f64]) -> ControlFlow<()> {
+        if self.halt.as_ref().is_some_and(|h| h.load(Ordering::Relaxed)) {
+            return ControlFlow::Break(());
+        }
+        if self.audit.is_none() {
+            return ControlFlow::Continue(());
+        }
+        let (kinetic, strain) = self.energies(y);
+        let n2 = 2 * self.n;
+        match &mut self.audit {
+            Some(audit) => audit.check(t, kinetic + strain, y[n2], y[n2 + 1]),
+            None => ControlFlow::Continue(()),
+        }
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         self.rhs_evaluations += 1;
         let n = self.n;
-        let (x, p) = y.split_at(n);
+        let (x, p) = (&y[..n], &y[n..2 * n]);
         self.solve_velocities(x, p);
         self.update_scales(t);
         self.model.generalized_forces_into(
@@ -522,10 +620,14 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
             Gyroscopic::FiniteDifference { step } => self.gyroscopic_fd(x, p, step),
             Gyroscopic::Neglected => self.gamma.fill(0.0),
         }
-        let (dx, dp) = dy.split_at_mut(n);
+        let (dx, rest) = dy.split_at_mut(n);
+        let (dp, quadrature) = rest.split_at_mut(n);
         dx.copy_from_slice(&self.xdot);
+        // The audit's rates: power of the loads ẋ·Q and of the damping ẋᵀ C ẋ.
+        let (mut power, mut dissipation) = (0.0, 0.0);
         for i in 0..n {
             let mut v = self.force[i] + self.gamma[i];
+            power += self.xdot[i] * self.force[i];
             match &self.k_diag {
                 Some(k) => v -= k[i] * x[i],
                 None => {
@@ -535,11 +637,18 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
                 }
             }
             if let Some(c) = &self.c {
+                let mut cx = 0.0;
                 for j in 0..n {
-                    v -= c[(i, j)] * self.xdot[j];
+                    cx += c[(i, j)] * self.xdot[j];
                 }
+                v -= cx;
+                dissipation += self.xdot[i] * cx;
             }
             dp[i] = v;
+        }
+        if let [w, d] = quadrature {
+            *w = power;
+            *d = dissipation;
         }
     }
 
@@ -551,7 +660,14 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         // approximate Jacobian).
         self.jacobian_evaluations += 1;
         let n = self.n;
-        let (x, p) = y.split_at(n);
+        let (x, p) = (&y[..n], &y[n..2 * n]);
+        if self.audit.is_some() {
+            // The quadrature states feed back into nothing: their rows are left zero, a
+            // simplified Newton that is exact for them once the other stages converge.
+            let n2 = 2 * n;
+            jac.rows_mut(n2, 2).fill(0.0);
+            jac.columns_mut(n2, 2).fill(0.0);
+        }
         self.update_scales(t);
         if !self.solve_velocities(x, p) {
             jac.fill(f64::NAN);

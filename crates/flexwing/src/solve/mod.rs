@@ -4,6 +4,7 @@ pub mod aeroelastic;
 mod continuation;
 mod dynamics;
 mod eigen;
+mod energy_audit;
 pub mod integrate;
 mod lanczos;
 mod modes;
@@ -13,6 +14,7 @@ mod tangent;
 pub use continuation::{arc_length_static, ArcLengthOptions, PathError, PathPoint, StaticPath};
 pub use dynamics::{Damping, EquationsOfMotion, Gyroscopic, TimeFunction};
 pub use eigen::generalized_symmetric_eigen;
+pub use energy_audit::{AuditLimits, EnergyBalance};
 pub use modes::{ModeShape, Modes, ModesMethod, ModesStats, DENSE_MAX_DOFS};
 pub use statics::{
     continue_static, linear_static, solve_static, sweep_static, StaticOptions, StaticSolution,

@@ -17,7 +17,7 @@ use clap::Args;
 use flexwing::analysis::dynamics::{self, DynamicOutcome, Initial, ModelRun};
 use flexwing::Error;
 
-use super::{default_out_dir, model_line, stop_message, Failure};
+use super::{default_out_dir, model_line, overall_word, status_entry, Failure};
 use flexwing_case::Case;
 use progress::Progress;
 
@@ -91,13 +91,9 @@ impl Outcome {
         &self.result.runs
     }
 
-    /// `complete` or `incomplete`.
+    /// `complete`, `suspect`, `incomplete` or `interrupted` ([`overall_word`]).
     pub fn status(&self) -> &'static str {
-        if self.incomplete.is_empty() {
-            "complete"
-        } else {
-            "incomplete"
-        }
+        overall_word(&self.incomplete)
     }
 
     /// `LABEL: MESSAGE` of everything incomplete, joined by `; `; `None` when complete.
@@ -146,12 +142,7 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
     let incomplete = result
         .runs
         .iter()
-        .filter_map(|r| {
-            r.status.stop().map(|stop| Incomplete {
-                what: r.kind.label(),
-                message: stop_message(stop, None, &initial_names),
-            })
-        })
+        .filter_map(|r| status_entry(&r.kind.label(), &r.status, None, &initial_names))
         .collect();
     let full = &plan.model;
     let outcome = Outcome {

@@ -17,7 +17,7 @@ use flexwing::analysis::NoProgress;
 use flexwing::model::Load;
 use flexwing::Error;
 
-use super::{default_out_dir, model_line, stop_message, Failure};
+use super::{default_out_dir, model_line, overall_word, status_entry, Failure};
 use flexwing_case::Case;
 
 /// Options of `flexwing static`.
@@ -99,13 +99,9 @@ impl Outcome {
             .map(|i| i.message.as_str())
     }
 
-    /// `complete` or `incomplete`.
+    /// `complete`, `suspect`, `incomplete` or `interrupted` ([`overall_word`]).
     pub fn status(&self) -> &'static str {
-        if self.incomplete.is_empty() {
-            "complete"
-        } else {
-            "incomplete"
-        }
+        overall_word(&self.incomplete)
     }
 
     /// `LABEL: MESSAGE` of everything incomplete, joined by `; `; `None` when complete.
@@ -139,17 +135,12 @@ pub fn run(args: &StaticArgs) -> Result<(), Failure> {
         .runs
         .iter()
         .filter_map(|r| {
-            r.status.stop().map(|stop| Incomplete {
-                what: r.kind.label(),
-                message: stop_message(stop, sweep.as_ref().map(|s| s.name.as_str()), &[]),
-            })
+            let sweep = sweep.as_ref().map(|s| s.name.as_str());
+            status_entry(&r.kind.label(), &r.status, sweep, &[])
         })
         .collect();
     if let Some(Err(e)) = &result.loaded_modes {
-        incomplete.push(Incomplete {
-            what: "loaded modes".into(),
-            message: e.to_string(),
-        });
+        incomplete.push(Incomplete::stopped("loaded modes", e.to_string()));
     }
     let full = &plan.model;
     let outcome = Outcome {

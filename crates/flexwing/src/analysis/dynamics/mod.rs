@@ -6,11 +6,13 @@
 //! A model whose integration stops does not stop the analysis: the other models are simulated,
 //! and each run keeps the output times it reached with the reason it stopped.
 
-mod guard;
+mod audit;
 mod outcome;
 mod run;
 
-pub use guard::{integrate_guarded, EnergyGuard, GuardedRun};
+pub use audit::{
+    integrate_audited, AuditSettings, AuditedRun, DEFAULT_RUNAWAY, MAX_TOLERANCE, MIN_TOLERANCE,
+};
 pub use outcome::{Comparison, DynamicOutcome, ModelRun, Sample, Snapshot};
 pub use run::run;
 
@@ -63,6 +65,8 @@ pub struct DynamicPlan {
     /// Indices of the output times at which each model's deformed shape is recorded as a
     /// [`Snapshot`] (the tip is recorded at every output time). Default: none.
     pub snapshots: Vec<usize>,
+    /// The energy audit of every run; errors name `{prefix}.energy_tolerance`, ….
+    pub audit: AuditSettings,
 }
 
 /// The state at `t = 0`.
@@ -107,6 +111,7 @@ impl DynamicPlan {
             damping: Damping::None,
             initial: Initial::Rest,
             snapshots: Vec::new(),
+            audit: AuditSettings::default(),
         }
     }
 
@@ -129,6 +134,8 @@ impl DynamicPlan {
         }
         self.check_output_times(prefix)?;
         self.settings.validate(prefix)?;
+        self.check_steps(prefix)?;
+        self.audit.validate(prefix)?;
         self.gyroscopic.validate(&field("gyroscopic_step"))?;
         let n_dofs = self.model.n_dofs();
         let reduced = reduced_models(&self.reduced, &self.reduced_modes, n_dofs, prefix)?;
@@ -161,6 +168,29 @@ impl DynamicPlan {
         }
         self.damping.validate(&field("damping"), n_dofs)?;
         self.check_initial(&field("initial"))
+    }
+
+    /// A fixed step or a step cap so small that the run cannot reach `end_time` within
+    /// `max_steps` is refused before it starts.
+    fn check_steps(&self, prefix: &str) -> Result<(), InputError> {
+        let st = &self.settings;
+        for (key, h) in [("step", st.step), ("max_step", st.max_step)] {
+            let Some(h) = h else { continue };
+            let needed = self.end_time / h;
+            if needed > st.max_steps as f64 {
+                return Err(InputError::new(
+                    crate::field(prefix, key),
+                    format!(
+                        "{} s needs at least {} steps to reach end_time {} s, more than                          max_steps = {}",
+                        short(h),
+                        short(needed.ceil()),
+                        short(self.end_time),
+                        st.max_steps
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     fn check_output_times(&self, prefix: &str) -> Result<(), InputError> {

@@ -16,7 +16,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::dopri5::initial_step;
 use super::{
-    check_output_times, failure, outputs_at_start, IntegrationResult, IntegratorStats, OdeSystem,
+    check_output_times, scaled_rms, failure, outputs_at_start, IntegrationResult, IntegratorStats, OdeSystem,
     Tolerances, Trajectory,
 };
 use crate::error::SolveError;
@@ -63,15 +63,6 @@ impl Default for BdfOptions {
 pub struct Bdf {
     /// Options.
     pub options: BdfOptions,
-}
-
-fn rms(v: &[f64], scale: &[f64]) -> f64 {
-    (v.iter()
-        .zip(scale)
-        .map(|(a, s)| (a / s).powi(2))
-        .sum::<f64>()
-        / v.len().max(1) as f64)
-        .sqrt()
 }
 
 /// `R` of the step-size change (Shampine & Reichelt, eq. 2.4).
@@ -253,7 +244,7 @@ impl Bdf {
                         let Some(dy) = lu.as_ref().and_then(|l| l.solve(&rhs_v)) else {
                             break;
                         };
-                        let dy_norm = rms(dy.as_slice(), &scale);
+                        let dy_norm = scaled_rms(dy.as_slice(), &scale);
                         let rate = dy_norm_old.map(|o| dy_norm / o);
                         if let Some(rate) = rate {
                             if rate >= 1.0
@@ -295,7 +286,7 @@ impl Bdf {
                     scale[i] = atol[i] + rtol * y_new[i].abs();
                 }
                 let err: Vec<f64> = dcorr.iter().map(|v| error_const[order] * v).collect();
-                let error_norm = rms(&err, &scale);
+                let error_norm = scaled_rms(&err, &scale);
                 if error_norm > 1.0 {
                     stats.rejected_steps += 1;
                     let safety = 0.9 * (2 * NEWTON_MAXITER + 1) as f64
@@ -341,6 +332,9 @@ impl Bdf {
             }
             t = t_new;
             progress(t);
+            if system.step_accepted(t, &d[0]).is_break() {
+                return failure(traj, stats, SolveError::Halted { time: t });
+            }
             if n_equal_steps < order + 1 {
                 continue;
             }
@@ -351,7 +345,7 @@ impl Bdf {
                     .iter()
                     .map(|v| error_const[order - 1] * v)
                     .collect();
-                rms(&e, &scale)
+                scaled_rms(&e, &scale)
             } else {
                 f64::INFINITY
             };
@@ -360,7 +354,7 @@ impl Bdf {
                     .iter()
                     .map(|v| error_const[order + 1] * v)
                     .collect();
-                rms(&e, &scale)
+                scaled_rms(&e, &scale)
             } else {
                 f64::INFINITY
             };

@@ -9,7 +9,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::dopri5::initial_step;
 use super::{
-    check_output_times, error_norm, failure, outputs_at_start, IntegrationResult, IntegratorStats,
+    check_output_times, scaled_rms, error_norm, failure, outputs_at_start, IntegrationResult, IntegratorStats,
     OdeSystem, Tolerances, Trajectory,
 };
 use crate::error::SolveError;
@@ -104,13 +104,7 @@ impl Stage {
                 let Some(dz) = self.lu.as_ref().and_then(|(_, l)| l.solve(&g)) else {
                     break;
                 };
-                let norm = (dz
-                    .iter()
-                    .zip(scale)
-                    .map(|(a, s)| (a / s).powi(2))
-                    .sum::<f64>()
-                    / dim as f64)
-                    .sqrt();
+                let norm = scaled_rms(dz.as_slice(), scale);
                 for i in 0..dim {
                     self.z[i] += dz[i];
                 }
@@ -324,6 +318,9 @@ impl ImplicitMidpoint {
             f0.copy_from_slice(&f1);
             stats.steps += 1;
             progress(t);
+            if system.step_accepted(t, &y).is_break() {
+                return failure(traj, stats, SolveError::Halted { time: t });
+            }
             if let Some(hn) = accepted {
                 h = hn;
             }

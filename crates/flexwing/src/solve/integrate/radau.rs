@@ -24,7 +24,7 @@ use nalgebra::DMatrix;
 use super::dopri5::initial_step;
 use super::lu::{ComplexLu, DenseLu};
 use super::{
-    check_output_times, failure, outputs_at_start, IntegrationResult, IntegratorStats, OdeSystem,
+    check_output_times, scaled_rms, failure, outputs_at_start, IntegrationResult, IntegratorStats, OdeSystem,
     Tolerances, Trajectory,
 };
 use crate::error::SolveError;
@@ -215,12 +215,6 @@ impl Scratch {
         self.e1.solve_in_place(z1);
         self.e2.solve_in_place(z2, z3);
     }
-}
-
-/// RMS norm of `v / scal`.
-fn scaled_rms(v: &[f64], scal: &[f64]) -> f64 {
-    let s: f64 = v.iter().zip(scal).map(|(a, s)| (a / s) * (a / s)).sum();
-    (s / v.len().max(1) as f64).sqrt()
 }
 
 impl Radau {
@@ -598,6 +592,9 @@ impl Radau {
                     next_out += 1;
                 }
                 progress(t);
+                if system.step_accepted(t, &y).is_break() {
+                    return failure(traj, stats, SolveError::Halted { time: t });
+                }
                 jac_current = false;
                 if last || next_out == t_out.len() {
                     return Ok((traj, stats));
