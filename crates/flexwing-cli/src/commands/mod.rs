@@ -222,7 +222,10 @@ pub fn stop_message(stop: &Stop, sweep: Option<&str>, initial: &[String]) -> Str
             short(*limit)
         ),
         Stop::Interrupted { time: Some(t) } => {
-            format!("interrupted at t = {} s; the output up to there is kept", short(*t))
+            format!(
+                "interrupted at t = {} s; the output up to there is kept",
+                short(*t)
+            )
         }
         Stop::Interrupted { time: None } => "interrupted before it started".into(),
         other => format!("{other:?}"),

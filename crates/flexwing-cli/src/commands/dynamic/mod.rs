@@ -186,11 +186,14 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
         let also = if others.is_empty() {
             String::new()
         } else {
-            format!(" (also incomplete: {}; see status.txt)", others.join(", "))
+            format!(
+                " (also not complete: {}; see status.txt)",
+                others.join(", ")
+            )
         };
         return Err(Failure::run(format!(
-            "{name}: {}: {}{also}",
-            first.what, first.message
+            "{name}: {}: {}: {}{also}",
+            first.what, first.word, first.message
         )));
     }
     printed

@@ -26,6 +26,15 @@ use crate::text::short;
 /// Most output times of a run: every output time keeps a sample per model in memory.
 pub const MAX_OUTPUT_TIMES: usize = 100_000;
 
+/// Smallest `atol` of a dynamic run (rad): below it the error test asks for less than the
+/// round-off of joint rotations of order 1.
+pub const MIN_ATOL: f64 = 1e-15;
+/// Largest `atol` of a dynamic run (rad): a joint-rotation error of 0.1 rad is no answer.
+pub const MAX_ATOL: f64 = 0.1;
+/// Largest `max_steps` of a dynamic run: a budget of a billion steps per model is hours of
+/// computing; a larger one guards against nothing.
+pub const MAX_STEPS: usize = 1_000_000_000;
+
 /// A dynamic analysis. Build it with [`DynamicPlan::new`], set the fields, and check it with
 /// [`DynamicPlan::validate`] under the caller's names.
 #[derive(Debug, Clone)]
@@ -170,10 +179,34 @@ impl DynamicPlan {
         self.check_initial(&field("initial"))
     }
 
-    /// A fixed step or a step cap so small that the run cannot reach `end_time` within
-    /// `max_steps` is refused before it starts.
+    /// Bounds of the tolerances and steps that the generic integrator settings do not know:
+    /// `atol` is a joint rotation (rad), at most [`MAX_ATOL`] (a larger error is no answer) and
+    /// at least [`MIN_ATOL`] (below round-off of the joint rotations); `max_steps` at most
+    /// [`MAX_STEPS`]; a fixed step or a step cap so small that the run cannot reach `end_time`
+    /// within `max_steps` is refused before it starts.
     fn check_steps(&self, prefix: &str) -> Result<(), InputError> {
         let st = &self.settings;
+        if !(MIN_ATOL..=MAX_ATOL).contains(&st.atol) {
+            return Err(InputError::new(
+                crate::field(prefix, "atol"),
+                format!(
+                    "must be a number in [{}, {}] (rad, an error in the joint rotations), got {}",
+                    short(MIN_ATOL),
+                    short(MAX_ATOL),
+                    short(st.atol)
+                ),
+            ));
+        }
+        if st.max_steps > MAX_STEPS {
+            return Err(InputError::new(
+                crate::field(prefix, "max_steps"),
+                format!(
+                    "must be at most {} (a budget of steps per model), got {}",
+                    short(MAX_STEPS as f64),
+                    short(st.max_steps as f64)
+                ),
+            ));
+        }
         for (key, h) in [("step", st.step), ("max_step", st.max_step)] {
             let Some(h) = h else { continue };
             let needed = self.end_time / h;
@@ -181,11 +214,12 @@ impl DynamicPlan {
                 return Err(InputError::new(
                     crate::field(prefix, key),
                     format!(
-                        "{} s needs at least {} steps to reach end_time {} s, more than                          max_steps = {}",
+                        "{} s needs at least {} steps to reach end_time {} s, more than \
+                         max_steps = {}",
                         short(h),
                         short(needed.ceil()),
                         short(self.end_time),
-                        st.max_steps
+                        short(st.max_steps as f64)
                     ),
                 ));
             }

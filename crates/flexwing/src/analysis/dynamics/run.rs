@@ -71,7 +71,11 @@ pub fn run(plan: &DynamicPlan, progress: &mut dyn Progress) -> Result<DynamicOut
     let mut runs = Vec::with_capacity(kinds.len());
     for (k, kind) in kinds.iter().enumerate() {
         if progress.cancelled() {
-            runs.push(ModelRun::not_run(kind, plan, Stop::Interrupted { time: None }));
+            runs.push(ModelRun::not_run(
+                kind,
+                plan,
+                Stop::Interrupted { time: None },
+            ));
             continue;
         }
         progress.start(k, kinds.len(), &kind.label());
@@ -184,17 +188,14 @@ impl Simulator<'_> {
         run.wall_time_s = start.elapsed().as_secs_f64();
         run.stats = audited.stats;
         run.status = audited.status;
-        run.energy = Some(audited.balance);
         let trajectory = audited.trajectory;
         let n = model.n_dofs();
         let balance = audited.balance;
-        let mut reference = balance.initial.abs().max(balance.limits.floor);
         let mut next_snapshot = self.snapshots.iter().peekable();
         for (index, (&t, y)) in trajectory.t.iter().zip(&trajectory.y).enumerate() {
             let q = model.full_coordinates(&y[..n]);
             let (kinetic, strain) = eom.energies(y);
             let (work, dissipated) = (y[2 * n], y[2 * n + 1]);
-            reference = reference.max(work.abs()).max(dissipated.abs());
             let shape = self.full.shape(&q);
             let (tip_x, tip_y, tip_twist) = shape.tip();
             run.samples.push(Sample {
@@ -206,14 +207,14 @@ impl Simulator<'_> {
                 strain,
                 work,
                 dissipated,
-                balance_error: (kinetic + strain - balance.initial - work + dissipated)
-                    / reference,
+                balance_error: balance.relative(kinetic + strain, work, dissipated),
             });
             if next_snapshot.peek() == Some(&&index) {
                 next_snapshot.next();
                 run.snapshots.push(Snapshot { index, t, shape });
             }
         }
+        run.energy = Some(balance);
         run
     }
 

@@ -5,8 +5,8 @@
 //! (the coefficients and the continuous extension of `DOPRI5`).
 
 use super::{
-    check_output_times, scaled_rms, error_norm, failure, outputs_at_start, IntegrationResult, IntegratorStats,
-    OdeSystem, Tolerances, Trajectory,
+    check_output_times, error_norm, failure, outputs_at_start, scaled_rms, IntegrationResult,
+    IntegratorStats, OdeSystem, Tolerances, Trajectory,
 };
 use crate::error::SolveError;
 

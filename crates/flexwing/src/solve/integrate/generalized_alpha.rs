@@ -52,8 +52,8 @@ use nalgebra::DMatrix;
 use super::dopri5::initial_step;
 use super::lu::DenseLu;
 use super::{
-    check_output_times, scaled_rms, failure, outputs_at_start, IntegrationResult, IntegratorStats, OdeSystem,
-    Tolerances, Trajectory,
+    check_output_times, failure, outputs_at_start, scaled_rms, IntegrationResult, IntegratorStats,
+    OdeSystem, Tolerances, Trajectory,
 };
 use crate::error::SolveError;
 
