@@ -733,6 +733,35 @@ fn bad_input_names_the_field() {
             vec!["dynamic.rtol", "1e-300"],
         ),
         (format!("{CASE}atol = 0\n"), vec!["dynamic.atol: must be"]),
+        // Regression (issue 9, found (c)): atol = 1e308 was accepted (8 steps, 2e23 J,
+        // `complete`). Tolerances, step sizes and counts are bounded, each with one line.
+        (
+            format!("{CASE}atol = 1e308\n"),
+            vec![
+                "dynamic.atol: must be a number in [1e-15, 0.1]",
+                "got 1e308",
+            ],
+        ),
+        (
+            format!("{CASE}rtol = 1e-20\n"),
+            vec!["dynamic.rtol: must be a number in [1e-13, 1)"],
+        ),
+        (
+            format!("{CASE}max_steps = 4611686018427387904\n"),
+            vec!["dynamic.max_steps: must be at most 1e9"],
+        ),
+        (
+            format!("{CASE}max_step = 1e-12\n"),
+            vec!["dynamic.max_step: 1e-12 s needs at least 2e11 steps"],
+        ),
+        (
+            format!("{CASE}energy_tolerance = 2.0\n"),
+            vec!["dynamic.energy_tolerance: must be a number in [1e-10, 0.5]"],
+        ),
+        (
+            format!("{CASE}energy_runaway = -1.0\n"),
+            vec!["dynamic.energy_runaway: must be a number in [0.01, 1e6]"],
+        ),
         (
             format!("{CASE}integrator = \"bdf\"\nmax_order = 9\n"),
             vec!["dynamic.max_order: must be between 1 and 5"],
