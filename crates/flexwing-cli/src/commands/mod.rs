@@ -14,6 +14,23 @@ use flexwing::beam::Calibration;
 use flexwing::model::FullModel;
 use flexwing::text::short;
 
+/// Set once a command has printed its JSON document on stdout, so that `main` prints the
+/// error document of `--json` only when none was printed: stdout always holds exactly one.
+pub static JSON_PRINTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Print `text` (a command's output) on stdout; with `json`, mark the JSON document printed.
+pub fn print_stdout(text: &str, json: bool) -> Result<(), Failure> {
+    use std::io::Write as _;
+    if json {
+        JSON_PRINTED.store(true, std::sync::atomic::Ordering::SeqCst);
+    }
+    let mut stdout = std::io::stdout().lock();
+    stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())
+        .map_err(|e| Failure::run(format!("cannot write to standard output: {e}")))
+}
+
 /// Why a command failed.
 #[derive(Debug)]
 pub enum Failure {

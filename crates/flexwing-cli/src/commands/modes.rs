@@ -1,7 +1,6 @@
 //! `flexwing modes`: natural frequencies and mode shapes about the undeformed state.
 
 use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
@@ -67,11 +66,7 @@ pub fn run(args: &ModesArgs) -> Result<(), Failure> {
     } else {
         table_report(&case, model, &results, &files)
     };
-    let mut stdout = std::io::stdout().lock();
-    stdout
-        .write_all(text.as_bytes())
-        .and_then(|()| stdout.flush())
-        .map_err(|e| Failure::run(format!("cannot write to standard output: {e}")))
+    super::print_stdout(&text, args.json)
 }
 
 #[derive(Serialize)]

@@ -8,7 +8,6 @@
 mod files;
 pub(crate) mod report;
 
-use std::io::Write as _;
 use std::path::PathBuf;
 
 use clap::Args;
@@ -167,11 +166,7 @@ pub fn run(args: &StaticArgs) -> Result<(), Failure> {
     } else {
         report::tables(&outcome, &written)
     };
-    let mut stdout = std::io::stdout().lock();
-    let printed = stdout
-        .write_all(text.as_bytes())
-        .and_then(|()| stdout.flush())
-        .map_err(|e| Failure::run(format!("cannot write to standard output: {e}")));
+    let printed = super::print_stdout(&text, args.json);
     if let Some(first) = outcome.incomplete.first() {
         let others: Vec<&str> = outcome.incomplete[1..]
             .iter()
