@@ -91,6 +91,42 @@ fn finite_cells(csv: Vec<u8>) -> Result<Vec<u8>> {
     w.into_inner().map_err(|e| anyhow!("{}", e.error()))
 }
 
+/// Make `dir` ready for a run, before anything is computed: create it (and its parents), check
+/// that it is a writable directory, remove the result files of a previous run (`previous`, file
+/// names in `dir`; a folder's contents belong to one run) and, with `status`, write
+/// `status.txt: running`, which the run replaces with its status when it ends. A run that is
+/// killed leaves `running` behind, never an older run's `complete` beside its own files.
+pub fn prepare_dir(dir: &Path, previous: &[&str], status: bool) -> Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(anyhow!(
+            "the output directory {} is not a directory",
+            dir.display()
+        ));
+    }
+    create_dir(dir)?;
+    for name in previous {
+        match fs::remove_file(dir.join(name)) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(anyhow!(
+                    "cannot remove the previous run's {} from the output directory {}: {e}",
+                    name,
+                    dir.display()
+                ))
+            }
+            _ => {}
+        }
+    }
+    if status {
+        write_bytes(&dir.join("status.txt"), b"running\n")
+    } else {
+        // Probe: the directory must take files.
+        let probe = dir.join(format!(".flexwing-probe.{}", std::process::id()));
+        fs::write(&probe, b"")
+            .and_then(|()| fs::remove_file(&probe))
+            .with_context(|| format!("cannot write into the output directory {}", dir.display()))
+    }
+}
+
 /// Create the output directory (and its parents).
 pub fn create_dir(dir: &Path) -> Result<()> {
     fs::create_dir_all(dir)

@@ -956,3 +956,60 @@ fn radau_runs_full_and_reduced_models_and_agrees_with_bdf_and_dormand_prince() {
         assert!(d < 1e-4, "{label}: {d:.2e} m");
     }
 }
+
+/// Regression (issue 9, section 4): the output folder was checked only after the computation,
+/// and a reused folder kept the previous run's files beside the new ones. Now the folder is
+/// prepared first (a file named as the folder is refused at once, "not a directory"), the
+/// previous run's result files are removed, and `status.txt` says `running` until the run ends.
+#[test]
+fn the_output_folder_is_checked_first_and_belongs_to_one_run() {
+    let dir = TempDir::new("folder-first");
+    let case = dir.write("case.toml", CASE);
+    let file = dir.write("taken", "a file, not a folder");
+    let o = flexwing_in(
+        dir.path(),
+        &[
+            "dynamic",
+            case.to_str().unwrap(),
+            "--out",
+            file.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1));
+    let err = stderr(&o);
+    assert!(err.contains("is not a directory"), "{err}");
+    // Nothing was computed: no summary on stdout.
+    assert!(stdout(&o).is_empty(), "{}", stdout(&o));
+
+    let out = dir.path().join("reused");
+    fs::create_dir_all(&out).unwrap();
+    for stale in [
+        "dynamic_tip.svg",
+        "dynamic_snapshots.png",
+        "dynamic_tip.csv",
+    ] {
+        fs::write(out.join(stale), "from an older run").unwrap();
+    }
+    fs::write(out.join("status.txt"), "complete\n").unwrap();
+    fs::write(out.join("notes.txt"), "the user's own file").unwrap();
+    let o = flexwing_in(
+        dir.path(),
+        &[
+            "dynamic",
+            case.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert_success(&o);
+    // The plots of the older run (this one has no --plot) are gone; the user's file stays.
+    assert!(!out.join("dynamic_tip.svg").exists());
+    assert!(!out.join("dynamic_snapshots.png").exists());
+    assert!(out.join("notes.txt").exists());
+    let tip = fs::read_to_string(out.join("dynamic_tip.csv")).unwrap();
+    assert!(tip.starts_with("model,t_s"), "{tip}");
+    assert_eq!(
+        fs::read_to_string(out.join("status.txt")).unwrap(),
+        "complete\n"
+    );
+}

@@ -50,14 +50,21 @@ pub fn run(args: &ModesArgs) -> Result<(), Failure> {
         None => case.modes_plan().map_err(Failure::input)?,
     };
     let model = &plan.model;
-    let results = modes::run(&plan, &mut NoProgress)
-        .map_err(|e| Failure::run(format!("{name}: modal analysis failed: {e}")))?
-        .modes;
-
     let dir = args
         .out
         .clone()
         .unwrap_or_else(|| default_out_dir(&args.case));
+    let previous = [
+        "frequencies.csv",
+        "mode_shapes.csv",
+        "mode_shapes.svg",
+        "mode_shapes.png",
+    ];
+    crate::output::prepare_dir(&dir, &previous, false).map_err(Failure::Run)?;
+    let results = modes::run(&plan, &mut NoProgress)
+        .map_err(|e| Failure::run(format!("{name}: modal analysis failed: {e}")))?
+        .modes;
+
     let files =
         write_files(&dir, &case, &args.case, model, &results, args.plot).map_err(Failure::Run)?;
 

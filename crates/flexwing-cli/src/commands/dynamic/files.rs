@@ -60,6 +60,18 @@ struct SummaryRow {
     status: &'static str,
 }
 
+/// Every file a run may write into its folder (removed before a new run).
+pub const FILES: &[&str] = &[
+    "dynamic_tip.csv",
+    "dynamic_nodes.csv",
+    "dynamic_summary.csv",
+    "dynamic_tip.svg",
+    "dynamic_tip.png",
+    "dynamic_snapshots.svg",
+    "dynamic_snapshots.png",
+    "status.txt",
+];
+
 /// Write every result file into `dir`; returns the paths in the order written.
 pub fn write_files(
     dir: &Path,

@@ -127,6 +127,12 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
     let plot_indices = plot_indices(n_out);
     plan.snapshots = node_indices.iter().chain(&plot_indices).copied().collect();
 
+    let dir = args
+        .out
+        .clone()
+        .unwrap_or_else(|| default_out_dir(&args.case));
+    crate::output::prepare_dir(&dir, files::FILES, true).map_err(Failure::Run)?;
+
     let show_progress = !args.json && std::io::stderr().is_terminal();
     let mut progress = Progress::new(show_progress);
     let result = dynamics::run(&plan, &mut progress).map_err(|e| match e {
@@ -163,10 +169,6 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
         incomplete,
     };
 
-    let dir = args
-        .out
-        .clone()
-        .unwrap_or_else(|| default_out_dir(&args.case));
     let written = files::write_files(&dir, &outcome, &case, args.plot).map_err(Failure::Run)?;
     let text = if args.json {
         report::json(&outcome, &written)

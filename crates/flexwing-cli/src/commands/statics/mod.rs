@@ -120,6 +120,11 @@ pub fn run(args: &StaticArgs) -> Result<(), Failure> {
     let name = args.case.display().to_string();
     let case = Case::load(&args.case).map_err(Failure::input)?;
     let plan = case.static_plan().map_err(Failure::input)?;
+    let dir = args
+        .out
+        .clone()
+        .unwrap_or_else(|| default_out_dir(&args.case));
+    crate::output::prepare_dir(&dir, files::FILES, true).map_err(Failure::Run)?;
     let result = statics::run(&plan, &mut NoProgress).map_err(|e| match e {
         Error::Input(e) => Failure::input(format!("{name}: {e}")),
         e => Failure::run(format!(
@@ -155,10 +160,6 @@ pub fn run(args: &StaticArgs) -> Result<(), Failure> {
         incomplete,
     };
 
-    let dir = args
-        .out
-        .clone()
-        .unwrap_or_else(|| default_out_dir(&args.case));
     let written =
         files::write_files(&dir, &outcome, full, &case, args.plot).map_err(Failure::Run)?;
     let text = if args.json {
