@@ -56,6 +56,10 @@ impl Case {
         s.step = d.step;
         s.max_steps = d.max_steps.unwrap_or(s.max_steps);
         s.max_step = d.max_step;
+        plan.audit.tolerance = d.energy_tolerance;
+        if let Some(r) = d.energy_runaway {
+            plan.audit.runaway = r;
+        }
         plan.damping = damping(d.damping.as_ref())?;
         plan.initial = self.initial(d.initial.as_ref(), n_dofs)?;
         plan.validate("loads", "dynamic")?;

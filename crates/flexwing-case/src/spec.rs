@@ -360,6 +360,12 @@ pub struct DynamicSpec {
     /// Largest step of the adaptive integrators (s).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_step: Option<f64>,
+    /// Largest relative energy-balance error before a run is marked suspect.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub energy_tolerance: Option<f64>,
+    /// Relative energy gain at which a run is stopped as a runaway.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub energy_runaway: Option<f64>,
     /// Structural damping; none without it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub damping: Option<DampingSpec>,

@@ -351,6 +351,12 @@ fn actual_defaults() -> BTreeMap<(&'static str, &'static str), String> {
     put("dynamic", "max_order", s.max_order.to_string());
     put("dynamic", "spectral_radius", s.spectral_radius.to_string());
     put("dynamic", "max_steps", s.max_steps.to_string());
+    put(
+        "dynamic",
+        "energy_runaway",
+        dynamic.audit.runaway.to_string(),
+    );
+    assert_eq!(dynamic.audit.tolerance, None, "energy_tolerance: see text");
     let time = |spec: &str| {
         let text = BASE.replace("{ type = \"constant\" }", spec);
         Case::from_toml_str(&text)

@@ -3,6 +3,8 @@
 //!
 //! Errors are printed as one line, `error: …`, on stderr. Exit status: 0 on success, 2 for bad
 //! input (command line or case file), 1 when the run fails (a solver, or writing the results).
+//! With `--json`, stdout holds exactly one JSON document whatever happens: the command's, or
+//! `{"status": "error", "error": …, "exit_status": …}` when it failed before printing one.
 
 mod commands;
 mod output;
@@ -105,7 +107,17 @@ enum Command {
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
-        Err(e) => return usage_error(&e),
+        Err(e) => {
+            let json = std::env::args().any(|a| a == "--json");
+            return usage_error(&e, json);
+        }
+    };
+    let json = match &cli.command {
+        Command::Modes(a) => a.json,
+        Command::Static(a) => a.json,
+        Command::Dynamic(a) => a.json,
+        Command::Flutter(a) => a.json,
+        Command::Reproduce(_) => false,
     };
     let result = match &cli.command {
         Command::Modes(args) => modes::run(args),
@@ -118,6 +130,10 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(failure) => {
             report(&failure);
+            if json && !commands::JSON_PRINTED.load(std::sync::atomic::Ordering::SeqCst) {
+                let message = flexwing_case::one_line(&format!("{:#}", failure.error()));
+                print_json_error(&message, failure.exit_status());
+            }
             ExitCode::from(failure.exit_status())
         }
     }
@@ -128,13 +144,24 @@ fn report(failure: &Failure) {
     print_error(&flexwing_case::one_line(&format!("{:#}", failure.error())));
 }
 
+/// The JSON document of a failed `--json` run on stdout.
+fn print_json_error(message: &str, exit_status: u8) {
+    let doc = serde_json::json!({
+        "status": "error",
+        "error": message,
+        "exit_status": exit_status,
+    });
+    let text = serde_json::to_string_pretty(&doc).unwrap_or_default();
+    let _ = writeln!(std::io::stdout(), "{text}");
+}
+
 /// `error: MESSAGE` on stderr; a closed stderr is ignored (`eprintln!` would panic).
 fn print_error(message: &str) {
     let _ = writeln!(std::io::stderr(), "error: {message}");
 }
 
 /// `--help` and `--version` print and succeed; a usage error becomes one line and exit status 2.
-fn usage_error(e: &clap::Error) -> ExitCode {
+fn usage_error(e: &clap::Error, json: bool) -> ExitCode {
     match e.kind() {
         ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
             let _ = e.print();
@@ -163,7 +190,12 @@ fn usage_error(e: &clap::Error) -> ExitCode {
                 }
                 line.push_str(&part);
             }
-            print_error(&format!("{line}; try '--help'"));
+            let line = format!("{line}; try '--help'");
+            print_error(&line);
+            // A usage error of a command line that asked for JSON still gets its document.
+            if json {
+                print_json_error(&line, 2);
+            }
             ExitCode::from(2)
         }
     }

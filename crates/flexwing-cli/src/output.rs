@@ -49,6 +49,8 @@ pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<()> {
 }
 
 /// Serialize `rows` as CSV (header from the field names) and write it atomically to `path`.
+/// A non-finite number (a state that blew up) is written as an empty cell: no `inf` or `NaN`
+/// ever reaches a result file.
 pub fn write_csv<R: serde::Serialize>(
     path: &Path,
     rows: impl IntoIterator<Item = R>,
@@ -58,7 +60,71 @@ pub fn write_csv<R: serde::Serialize>(
         w.serialize(row)?;
     }
     let bytes = w.into_inner().map_err(|e| anyhow!("{}", e.error()))?;
-    write_bytes(path, &bytes)
+    write_bytes(path, &finite_cells(bytes)?)
+}
+
+/// `csv`, with every cell that reads as a non-finite number emptied.
+fn finite_cells(csv: Vec<u8>) -> Result<Vec<u8>> {
+    let non_finite = |c: &[u8]| matches!(c, b"inf" | b"-inf" | b"NaN" | b"+inf" | b"-NaN");
+    let mut r = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .from_reader(csv.as_slice());
+    let mut records = Vec::new();
+    let mut any = false;
+    for record in r.byte_records() {
+        let record = record?;
+        any |= record.iter().any(non_finite);
+        records.push(record);
+    }
+    if !any {
+        return Ok(csv);
+    }
+    let mut w = csv::Writer::from_writer(Vec::new());
+    for record in &records {
+        let cells: Vec<&[u8]> = record
+            .iter()
+            .map(|c| if non_finite(c) { &b""[..] } else { c })
+            .collect();
+        w.write_record(cells)?;
+    }
+    w.into_inner().map_err(|e| anyhow!("{}", e.error()))
+}
+
+/// Make `dir` ready for a run, before anything is computed: create it (and its parents), check
+/// that it is a writable directory, remove the result files of a previous run (`previous`, file
+/// names in `dir`; a folder's contents belong to one run) and, with `status`, write
+/// `status.txt: running`, which the run replaces with its status when it ends. A run that is
+/// killed leaves `running` behind, never an older run's `complete` beside its own files.
+pub fn prepare_dir(dir: &Path, previous: &[&str], status: bool) -> Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(anyhow!(
+            "the output directory {} is not a directory",
+            dir.display()
+        ));
+    }
+    create_dir(dir)?;
+    for name in previous {
+        match fs::remove_file(dir.join(name)) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(anyhow!(
+                    "cannot remove the previous run's {} from the output directory {}: {e}",
+                    name,
+                    dir.display()
+                ))
+            }
+            _ => {}
+        }
+    }
+    if status {
+        write_bytes(&dir.join("status.txt"), b"running\n")
+    } else {
+        // Probe: the directory must take files.
+        let probe = dir.join(format!(".flexwing-probe.{}", std::process::id()));
+        fs::write(&probe, b"")
+            .and_then(|()| fs::remove_file(&probe))
+            .with_context(|| format!("cannot write into the output directory {}", dir.display()))
+    }
 }
 
 /// Create the output directory (and its parents).
@@ -103,6 +169,24 @@ mod tests {
         assert_eq!(significant(55.596, 4), "55.60");
         assert_eq!(significant(12345.6, 4), "12346");
         assert_eq!(significant(1.5e-7, 3), "1.50e-7");
+    }
+
+    #[test]
+    fn non_finite_numbers_become_empty_cells() {
+        #[derive(serde::Serialize)]
+        struct Row {
+            name: &'static str,
+            a: f64,
+            b: f64,
+        }
+        let mut w = csv::Writer::from_writer(Vec::new());
+        for (name, a, b) in [("x", 1.5, f64::INFINITY), ("inf", f64::NAN, -f64::INFINITY)] {
+            w.serialize(Row { name, a, b }).unwrap();
+        }
+        let text = finite_cells(w.into_inner().unwrap()).unwrap();
+        // The label "inf" is text, but nothing tells it from the number: it goes too; labels
+        // are model names, never "inf".
+        assert_eq!(String::from_utf8(text).unwrap(), "name,a,b\nx,1.5,\n,,\n");
     }
 
     #[test]

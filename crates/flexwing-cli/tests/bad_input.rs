@@ -234,3 +234,43 @@ fn usage_errors_are_one_line_with_status_2() {
         check_failure(&o, 2, &[]);
     }
 }
+
+/// Regression (issue 9, section 4): `--json` printed nothing when the input was bad or the
+/// output folder unusable. Now stdout is always one JSON document with `status` and `error`.
+#[test]
+fn json_is_always_one_document_with_status_and_error() {
+    let dir = TempDir::new("json-always");
+    let bad = dir.write("bad.toml", &edit(BENDING, "EI = 50.0", "EI = -50.0"));
+    let good = example("paper_sine.toml");
+    let file = dir.write("a_file", "not a folder");
+    let file_out = file.join("x");
+    let cases: Vec<(Vec<&str>, i32)> = vec![
+        (vec!["modes", "--json", "/nonexistent/case.toml"], 2),
+        (vec!["modes", "--json", bad.to_str().unwrap()], 2),
+        (vec!["static", "--json", bad.to_str().unwrap()], 2),
+        (vec!["dynamic", "--json", bad.to_str().unwrap()], 2),
+        (vec!["dynamic", "--json", "--no-such-flag"], 2),
+        (
+            vec![
+                "modes",
+                "--json",
+                good.to_str().unwrap(),
+                "--out",
+                file_out.to_str().unwrap(),
+            ],
+            1,
+        ),
+    ];
+    for (args, status) in cases {
+        let o = flexwing_in(dir.path(), &args);
+        assert_eq!(o.status.code(), Some(status), "{args:?}: {}", stderr(&o));
+        let out = String::from_utf8_lossy(&o.stdout);
+        let doc: serde_json::Value =
+            serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: {e}: {out:?}"));
+        assert_eq!(doc["status"], "error", "{args:?}");
+        let error = doc["error"].as_str().unwrap();
+        assert!(!error.is_empty() && !error.contains('\n'), "{error}");
+        assert_eq!(doc["exit_status"], status);
+        assert_eq!(stderr(&o).lines().count(), 1, "{args:?}: {}", stderr(&o));
+    }
+}

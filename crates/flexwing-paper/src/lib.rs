@@ -28,7 +28,7 @@ pub mod timing;
 
 pub use report::Section;
 
-use flexwing::analysis::dynamics::GuardedRun;
+use flexwing::analysis::dynamics::AuditedRun;
 use flexwing::analysis::Stop;
 use flexwing::model::{FullModel, StructuralModel};
 use flexwing::text::short;
@@ -40,7 +40,7 @@ fn tip(full: &FullModel, q: &[f64]) -> (f64, f64) {
 }
 
 /// Tip positions `(x, y)` (m) of `model` at the output times of `run`.
-fn tips<M: StructuralModel>(model: &M, run: &GuardedRun) -> Vec<(f64, f64)> {
+fn tips<M: StructuralModel>(model: &M, run: &AuditedRun) -> Vec<(f64, f64)> {
     let full = model.full_model();
     let n = model.n_dofs();
     run.trajectory
@@ -59,16 +59,18 @@ fn distance(a: (f64, f64), b: (f64, f64)) -> f64 {
 fn words(stop: &Stop) -> String {
     match stop {
         Stop::Integration(e) => e.to_string(),
-        Stop::EnergyLimit { time, ratio, limit } => format!(
-            "stopped at t = {} s: the energy grew to {ratio:.3} times its initial value \
-             (a blown-up run; limit {limit})",
-            short(*time)
+        Stop::EnergyRunaway { time, gain, limit } => format!(
+            "stopped at t = {} s: the energy grew to {:.3} times its initial value \
+             (a blown-up run; limit {})",
+            short(*time),
+            1.0 + gain,
+            1.0 + limit
         ),
         other => format!("{other:?}"),
     }
 }
 
 /// Why `run` stopped, worded, if it did.
-fn stopped(run: &GuardedRun) -> Option<String> {
-    run.stop.as_ref().map(words)
+fn stopped(run: &AuditedRun) -> Option<String> {
+    run.stop().map(words)
 }

@@ -4,13 +4,13 @@
 //! 30 s, and the simplified model's blow-up against the integrator.
 
 use anyhow::Result;
-use flexwing::analysis::dynamics::GuardedRun;
+use flexwing::analysis::dynamics::AuditedRun;
 use flexwing::analysis::Stop;
 use flexwing::model::FullModel;
 use flexwing::solve::{solve_static, EquationsOfMotion, Gyroscopic, StaticOptions};
 
 use crate::figure::{Figure, FigureKind, LinesFigure, Panel, Series};
-use crate::integrators::{integrate, long_method, release_method, Integrator, ENERGY_LIMIT};
+use crate::integrators::{integrate, long_method, release_method, Integrator, ENERGY_RUNAWAY};
 use crate::printed::{FIGURE5_MAX_ERROR, TABLE7_RATIO};
 use crate::table::{Cell, Fmt, Table};
 use crate::timing::{duration_text, Timing};
@@ -24,9 +24,9 @@ pub struct Release {
     /// The simulated time (s).
     pub end_time: f64,
     /// The full model's run.
-    pub full: GuardedRun,
+    pub full: AuditedRun,
     /// The simplified model's run (guarded against blowing up).
-    pub simplified: GuardedRun,
+    pub simplified: AuditedRun,
     /// Time of the full model's run.
     pub full_timing: Timing,
     /// Time of the simplified model's run.
@@ -49,7 +49,7 @@ pub struct BlowupRun {
     /// The integrator.
     pub integrator: Integrator,
     /// The run (its stop says when and why it blew up).
-    pub run: GuardedRun,
+    pub run: AuditedRun,
 }
 
 /// Case (a).
@@ -100,9 +100,9 @@ pub fn run(repeats: usize, long_run: f64) -> Result<ReleaseStudy> {
     })
 }
 
-/// The guard of every run: windows of one output interval.
-fn guard() -> Option<(f64, usize)> {
-    Some((ENERGY_LIMIT, 1))
+/// The runaway limit of every run of case (a).
+fn guard() -> Option<f64> {
+    Some(ENERGY_RUNAWAY)
 }
 
 /// The model, its static deflection under the tip force `force`, and the output times.
@@ -121,13 +121,13 @@ fn deflected(force: f64, end_time: f64) -> Result<(FullModel, Vec<f64>, Vec<f64>
 }
 
 /// The simplified model released from the deflection under `force`, with the energy guard.
-fn simplified_release(force: f64, end_time: f64, integrator: &Integrator) -> Result<GuardedRun> {
+fn simplified_release(force: f64, end_time: f64, integrator: &Integrator) -> Result<AuditedRun> {
     let (full, q0, t_out) = deflected(force, end_time)?;
     let none = full.apply(&[], "loads")?;
     let damping = flexwing::solve::Damping::None;
     let mut eom = EquationsOfMotion::new(&full, &none, vec![], Gyroscopic::Neglected, &damping)?;
-    let y0 = eom.state(&q0, &vec![0.0; full.n_dofs()]);
-    Ok(integrate(&mut eom, &y0, &t_out, integrator, guard()))
+    let rest = vec![0.0; full.n_dofs()];
+    Ok(integrate(&mut eom, &q0, &rest, &t_out, integrator, guard()))
 }
 
 fn release(
@@ -139,18 +139,20 @@ fn release(
 ) -> Result<Release> {
     let (full, q0, t_out) = deflected(force, end_time)?;
     let none = full.apply(&[], "loads")?;
-    let go = |g: Gyroscopic| -> Result<(GuardedRun, Timing, Vec<f64>)> {
+    let go = |g: Gyroscopic| -> Result<(AuditedRun, Timing, Vec<f64>)> {
         let damping = flexwing::solve::Damping::None;
         let mut eom = EquationsOfMotion::new(&full, &none, vec![], g, &damping)?;
-        let y0 = eom.state(&q0, &vec![0.0; full.n_dofs()]);
+        let rest = vec![0.0; full.n_dofs()];
         let (run, timing) = if timed {
-            let run = integrate(&mut eom, &y0, &t_out, integrator, guard());
+            let run = integrate(&mut eom, &q0, &rest, &t_out, integrator, guard());
             let timing = Timing::measure(repeats, || {
-                std::hint::black_box(integrate(&mut eom, &y0, &t_out, integrator, guard()).stats);
+                std::hint::black_box(
+                    integrate(&mut eom, &q0, &rest, &t_out, integrator, guard()).stats,
+                );
             });
             (run, timing)
         } else {
-            Timing::once(|| integrate(&mut eom, &y0, &t_out, integrator, guard()))
+            Timing::once(|| integrate(&mut eom, &q0, &rest, &t_out, integrator, guard()))
         };
         let energy = run
             .trajectory
@@ -207,11 +209,11 @@ fn drift(e: &[f64]) -> f64 {
     e.iter().map(|h| (h - h0).abs() / h0).fold(0.0, f64::max)
 }
 
-fn t_reached(run: &GuardedRun) -> f64 {
+fn t_reached(run: &AuditedRun) -> f64 {
     run.trajectory.t.last().copied().unwrap_or(0.0)
 }
 
-fn status(run: &GuardedRun) -> String {
+fn status(run: &AuditedRun) -> String {
     stopped(run).unwrap_or_else(|| "complete".into())
 }
 
@@ -225,7 +227,7 @@ impl Release {
 impl ReleaseStudy {
     /// Why the simplified model released from 150 N stopped, if it did.
     pub fn simplified_stopped(&self) -> Option<&Stop> {
-        self.big.simplified.stop.as_ref()
+        self.big.simplified.stop()
     }
 
     /// Energy drift of the full model over the long run.
@@ -276,7 +278,7 @@ impl ReleaseStudy {
             Cell::time(big.simplified_timing.median),
             Cell::fixed(big.simplified_timing.spread_percent(), 0),
             // A run that stopped early did less work: its time is no measure of the model's cost.
-            if big.simplified.stop.is_none() {
+            if big.simplified.stop().is_none() {
                 Cell::fixed(big.simplified_timing.median / big.full_timing.median, 3)
             } else {
                 Cell::Empty
@@ -437,7 +439,7 @@ impl ReleaseStudy {
              force (tip at ({:.3}, {:.3}) m), no load during the motion; output every 5 ms; {} for \
              both models. Relative errors as in Figure 5: |x_s − x_f| / max|x_f − L| and |y_s − y_f| \
              / max|y_f|, over the time the simplified run reached. A run is stopped when its energy \
-             exceeds {ENERGY_LIMIT} times its initial value. Times: the 1 s run (median of {} \
+             exceeds {ENERGY_RUNAWAY} times its initial value. Times: the 1 s run (median of {} \
              samples); no CPU ratio is given for a run that stopped early. The paper reports relative errors up to {:.0} %.\n\n",
             self.big.initial_tip.0,
             self.big.initial_tip.1,

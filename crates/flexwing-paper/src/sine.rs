@@ -179,16 +179,16 @@ fn run_model<M: StructuralModel>(
         gyroscopic,
         &spec.plan.damping,
     )?;
-    let y0 = vec![0.0; 2 * model.n_dofs()];
+    let rest = vec![0.0; model.n_dofs()];
     let t_out = &spec.plan.output_times;
-    let run = integrate(&mut eom, &y0, t_out, &integrator, None);
+    let run = integrate(&mut eom, &rest, &rest, t_out, &integrator, None);
     if let Some(e) = stopped(&run) {
         anyhow::bail!("case (b), {} dofs: {e}", model.n_dofs());
     }
     let timing = Timing::measure(spec.repeats, || {
-        std::hint::black_box(integrate(&mut eom, &y0, t_out, &integrator, None).stats);
+        std::hint::black_box(integrate(&mut eom, &rest, &rest, t_out, &integrator, None).stats);
     });
-    let converged = integrate(&mut eom, &y0, t_out, &full_reference(), None);
+    let converged = integrate(&mut eom, &rest, &rest, t_out, &full_reference(), None);
     if let Some(e) = stopped(&converged) {
         anyhow::bail!("case (b), {} dofs, converged run: {e}", model.n_dofs());
     }

@@ -180,6 +180,14 @@ pub enum SolveError {
         /// Smallest step tried (s).
         step: f64,
     },
+    /// The system being integrated asked the integrator to stop after an accepted step
+    /// ([`crate::solve::integrate::OdeSystem::step_accepted`]): an energy audit that saw the
+    /// run blow up, or a caller that interrupted it. The caller knows which and says so.
+    #[error("time integration halted at t = {} s by its caller", seconds(.time))]
+    Halted {
+        /// Time reached (s).
+        time: f64,
+    },
     /// The right-hand side produced a non-finite value (NaN or infinity).
     #[error(
         "time integration stopped at t = {} s: the state became non-finite (NaN or infinity)",

@@ -10,11 +10,28 @@ pub mod statics;
 use std::fmt::Display;
 use std::path::{Path, PathBuf};
 
-use flexwing::analysis::Stop;
+use flexwing::analysis::{Doubt, Status, Stop};
 use flexwing::beam::Calibration;
 use flexwing::model::FullModel;
 use flexwing::solve::aeroelastic::FlutterStop;
 use flexwing::text::short;
+
+/// Set once a command has printed its JSON document on stdout, so that `main` prints the
+/// error document of `--json` only when none was printed: stdout always holds exactly one.
+pub static JSON_PRINTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Print `text` (a command's output) on stdout; with `json`, mark the JSON document printed.
+pub fn print_stdout(text: &str, json: bool) -> Result<(), Failure> {
+    use std::io::Write as _;
+    if json {
+        JSON_PRINTED.store(true, std::sync::atomic::Ordering::SeqCst);
+    }
+    let mut stdout = std::io::stdout().lock();
+    stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())
+        .map_err(|e| Failure::run(format!("cannot write to standard output: {e}")))
+}
 
 /// Why a command failed.
 #[derive(Debug)]
@@ -94,26 +111,97 @@ mod tests {
     }
 }
 
-/// Something that did not complete (a model's run, the loaded modes), for `status.txt`, stdout
-/// and stderr.
+/// Something that did not complete (a model's run, the loaded modes), or whose result is
+/// doubtful, for `status.txt`, stdout and stderr.
 #[derive(Debug, Clone)]
 pub struct Incomplete {
     /// The model label, or `loaded modes`.
     pub what: String,
-    /// One-line reason, naming where the solver stopped.
+    /// One-line reason, naming where the solver stopped or what check failed.
     pub message: String,
+    /// `incomplete` (stopped), `interrupted` (by the user) or `suspect` (reached its end, but a
+    /// check of the result failed).
+    pub word: &'static str,
 }
 
-/// `complete`, or one line `incomplete: WHAT: MESSAGE` per thing that did not complete: the text
-/// of `status.txt`.
+impl Incomplete {
+    /// A run that stopped.
+    pub fn stopped(what: impl Into<String>, message: impl Into<String>) -> Self {
+        Self {
+            what: what.into(),
+            message: message.into(),
+            word: "incomplete",
+        }
+    }
+}
+
+/// The word of a whole run: `complete` when nothing is listed, else the worst of the list:
+/// `interrupted`, then `incomplete`, then `suspect`.
+pub fn overall_word(incomplete: &[Incomplete]) -> &'static str {
+    ["interrupted", "incomplete", "suspect"]
+        .into_iter()
+        .find(|w| incomplete.iter().any(|i| i.word == *w))
+        .unwrap_or("complete")
+}
+
+/// `complete`, or one line `WORD: WHAT: MESSAGE` per thing that did not complete or is suspect:
+/// the text of `status.txt`.
 pub fn status_text(incomplete: &[Incomplete]) -> String {
     if incomplete.is_empty() {
         return "complete\n".into();
     }
     incomplete
         .iter()
-        .map(|i| format!("incomplete: {}: {}\n", i.what, i.message))
+        .map(|i| format!("{}: {}: {}\n", i.word, i.what, i.message))
         .collect()
+}
+
+/// What went wrong with a run of `status`, if anything: the stop (worded by [`stop_message`]) or
+/// the doubt ([`doubt_message`]).
+pub fn status_entry(
+    what: &str,
+    status: &Status,
+    sweep: Option<&str>,
+    initial: &[String],
+) -> Option<Incomplete> {
+    match status {
+        Status::Stopped(stop @ Stop::Interrupted { .. }) => Some(Incomplete {
+            what: what.into(),
+            message: stop_message(stop, sweep, initial),
+            word: "interrupted",
+        }),
+        Status::Stopped(stop) => Some(Incomplete::stopped(
+            what,
+            stop_message(stop, sweep, initial),
+        )),
+        Status::Suspect(doubt) => Some(Incomplete {
+            what: what.into(),
+            message: doubt_message(doubt),
+            word: "suspect",
+        }),
+        _ => None,
+    }
+}
+
+/// One line saying why a result is doubtful.
+pub fn doubt_message(doubt: &Doubt) -> String {
+    match doubt {
+        Doubt::EnergyBalance {
+            time,
+            max_error,
+            max_error_time,
+            limit,
+        } => format!(
+            "the energy balance |H − H(0) − W + D| / E exceeded its limit {} at t = {} s \
+             (largest {} at t = {} s): the integration error is larger than the tolerances \
+             suggest; tighten rtol and atol (or max_step), or raise energy_tolerance",
+            short(*limit),
+            short(*time),
+            short(*max_error),
+            short(*max_error_time)
+        ),
+        other => format!("{other:?}"),
+    }
 }
 
 /// One line saying why a run stopped. `sweep` is the name of the swept load of a static sweep,
@@ -165,11 +253,20 @@ pub fn stop_message(stop: &Stop, sweep: Option<&str>, initial: &[String]) -> Str
             branch + 1,
             short(*speed)
         ),
-        Stop::EnergyLimit { time, ratio, limit } => format!(
-            "stopped at t = {} s: the energy grew to {ratio:.3} times its initial value \
-             (a blown-up run; limit {limit})",
-            short(*time)
+        Stop::EnergyRunaway { time, gain, limit } => format!(
+            "stopped at t = {} s: the run created energy that no load supplied, {} times the \
+             energy it held or was given (limit energy_runaway = {}): a blown-up run",
+            short(*time),
+            short(*gain),
+            short(*limit)
         ),
+        Stop::Interrupted { time: Some(t) } => {
+            format!(
+                "interrupted at t = {} s; the output up to there is kept",
+                short(*t)
+            )
+        }
+        Stop::Interrupted { time: None } => "interrupted before it started".into(),
         other => format!("{other:?}"),
     }
 }

@@ -1,7 +1,6 @@
 //! `flexwing modes`: natural frequencies and mode shapes about the undeformed state.
 
 use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
@@ -51,14 +50,21 @@ pub fn run(args: &ModesArgs) -> Result<(), Failure> {
         None => case.modes_plan().map_err(Failure::input)?,
     };
     let model = &plan.model;
-    let results = modes::run(&plan, &mut NoProgress)
-        .map_err(|e| Failure::run(format!("{name}: modal analysis failed: {e}")))?
-        .modes;
-
     let dir = args
         .out
         .clone()
         .unwrap_or_else(|| default_out_dir(&args.case));
+    let previous = [
+        "frequencies.csv",
+        "mode_shapes.csv",
+        "mode_shapes.svg",
+        "mode_shapes.png",
+    ];
+    crate::output::prepare_dir(&dir, &previous, false).map_err(Failure::Run)?;
+    let results = modes::run(&plan, &mut NoProgress)
+        .map_err(|e| Failure::run(format!("{name}: modal analysis failed: {e}")))?
+        .modes;
+
     let files =
         write_files(&dir, &case, &args.case, model, &results, args.plot).map_err(Failure::Run)?;
 
@@ -67,11 +73,7 @@ pub fn run(args: &ModesArgs) -> Result<(), Failure> {
     } else {
         table_report(&case, model, &results, &files)
     };
-    let mut stdout = std::io::stdout().lock();
-    stdout
-        .write_all(text.as_bytes())
-        .and_then(|()| stdout.flush())
-        .map_err(|e| Failure::run(format!("cannot write to standard output: {e}")))
+    super::print_stdout(&text, args.json)
 }
 
 #[derive(Serialize)]

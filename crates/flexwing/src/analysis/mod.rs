@@ -48,4 +48,4 @@ mod status;
 
 pub use models::{ModelKind, ReducedChoice};
 pub use progress::{NoProgress, Progress};
-pub use status::{Status, Stop};
+pub use status::{Doubt, Status, Stop};

@@ -16,6 +16,12 @@ pub trait Progress {
     fn advance(&mut self, fraction: f64);
     /// The current model is done (complete or not).
     fn finish(&mut self) {}
+    /// Whether the caller wants the analysis to stop (Ctrl-C, a cancel button): polled after
+    /// every integrator step and between static points and models; the analysis then returns
+    /// what it computed, the runs stopped with [`super::Stop::Interrupted`]. Default: never.
+    fn cancelled(&mut self) -> bool {
+        false
+    }
 }
 
 impl<F: FnMut(f64)> Progress for F {

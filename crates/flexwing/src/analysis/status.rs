@@ -4,21 +4,40 @@
 use crate::error::{InputError, SolveError};
 use crate::solve::aeroelastic::FlutterStop;
 
-/// How the run of one model ended. More variants may follow (a run that completed but whose
-/// energy balance is doubtful, for example), so match with a wildcard arm.
+/// How the run of one model ended. More variants may follow, so match with a wildcard arm.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum Status {
-    /// Every output time or sweep point was reached.
+    /// Every output time or sweep point was reached and every check of the result passed.
     Complete,
+    /// Every output time was reached, but a check of the result failed: the result is doubtful
+    /// and is not complete.
+    Suspect(Doubt),
     /// The run stopped early; its output up to there is kept.
     Stopped(Stop),
 }
 
 impl Status {
-    /// Whether every output time or sweep point was reached.
+    /// Whether every output time or sweep point was reached and every check passed.
     pub fn is_complete(&self) -> bool {
         matches!(self, Status::Complete)
+    }
+
+    /// `complete`, `suspect` or `incomplete` (stopped): the word of every front end.
+    pub fn word(&self) -> &'static str {
+        match self {
+            Status::Complete => "complete",
+            Status::Suspect(_) => "suspect",
+            Status::Stopped(_) => "incomplete",
+        }
+    }
+
+    /// Why the result is doubtful, if it is.
+    pub fn doubt(&self) -> Option<&Doubt> {
+        match self {
+            Status::Suspect(d) => Some(d),
+            _ => None,
+        }
     }
 
     /// Why the run stopped, if it did.
@@ -55,15 +74,22 @@ pub enum Stop {
     InitialState(SolveError),
     /// The equations of motion could not be set up for this model.
     Equations(InputError),
-    /// The energy grew beyond `limit` times its initial value: `ratio` times at `time` (s), a
-    /// blown-up run.
-    EnergyLimit {
-        /// Output time at which the energy was checked (s).
+    /// The energy audit stopped the run at `time` (s): the energy it created, over the energy it
+    /// held or was given, reached `gain`, beyond `limit` — a blown-up run
+    /// ([`crate::solve::EnergyBalance`]).
+    EnergyRunaway {
+        /// Time of the step at which it was stopped (s).
         time: f64,
-        /// Energy over its initial value.
-        ratio: f64,
-        /// The limit of that ratio.
+        /// `(H − H(0) − W + D) / E` there.
+        gain: f64,
+        /// The runaway limit.
         limit: f64,
+    },
+    /// The caller interrupted the run (Ctrl-C, a cancelled progress callback) at `time` (s; the
+    /// simulated time reached, for a dynamic run).
+    Interrupted {
+        /// Simulated time reached (dynamics), if any.
+        time: Option<f64>,
     },
     /// The static aeroelastic equilibrium at speed `point` (0-based) of `points` was not found
     /// (past divergence, or the solver failed); the speeds before it are kept.
@@ -79,4 +105,23 @@ pub enum Stop {
     },
     /// The flutter analysis stopped before the last speed; its data up to there are kept.
     Flutter(FlutterStop),
+}
+
+/// Why a run that reached its end is doubtful.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Doubt {
+    /// The energy balance `|H − H(0) − W + D| / E` of the run exceeded `limit`, first at `time`
+    /// (s); its largest value was `max_error`, at `max_error_time`. The integration error is
+    /// larger than the tolerance suggests.
+    EnergyBalance {
+        /// First time the error exceeded the limit (s).
+        time: f64,
+        /// Largest relative balance error of the run.
+        max_error: f64,
+        /// Its time (s).
+        max_error_time: f64,
+        /// The limit.
+        limit: f64,
+    },
 }

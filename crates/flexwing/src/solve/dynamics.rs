@@ -12,6 +12,11 @@
 
 use nalgebra::{Complex, DMatrix, DVector};
 
+use std::ops::ControlFlow;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use super::energy_audit::{AuditLimits, EnergyBalance};
 use super::eom_newton::ChainNewton;
 use super::integrate::{NewtonSolver, OdeSystem};
 use crate::error::InputError;
@@ -294,6 +299,15 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     dense: Option<DenseBuffers>,
     newton: NewtonSystems,
     chain: Option<ChainNewton>,
+    /// `state_atol(1.0)`, computed once (O(n²) for the full model).
+    unit_atol: Option<Vec<f64>>,
+    /// The energy audit, if on: its limits and what it found since the last [`Self::state`].
+    audit: Option<EnergyBalance>,
+    /// A flag that, once set, stops the integration after the next accepted step.
+    halt: Option<Arc<AtomicBool>>,
+    /// The shifts of the chain factorizations' slots (real, complex), for the audit's
+    /// quadrature states.
+    shifts: (Vec<f64>, Vec<Complex<f64>>),
     /// Right-hand-side evaluations.
     pub rhs_evaluations: usize,
     /// Jacobian evaluations.
@@ -360,6 +374,10 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             dense: None,
             newton: NewtonSystems::Auto,
             chain: None,
+            unit_atol: None,
+            audit: None,
+            halt: None,
+            shifts: (Vec::new(), Vec::new()),
             rhs_evaluations: 0,
             jacobian_evaluations: 0,
         })
@@ -392,6 +410,78 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             }
     }
 
+    /// The same equations with the energy audit on (module [`super::energy_audit`]): the state
+    /// gets two more components, the work of the loads `W` and the dissipated energy `D`
+    /// (quadrature states, left out of the error control), and the balance
+    /// `H − H(0) − W + D` is checked after every accepted step; a run whose energy gain exceeds
+    /// `limits.runaway` is stopped ([`crate::SolveError::Halted`]). The audit runs from the
+    /// state last built by [`Self::state`]; [`Self::energy_balance`] says what it found.
+    pub fn with_energy_audit(mut self, limits: AuditLimits) -> Self {
+        self.set_energy_audit(Some(limits));
+        self
+    }
+
+    /// Switch the energy audit on with `limits`, or off ([`Self::with_energy_audit`]); the
+    /// state's size changes with it.
+    pub fn set_energy_audit(&mut self, limits: Option<AuditLimits>) {
+        self.audit = limits.map(|l| EnergyBalance::start(l, 0.0));
+    }
+
+    /// The same equations, stopped after the next accepted step once `flag` is set (by another
+    /// thread, a signal handler or a progress callback): the integrator returns the output so
+    /// far with [`crate::SolveError::Halted`].
+    pub fn with_halt(mut self, flag: Option<Arc<AtomicBool>>) -> Self {
+        self.set_halt(flag);
+        self
+    }
+
+    /// Set or clear the halt flag ([`Self::with_halt`]).
+    pub fn set_halt(&mut self, flag: Option<Arc<AtomicBool>>) {
+        self.halt = flag;
+    }
+
+    /// What the energy audit found since the last [`Self::state`]; `None` without the audit.
+    pub fn energy_balance(&self) -> Option<&EnergyBalance> {
+        self.audit.as_ref()
+    }
+
+    /// The work of the loads `W` and the dissipated energy `D` (J) carried by an audited state
+    /// `y`; `None` without the audit.
+    pub fn work_and_dissipation(&self, y: &[f64]) -> Option<(f64, f64)> {
+        let n2 = 2 * self.n;
+        self.audit.as_ref().map(|_| (y[n2], y[n2 + 1]))
+    }
+
+    /// The energy that an error of `atol` (rad) in every coordinate, and the matching error in
+    /// every momentum ([`Self::state_atol`]), carries (J): `Σ_k K_kk a_k²`. The energy audit
+    /// does not judge energies below it.
+    pub fn energy_resolution(&mut self, atol: f64) -> f64 {
+        let unit = self.unit_atol();
+        let n = self.n;
+        (0..n)
+            .map(|k| {
+                let stiffness = match &self.k_diag {
+                    Some(d) => d[k],
+                    None => self.k[(k, k)],
+                };
+                stiffness * (atol * unit[k]).powi(2)
+            })
+            .sum()
+    }
+
+    /// `state_atol(1.0)`, computed on first use and kept.
+    fn unit_atol(&mut self) -> Vec<f64> {
+        if self.unit_atol.is_none() {
+            self.unit_atol = Some(self.state_atol(1.0));
+        }
+        self.unit_atol.clone().unwrap_or_default()
+    }
+
+    /// How the gyroscopic term is obtained.
+    pub fn gyroscopic(&self) -> Gyroscopic {
+        self.gyroscopic
+    }
+
     /// Number of coordinates `x` (the state has twice as many).
     pub fn n_dofs(&self) -> usize {
         self.n
@@ -402,12 +492,18 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         self.model
     }
 
-    /// State `(x, p)` for coordinates `x` and velocities `ẋ`.
+    /// State `(x, p)` for coordinates `x` and velocities `ẋ`; with the energy audit, followed
+    /// by `W = D = 0`, and the audit restarts from it.
     pub fn state(&mut self, x: &[f64], xdot: &[f64]) -> Vec<f64> {
         let mut y = x.to_vec();
         let mut p = vec![0.0; self.n];
         self.model.momentum_into(x, xdot, &mut self.ws, &mut p);
         y.extend(p);
+        if let Some(limits) = self.audit.as_ref().map(|a| a.limits) {
+            let (kinetic, strain) = self.energies(&y);
+            self.audit = Some(EnergyBalance::start(limits, kinetic + strain));
+            y.extend([0.0, 0.0]);
+        }
         y
     }
 
@@ -489,7 +585,7 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
 
     /// Velocities `ẋ = M(x)⁻¹ p` of the state `y`.
     pub fn velocities(&mut self, y: &[f64]) -> Vec<f64> {
-        let (x, p) = y.split_at(self.n);
+        let (x, p) = (&y[..self.n], &y[self.n..2 * self.n]);
         self.solve_velocities(x, p);
         self.xdot.clone()
     }
@@ -497,9 +593,9 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     /// Energies of the state `y`: (kinetic `½ pᵀ ẋ`, strain `½ xᵀ K x`) (J).
     pub fn energies(&mut self, y: &[f64]) -> (f64, f64) {
         let n = self.n;
-        let v = self.velocities(y);
-        let kinetic = 0.5 * y[n..].iter().zip(&v).map(|(a, b)| a * b).sum::<f64>();
-        let x = &y[..n];
+        let (x, p) = (&y[..n], &y[n..2 * n]);
+        self.solve_velocities(x, p);
+        let kinetic = 0.5 * p.iter().zip(&self.xdot).map(|(a, b)| a * b).sum::<f64>();
         let strain = 0.5
             * match &self.k_diag {
                 Some(k) => (0..n).map(|i| k[i] * x[i] * x[i]).sum::<f64>(),
@@ -588,19 +684,42 @@ fn damping_matrix<M: StructuralModel>(
 
 impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
     fn dim(&self) -> usize {
-        2 * self.n
+        2 * self.n + if self.audit.is_some() { 2 } else { 0 }
     }
 
-    /// One tolerance on the coordinates (rad) with consistent momenta, as [`Self::state_atol`].
+    /// One tolerance on the coordinates (rad) with consistent momenta, as [`Self::state_atol`];
+    /// the audit's quadrature states are not error-controlled.
     fn atol_scale(&mut self, scale: &mut [f64]) {
         // `state_atol` is linear in its tolerance: at 1 it gives the scales.
-        scale.copy_from_slice(&self.state_atol(1.0));
+        let n2 = 2 * self.n;
+        scale[..n2].copy_from_slice(&self.unit_atol());
+        scale[n2..].fill(f64::INFINITY);
+    }
+
+    /// The halt flag, then the energy audit's check of the balance at the step's end.
+    fn step_accepted(&mut self, t: f64, y: &[f64]) -> ControlFlow<()> {
+        if self
+            .halt
+            .as_ref()
+            .is_some_and(|h| h.load(Ordering::Relaxed))
+        {
+            return ControlFlow::Break(());
+        }
+        if self.audit.is_none() {
+            return ControlFlow::Continue(());
+        }
+        let (kinetic, strain) = self.energies(y);
+        let n2 = 2 * self.n;
+        match &mut self.audit {
+            Some(audit) => audit.check(t, kinetic + strain, y[n2], y[n2 + 1]),
+            None => ControlFlow::Continue(()),
+        }
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         self.rhs_evaluations += 1;
         let n = self.n;
-        let (x, p) = y.split_at(n);
+        let (x, p) = (&y[..n], &y[n..2 * n]);
         self.solve_velocities(x, p);
         self.update_scales(t);
         self.model.generalized_forces_into(
@@ -618,10 +737,14 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
             Gyroscopic::FiniteDifference { step } => self.gyroscopic_fd(x, p, step),
             Gyroscopic::Neglected => self.gamma.fill(0.0),
         }
-        let (dx, dp) = dy.split_at_mut(n);
+        let (dx, rest) = dy.split_at_mut(n);
+        let (dp, quadrature) = rest.split_at_mut(n);
         dx.copy_from_slice(&self.xdot);
+        // The audit's rates: power of the loads ẋ·Q and of the damping ẋᵀ C ẋ.
+        let (mut power, mut dissipation) = (0.0, 0.0);
         for i in 0..n {
             let mut v = self.force[i] + self.gamma[i];
+            power += self.xdot[i] * self.force[i];
             match &self.k_diag {
                 Some(k) => v -= k[i] * x[i],
                 None => {
@@ -631,11 +754,18 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
                 }
             }
             if let Some(c) = &self.c {
+                let mut cx = 0.0;
                 for j in 0..n {
-                    v -= c[(i, j)] * self.xdot[j];
+                    cx += c[(i, j)] * self.xdot[j];
                 }
+                v -= cx;
+                dissipation += self.xdot[i] * cx;
             }
             dp[i] = v;
+        }
+        if let [w, d] = quadrature {
+            *w = power;
+            *d = dissipation;
         }
     }
 
@@ -647,7 +777,14 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         // approximate Jacobian).
         self.jacobian_evaluations += 1;
         let n = self.n;
-        let (x, p) = y.split_at(n);
+        let (x, p) = (&y[..n], &y[n..2 * n]);
+        if self.audit.is_some() {
+            // The quadrature states feed back into nothing, and their own rows are left zero:
+            // a simplified Newton that is exact for them once the other stages converge.
+            let n2 = 2 * n;
+            jac.rows_mut(n2, 2).fill(0.0);
+            jac.columns_mut(n2, 2).fill(0.0);
+        }
         self.update_scales(t);
         if !self.solve_velocities(x, p) {
             jac.fill(f64::NAN);
@@ -748,13 +885,16 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
         for (s, f) in self.scales.iter_mut().zip(&self.time_functions) {
             *s = f.at(t);
         }
-        chain.linearize(full, self.loads, &self.scales, y)
+        chain.linearize(full, self.loads, &self.scales, &y[..2 * self.n])
     }
 
     fn factor_real(&mut self, slot: usize, c: f64) -> bool {
         let model = self.model;
         match (model.as_full_model(), self.chain.as_mut()) {
-            (Some(full), Some(chain)) => chain.factor_real(full, slot, c),
+            (Some(full), Some(chain)) => {
+                set_slot(&mut self.shifts.0, slot, c);
+                chain.factor_real(full, slot, c)
+            }
             _ => false,
         }
     }
@@ -762,22 +902,42 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
     fn factor_complex(&mut self, slot: usize, c: Complex<f64>) -> bool {
         let model = self.model;
         match (model.as_full_model(), self.chain.as_mut()) {
-            (Some(full), Some(chain)) => chain.factor_complex(full, slot, c),
+            (Some(full), Some(chain)) => {
+                set_slot(&mut self.shifts.1, slot, c);
+                chain.factor_complex(full, slot, c)
+            }
             _ => false,
         }
     }
 
     fn solve_real(&mut self, slot: usize, b: &mut [f64]) {
         let model = self.model;
+        let n2 = 2 * self.n;
         if let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) {
-            chain.solve_real(full, slot, b);
+            chain.solve_real(full, slot, &mut b[..n2]);
+        }
+        // The audit's quadrature states: zero rows of the Jacobian, so `c Δ = r`.
+        let c = self.shifts.0.get(slot).copied().unwrap_or(1.0);
+        for v in &mut b[n2..] {
+            *v /= c;
         }
     }
 
     fn solve_complex(&mut self, slot: usize, re: &mut [f64], im: &mut [f64]) {
         let model = self.model;
+        let n2 = 2 * self.n;
         if let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) {
-            chain.solve_complex(full, slot, re, im);
+            chain.solve_complex(full, slot, &mut re[..n2], &mut im[..n2]);
+        }
+        let c = self
+            .shifts
+            .1
+            .get(slot)
+            .copied()
+            .unwrap_or(Complex::new(1.0, 0.0));
+        for (r, i) in re[n2..].iter_mut().zip(&mut im[n2..]) {
+            let v = Complex::new(*r, *i) / c;
+            (*r, *i) = (v.re, v.im);
         }
     }
 
@@ -797,6 +957,14 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
     fn newton_tolerance(&self) -> Option<f64> {
         self.chain.as_ref().map(|c| c.newton_tolerance())
     }
+}
+
+/// `slots[slot] = value`, growing `slots` as needed.
+fn set_slot<T: Copy + Default>(slots: &mut Vec<T>, slot: usize, value: T) {
+    if slots.len() <= slot {
+        slots.resize(slot + 1, T::default());
+    }
+    slots[slot] = value;
 }
 
 #[cfg(test)]

@@ -4,6 +4,7 @@ pub mod aeroelastic;
 mod continuation;
 mod dynamics;
 mod eigen;
+mod energy_audit;
 mod eom_newton;
 pub mod integrate;
 mod lanczos;
@@ -17,6 +18,7 @@ pub use dynamics::{
     Damping, EquationsOfMotion, Gyroscopic, NewtonSystems, TimeFunction, CHAIN_NEWTON_MIN_DOFS,
 };
 pub use eigen::generalized_symmetric_eigen;
+pub use energy_audit::{AuditLimits, EnergyBalance};
 pub use modes::{ModeShape, Modes, ModesMethod, ModesStats, DENSE_MAX_DOFS};
 pub use newton_tangent::CHAIN_TANGENT_MIN_DOFS;
 pub use statics::{

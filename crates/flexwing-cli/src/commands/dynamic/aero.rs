@@ -7,7 +7,6 @@
 //! Non-finite numbers (none expected) are written as empty fields (CSV) or `null` (JSON).
 
 use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use flexwing::analysis::aero::response::{self, AeroDynamicOutcome, AeroDynamicRun};
@@ -119,10 +118,24 @@ fn summary(r: &AeroDynamicRun, incomplete: &[Incomplete]) -> SummaryRow {
     }
 }
 
+/// Every result file a run may write (besides `status.txt`): removed before a run, so that a
+/// folder holds one run's files only.
+pub const FILES: &[&str] = &[
+    "dynamic_aero.csv",
+    "dynamic_summary.csv",
+    "dynamic_tip.svg",
+    "dynamic_tip.png",
+];
+
 /// Run the aeroelastic response of the case.
 pub fn run(args: &DynamicArgs, case: &Case) -> Result<(), Failure> {
     let name = args.case.display().to_string();
     let plan = case.aero_dynamic_plan().map_err(Failure::input)?;
+    let dir = args
+        .out
+        .clone()
+        .unwrap_or_else(|| default_out_dir(&args.case));
+    crate::output::prepare_dir(&dir, FILES, true).map_err(Failure::Run)?;
     let result = response::run(&plan, &mut NoProgress).map_err(|e| match e {
         Error::Input(e) => Failure::input(format!("{name}: {e}")),
         e => Failure::run(format!("{name}: {e}")),
@@ -131,19 +144,14 @@ pub fn run(args: &DynamicArgs, case: &Case) -> Result<(), Failure> {
         .runs
         .iter()
         .filter_map(|r| {
-            r.status.stop().map(|stop| Incomplete {
-                what: r.kind.label(),
-                message: stop_message(stop, None, &[]),
-            })
+            r.status
+                .stop()
+                .map(|stop| Incomplete::stopped(r.kind.label(), stop_message(stop, None, &[])))
         })
         .collect();
     let s = &plan.structure;
     let model = model_line(&s.model);
     let aero = aero_line(plan.aero.aerodynamics, plan.aero.density);
-    let dir = args
-        .out
-        .clone()
-        .unwrap_or_else(|| default_out_dir(&args.case));
     let title = case.title.clone().unwrap_or_else(|| name.clone());
     let written = write_files(
         &dir,
@@ -191,11 +199,7 @@ pub fn run(args: &DynamicArgs, case: &Case) -> Result<(), Failure> {
     } else {
         tables(case, &model, &aero, &result, &incomplete, &written)
     };
-    let mut stdout = std::io::stdout().lock();
-    let printed = stdout
-        .write_all(text.as_bytes())
-        .and_then(|()| stdout.flush())
-        .map_err(|e| Failure::run(format!("cannot write to standard output: {e}")));
+    let printed = crate::commands::print_stdout(&text, args.json);
     if let Some(first) = incomplete.first() {
         return Err(Failure::run(format!(
             "{name}: {}: {} (see status.txt)",

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use flexwing::analysis::dynamics::ModelRun;
+use flexwing::analysis::Status;
 
 use super::Outcome;
 use crate::commands::statics::report::short;
@@ -23,6 +24,9 @@ struct TipRow {
     kinetic_J: f64,
     strain_J: f64,
     total_J: f64,
+    work_J: f64,
+    dissipated_J: f64,
+    energy_balance_error: f64,
 }
 
 #[derive(Serialize)]
@@ -50,8 +54,23 @@ struct SummaryRow {
     max_tip_difference_m: Option<f64>,
     max_relative_error_tip_x: Option<f64>,
     max_relative_error_tip_y: Option<f64>,
+    energy_balance_max_error: Option<f64>,
+    energy_balance_max_error_t_s: Option<f64>,
+    energy_balance_limit: Option<f64>,
     status: &'static str,
 }
+
+/// Every file a run may write into its folder (removed before a new run).
+pub const FILES: &[&str] = &[
+    "dynamic_tip.csv",
+    "dynamic_nodes.csv",
+    "dynamic_summary.csv",
+    "dynamic_tip.svg",
+    "dynamic_tip.png",
+    "dynamic_snapshots.svg",
+    "dynamic_snapshots.png",
+    "status.txt",
+];
 
 /// Write every result file into `dir`; returns the paths in the order written.
 pub fn write_files(
@@ -77,6 +96,9 @@ pub fn write_files(
                 kinetic_J: p.kinetic,
                 strain_J: p.strain,
                 total_J: p.total(),
+                work_J: p.work,
+                dissipated_J: p.dissipated,
+                energy_balance_error: p.balance_error,
             })
         }),
     )?;
@@ -120,11 +142,10 @@ pub fn write_files(
             max_tip_difference_m: r.comparison.map(|c| c.max_tip_difference),
             max_relative_error_tip_x: r.comparison.and_then(|c| c.relative_x),
             max_relative_error_tip_y: r.comparison.and_then(|c| c.relative_y),
-            status: if r.status.is_complete() {
-                "complete"
-            } else {
-                "incomplete"
-            },
+            energy_balance_max_error: r.energy.as_ref().map(|e| e.max_error),
+            energy_balance_max_error_t_s: r.energy.as_ref().map(|e| e.max_error_time),
+            energy_balance_limit: r.energy.as_ref().and_then(|e| e.limits.balance),
+            status: super::report::status(r),
         }),
     )?;
     files.push(summary);
@@ -166,10 +187,11 @@ fn legend(run: &ModelRun, first: bool) -> String {
     } else {
         format!("{label} (dashed, {dofs})")
     };
-    match (run.status.is_complete(), run.samples.last()) {
-        (false, Some(s)) => format!("{kind}: stopped at t = {} s", short(s.t)),
-        (false, None) => format!("{kind}: failed"),
-        (true, _) => kind,
+    match (&run.status, run.samples.last()) {
+        (Status::Complete, _) => kind,
+        (Status::Suspect(_), _) => format!("{kind}: suspect (energy balance)"),
+        (_, Some(s)) => format!("{kind}: stopped at t = {} s", short(s.t)),
+        (_, None) => format!("{kind}: failed"),
     }
 }
 

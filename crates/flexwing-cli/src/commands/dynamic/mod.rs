@@ -11,14 +11,14 @@ mod files;
 mod progress;
 mod report;
 
-use std::io::{IsTerminal as _, Write as _};
+use std::io::IsTerminal as _;
 use std::path::PathBuf;
 
 use clap::Args;
 use flexwing::analysis::dynamics::{self, DynamicOutcome, Initial, ModelRun};
 use flexwing::Error;
 
-use super::{default_out_dir, model_line, stop_message, Failure};
+use super::{default_out_dir, model_line, overall_word, status_entry, Failure};
 use flexwing_case::Case;
 use progress::Progress;
 
@@ -92,13 +92,9 @@ impl Outcome {
         &self.result.runs
     }
 
-    /// `complete` or `incomplete`.
+    /// `complete`, `suspect`, `incomplete` or `interrupted` ([`overall_word`]).
     pub fn status(&self) -> &'static str {
-        if self.incomplete.is_empty() {
-            "complete"
-        } else {
-            "incomplete"
-        }
+        overall_word(&self.incomplete)
     }
 
     /// `LABEL: MESSAGE` of everything incomplete, joined by `; `; `None` when complete.
@@ -135,6 +131,12 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
     let plot_indices = plot_indices(n_out);
     plan.snapshots = node_indices.iter().chain(&plot_indices).copied().collect();
 
+    let dir = args
+        .out
+        .clone()
+        .unwrap_or_else(|| default_out_dir(&args.case));
+    crate::output::prepare_dir(&dir, files::FILES, true).map_err(Failure::Run)?;
+
     let show_progress = !args.json && std::io::stderr().is_terminal();
     let mut progress = Progress::new(show_progress);
     let result = dynamics::run(&plan, &mut progress).map_err(|e| match e {
@@ -150,12 +152,7 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
     let incomplete = result
         .runs
         .iter()
-        .filter_map(|r| {
-            r.status.stop().map(|stop| Incomplete {
-                what: r.kind.label(),
-                message: stop_message(stop, None, &initial_names),
-            })
-        })
+        .filter_map(|r| status_entry(&r.kind.label(), &r.status, None, &initial_names))
         .collect();
     let full = &plan.model;
     let outcome = Outcome {
@@ -176,21 +173,13 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
         incomplete,
     };
 
-    let dir = args
-        .out
-        .clone()
-        .unwrap_or_else(|| default_out_dir(&args.case));
     let written = files::write_files(&dir, &outcome, &case, args.plot).map_err(Failure::Run)?;
     let text = if args.json {
         report::json(&outcome, &written)
     } else {
         report::tables(&outcome, &written)
     };
-    let mut stdout = std::io::stdout().lock();
-    let printed = stdout
-        .write_all(text.as_bytes())
-        .and_then(|()| stdout.flush())
-        .map_err(|e| Failure::run(format!("cannot write to standard output: {e}")));
+    let printed = super::print_stdout(&text, args.json);
     if let Some(first) = outcome.incomplete.first() {
         let others: Vec<&str> = outcome.incomplete[1..]
             .iter()
@@ -199,11 +188,14 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
         let also = if others.is_empty() {
             String::new()
         } else {
-            format!(" (also incomplete: {}; see status.txt)", others.join(", "))
+            format!(
+                " (also not complete: {}; see status.txt)",
+                others.join(", ")
+            )
         };
         return Err(Failure::run(format!(
-            "{name}: {}: {}{also}",
-            first.what, first.message
+            "{name}: {}: {}: {}{also}",
+            first.what, first.word, first.message
         )));
     }
     printed

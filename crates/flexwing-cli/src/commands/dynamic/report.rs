@@ -4,6 +4,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use flexwing::analysis::dynamics::{DynamicPlan, Initial, ModelRun, Sample};
+use flexwing::analysis::Stop;
 use flexwing::solve::integrate::Method;
 use flexwing::solve::{Damping, Gyroscopic, TimeFunction};
 use serde::Serialize;
@@ -106,11 +107,11 @@ fn last(run: &ModelRun) -> Option<&Sample> {
     run.samples.last()
 }
 
-fn status(run: &ModelRun) -> &'static str {
-    if run.status.is_complete() {
-        "complete"
-    } else {
-        "incomplete"
+/// `complete`, `suspect`, `incomplete` or `interrupted`.
+pub fn status(run: &ModelRun) -> &'static str {
+    match run.status.stop() {
+        Some(Stop::Interrupted { .. }) => "interrupted",
+        _ => run.status.word(),
     }
 }
 
@@ -192,7 +193,7 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
             Box::new(|r| opt(last(r).map(|p| p.tip_twist), &|v| format!("{v:.6}"))),
         ));
     }
-    rows.extend::<[(&str, Cell); 4]>([
+    rows.extend::<[(&str, Cell); 6]>([
         (
             "max Δtip from first (m)",
             Box::new(|r| {
@@ -215,6 +216,23 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
                 opt(r.comparison.and_then(|c| c.relative_y), &|v| {
                     format!("{v:.2e}")
                 })
+            }),
+        ),
+        (
+            "energy balance error",
+            Box::new(|r| {
+                opt(r.energy.as_ref().map(|e| e.max_error), &|v| {
+                    format!("{v:.2e}")
+                })
+            }),
+        ),
+        (
+            "energy balance limit",
+            Box::new(|r| match r.energy.as_ref().map(|e| e.limits.balance) {
+                Some(Some(l)) => format!("{l:.1e}"),
+                // The simplified model has no balance: its error is the energy it creates.
+                Some(None) => "none".into(),
+                None => MISSING.into(),
             }),
         ),
         ("status", Box::new(|r| status(r).into())),
@@ -261,7 +279,7 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
         let _ = writeln!(s, "status: complete");
     }
     for i in &outcome.incomplete {
-        let _ = writeln!(s, "status: incomplete: {}: {}", i.what, i.message);
+        let _ = writeln!(s, "status: {}: {}: {}", i.word, i.what, i.message);
     }
     for f in files {
         let _ = writeln!(s, "wrote {}", f.display());
@@ -338,6 +356,26 @@ struct JsonModel<'a> {
     t_s: Vec<f64>,
     tip: JsonTip,
     energy: JsonEnergy,
+    energy_audit: Option<JsonAudit>,
+}
+
+/// What the energy audit of a run found (docs/validation.md, "Energy audit").
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+struct JsonAudit {
+    /// Whether the model has an energy balance (all but the simplified model).
+    balanced: bool,
+    /// `max_t |H − H(0) − W + D| / E`: for the simplified model, the energy its equations create.
+    max_error: f64,
+    max_error_t_s: f64,
+    /// The limit of `max_error` (none for the simplified model).
+    limit: Option<f64>,
+    /// First time the limit was exceeded.
+    exceeded_t_s: Option<f64>,
+    /// The runaway limit, and when the run was stopped by it.
+    runaway_limit: f64,
+    runaway_t_s: Option<f64>,
+    reference_energy_J: f64,
 }
 
 #[derive(Serialize)]
@@ -369,6 +407,9 @@ struct JsonEnergy {
     kinetic_J: Vec<f64>,
     strain_J: Vec<f64>,
     total_J: Vec<f64>,
+    work_J: Vec<f64>,
+    dissipated_J: Vec<f64>,
+    balance_error: Vec<f64>,
 }
 
 fn json_model<'a>(outcome: &'a Outcome, r: &'a ModelRun) -> JsonModel<'a> {
@@ -407,7 +448,20 @@ fn json_model<'a>(outcome: &'a Outcome, r: &'a ModelRun) -> JsonModel<'a> {
             kinetic_J: column(|p| p.kinetic),
             strain_J: column(|p| p.strain),
             total_J: column(Sample::total),
+            work_J: column(|p| p.work),
+            dissipated_J: column(|p| p.dissipated),
+            balance_error: column(|p| p.balance_error),
         },
+        energy_audit: r.energy.as_ref().map(|e| JsonAudit {
+            balanced: e.limits.balance.is_some(),
+            max_error: e.max_error,
+            max_error_t_s: e.max_error_time,
+            limit: e.limits.balance,
+            exceeded_t_s: e.exceeded_at,
+            runaway_limit: e.limits.runaway,
+            runaway_t_s: e.runaway_at,
+            reference_energy_J: e.reference,
+        }),
     }
 }
 

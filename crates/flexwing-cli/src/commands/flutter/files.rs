@@ -76,6 +76,20 @@ fn methods(r: &FlutterRun) -> impl Iterator<Item = (&'static str, &Stability)> {
     std::iter::once(("eigenvalues", &r.stability)).chain(r.pk.as_ref().map(|p| ("p-k", p)))
 }
 
+/// Every result file a run may write (besides `status.txt`): removed before a run, so that a
+/// folder holds one run's files only.
+pub const FILES: &[&str] = &[
+    "flutter_summary.csv",
+    "flutter_crossings.csv",
+    "flutter_vg.csv",
+    "flutter_equilibria.csv",
+    "flutter_nodes.csv",
+    "flutter_vg.svg",
+    "flutter_vg.png",
+    "flutter_shapes.svg",
+    "flutter_shapes.png",
+];
+
 /// Write every result file into `dir`; returns the paths in the order written.
 pub fn write_files(dir: &Path, outcome: &Outcome, with_plot: bool) -> anyhow::Result<Vec<PathBuf>> {
     output::create_dir(dir)?;

@@ -11,7 +11,6 @@
 mod files;
 mod report;
 
-use std::io::Write as _;
 use std::path::PathBuf;
 
 use clap::Args;
@@ -126,6 +125,11 @@ pub fn run(args: &FlutterArgs) -> Result<(), Failure> {
     let name = args.case.display().to_string();
     let case = Case::load(&args.case).map_err(Failure::input)?;
     let plan = case.flutter_plan().map_err(Failure::input)?;
+    let dir = args
+        .out
+        .clone()
+        .unwrap_or_else(|| default_out_dir(&args.case));
+    crate::output::prepare_dir(&dir, files::FILES, true).map_err(Failure::Run)?;
     let result = flutter::run(&plan, &mut NoProgress).map_err(|e| match e {
         Error::Input(e) => Failure::input(format!("{name}: {e}")),
         e => Failure::run(format!("{name}: {e}")),
@@ -135,16 +139,16 @@ pub fn run(args: &FlutterArgs) -> Result<(), Failure> {
     for r in &result.runs {
         let label = r.kind.label();
         if let Some(stop) = r.status.stop() {
-            incomplete.push(Incomplete {
-                what: label.clone(),
-                message: stop_message(stop, None, &[]),
-            });
+            incomplete.push(Incomplete::stopped(
+                label.clone(),
+                stop_message(stop, None, &[]),
+            ));
         }
         for stop in &r.other_stops {
-            incomplete.push(Incomplete {
-                what: format!("{label} p-k"),
-                message: stop_message(stop, None, &[]),
-            });
+            incomplete.push(Incomplete::stopped(
+                format!("{label} p-k"),
+                stop_message(stop, None, &[]),
+            ));
         }
         if let Some(stop) = r.equilibria_status.stop() {
             notes.push(format!(
@@ -182,21 +186,13 @@ pub fn run(args: &FlutterArgs) -> Result<(), Failure> {
         incomplete,
         notes,
     };
-    let dir = args
-        .out
-        .clone()
-        .unwrap_or_else(|| default_out_dir(&args.case));
     let written = files::write_files(&dir, &outcome, args.plot).map_err(Failure::Run)?;
     let text = if args.json {
         report::json(&outcome, &written)
     } else {
         report::tables(&outcome, &written)
     };
-    let mut stdout = std::io::stdout().lock();
-    let printed = stdout
-        .write_all(text.as_bytes())
-        .and_then(|()| stdout.flush())
-        .map_err(|e| Failure::run(format!("cannot write to standard output: {e}")));
+    let printed = super::print_stdout(&text, args.json);
     if let Some(first) = outcome.incomplete.first() {
         return Err(Failure::run(format!(
             "{name}: {}: {} (see status.txt)",

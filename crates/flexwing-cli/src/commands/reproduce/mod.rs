@@ -47,10 +47,7 @@ impl Run {
     fn fail(&mut self, what: &str, e: &anyhow::Error) {
         let message = format!("{e:#}");
         eprintln!("error: {what}: {message}");
-        self.failed.push(Incomplete {
-            what: what.into(),
-            message,
-        });
+        self.failed.push(Incomplete::stopped(what, message));
     }
 
     /// Write the files of `section` (part `what`) into `dir` and keep it for the report.

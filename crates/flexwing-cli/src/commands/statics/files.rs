@@ -52,6 +52,17 @@ struct FrequencyRow {
     frequency_hz: f64,
 }
 
+/// Every file a run may write into its folder (removed before a new run).
+pub const FILES: &[&str] = &[
+    "static_tip.csv",
+    "static_nodes.csv",
+    "static_summary.csv",
+    "loaded_frequencies.csv",
+    "static_shapes.svg",
+    "static_shapes.png",
+    "status.txt",
+];
+
 /// Write every result file into `dir`; returns the paths in the order written.
 pub fn write_files(
     dir: &Path,

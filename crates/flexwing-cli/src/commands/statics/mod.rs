@@ -9,7 +9,6 @@ mod aero;
 mod files;
 pub(crate) mod report;
 
-use std::io::Write as _;
 use std::path::PathBuf;
 
 use clap::Args;
@@ -18,7 +17,7 @@ use flexwing::analysis::NoProgress;
 use flexwing::model::Load;
 use flexwing::Error;
 
-use super::{default_out_dir, model_line, stop_message, Failure};
+use super::{default_out_dir, model_line, overall_word, status_entry, Failure};
 use flexwing_case::Case;
 
 /// Options of `flexwing static`.
@@ -100,13 +99,9 @@ impl Outcome {
             .map(|i| i.message.as_str())
     }
 
-    /// `complete` or `incomplete`.
+    /// `complete`, `suspect`, `incomplete` or `interrupted` ([`overall_word`]).
     pub fn status(&self) -> &'static str {
-        if self.incomplete.is_empty() {
-            "complete"
-        } else {
-            "incomplete"
-        }
+        overall_word(&self.incomplete)
     }
 
     /// `LABEL: MESSAGE` of everything incomplete, joined by `; `; `None` when complete.
@@ -129,6 +124,11 @@ pub fn run(args: &StaticArgs) -> Result<(), Failure> {
         return aero::run(args, &case);
     }
     let plan = case.static_plan().map_err(Failure::input)?;
+    let dir = args
+        .out
+        .clone()
+        .unwrap_or_else(|| default_out_dir(&args.case));
+    crate::output::prepare_dir(&dir, files::FILES, true).map_err(Failure::Run)?;
     let result = statics::run(&plan, &mut NoProgress).map_err(|e| match e {
         Error::Input(e) => Failure::input(format!("{name}: {e}")),
         e => Failure::run(format!(
@@ -143,17 +143,12 @@ pub fn run(args: &StaticArgs) -> Result<(), Failure> {
         .runs
         .iter()
         .filter_map(|r| {
-            r.status.stop().map(|stop| Incomplete {
-                what: r.kind.label(),
-                message: stop_message(stop, sweep.as_ref().map(|s| s.name.as_str()), &[]),
-            })
+            let sweep = sweep.as_ref().map(|s| s.name.as_str());
+            status_entry(&r.kind.label(), &r.status, sweep, &[])
         })
         .collect();
     if let Some(Err(e)) = &result.loaded_modes {
-        incomplete.push(Incomplete {
-            what: "loaded modes".into(),
-            message: e.to_string(),
-        });
+        incomplete.push(Incomplete::stopped("loaded modes", e.to_string()));
     }
     let full = &plan.model;
     let outcome = Outcome {
@@ -169,10 +164,6 @@ pub fn run(args: &StaticArgs) -> Result<(), Failure> {
         incomplete,
     };
 
-    let dir = args
-        .out
-        .clone()
-        .unwrap_or_else(|| default_out_dir(&args.case));
     let written =
         files::write_files(&dir, &outcome, full, &case, args.plot).map_err(Failure::Run)?;
     let text = if args.json {
@@ -180,11 +171,7 @@ pub fn run(args: &StaticArgs) -> Result<(), Failure> {
     } else {
         report::tables(&outcome, &written)
     };
-    let mut stdout = std::io::stdout().lock();
-    let printed = stdout
-        .write_all(text.as_bytes())
-        .and_then(|()| stdout.flush())
-        .map_err(|e| Failure::run(format!("cannot write to standard output: {e}")));
+    let printed = super::print_stdout(&text, args.json);
     if let Some(first) = outcome.incomplete.first() {
         let others: Vec<&str> = outcome.incomplete[1..]
             .iter()

@@ -6,11 +6,13 @@
 //! A model whose integration stops does not stop the analysis: the other models are simulated,
 //! and each run keeps the output times it reached with the reason it stopped.
 
-mod guard;
+mod audit;
 mod outcome;
 mod run;
 
-pub use guard::{integrate_guarded, EnergyGuard, GuardedRun};
+pub use audit::{
+    integrate_audited, AuditSettings, AuditedRun, DEFAULT_RUNAWAY, MAX_TOLERANCE, MIN_TOLERANCE,
+};
 pub use outcome::{Comparison, DynamicOutcome, ModelRun, Sample, Snapshot};
 pub use run::run;
 
@@ -23,6 +25,15 @@ use crate::text::short;
 
 /// Most output times of a run: every output time keeps a sample per model in memory.
 pub const MAX_OUTPUT_TIMES: usize = 100_000;
+
+/// Smallest `atol` of a dynamic run (rad): below it the error test asks for less than the
+/// round-off of joint rotations of order 1.
+pub const MIN_ATOL: f64 = 1e-15;
+/// Largest `atol` of a dynamic run (rad): a joint-rotation error of 0.1 rad is no answer.
+pub const MAX_ATOL: f64 = 0.1;
+/// Largest `max_steps` of a dynamic run: a budget of a billion steps per model is hours of
+/// computing; a larger one guards against nothing.
+pub const MAX_STEPS: usize = 1_000_000_000;
 
 /// A dynamic analysis. Build it with [`DynamicPlan::new`], set the fields, and check it with
 /// [`DynamicPlan::validate`] under the caller's names.
@@ -63,6 +74,8 @@ pub struct DynamicPlan {
     /// Indices of the output times at which each model's deformed shape is recorded as a
     /// [`Snapshot`] (the tip is recorded at every output time). Default: none.
     pub snapshots: Vec<usize>,
+    /// The energy audit of every run; errors name `{prefix}.energy_tolerance`, ….
+    pub audit: AuditSettings,
 }
 
 /// The state at `t = 0`.
@@ -107,6 +120,7 @@ impl DynamicPlan {
             damping: Damping::None,
             initial: Initial::Rest,
             snapshots: Vec::new(),
+            audit: AuditSettings::default(),
         }
     }
 
@@ -129,6 +143,8 @@ impl DynamicPlan {
         }
         self.check_output_times(prefix)?;
         self.settings.validate(prefix)?;
+        self.check_steps(prefix)?;
+        self.audit.validate(prefix)?;
         self.gyroscopic.validate(&field("gyroscopic_step"))?;
         let n_dofs = self.model.n_dofs();
         let reduced = reduced_models(&self.reduced, &self.reduced_modes, n_dofs, prefix)?;
@@ -161,6 +177,54 @@ impl DynamicPlan {
         }
         self.damping.validate(&field("damping"), n_dofs)?;
         self.check_initial(&field("initial"))
+    }
+
+    /// Bounds of the tolerances and steps that the generic integrator settings do not know:
+    /// `atol` is a joint rotation (rad), at most [`MAX_ATOL`] (a larger error is no answer) and
+    /// at least [`MIN_ATOL`] (below round-off of the joint rotations); `max_steps` at most
+    /// [`MAX_STEPS`]; a fixed step or a step cap so small that the run cannot reach `end_time`
+    /// within `max_steps` is refused before it starts.
+    fn check_steps(&self, prefix: &str) -> Result<(), InputError> {
+        let st = &self.settings;
+        if !(MIN_ATOL..=MAX_ATOL).contains(&st.atol) {
+            return Err(InputError::new(
+                crate::field(prefix, "atol"),
+                format!(
+                    "must be a number in [{}, {}] (rad, an error in the joint rotations), got {}",
+                    short(MIN_ATOL),
+                    short(MAX_ATOL),
+                    short(st.atol)
+                ),
+            ));
+        }
+        if st.max_steps > MAX_STEPS {
+            return Err(InputError::new(
+                crate::field(prefix, "max_steps"),
+                format!(
+                    "must be at most {} (a budget of steps per model), got {}",
+                    short(MAX_STEPS as f64),
+                    short(st.max_steps as f64)
+                ),
+            ));
+        }
+        for (key, h) in [("step", st.step), ("max_step", st.max_step)] {
+            let Some(h) = h else { continue };
+            let needed = self.end_time / h;
+            if needed > st.max_steps as f64 {
+                return Err(InputError::new(
+                    crate::field(prefix, key),
+                    format!(
+                        "{} s needs at least {} steps to reach end_time {} s, more than \
+                         max_steps = {}",
+                        short(h),
+                        short(needed.ceil()),
+                        short(self.end_time),
+                        short(st.max_steps as f64)
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     fn check_output_times(&self, prefix: &str) -> Result<(), InputError> {

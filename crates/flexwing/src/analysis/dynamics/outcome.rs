@@ -6,7 +6,7 @@ use super::super::models::ModelKind;
 use super::super::Status;
 use crate::model::Shape;
 use crate::solve::integrate::{IntegratorStats, Method};
-use crate::solve::Gyroscopic;
+use crate::solve::{EnergyBalance, Gyroscopic};
 
 /// The simulation of one model.
 #[derive(Debug, Clone)]
@@ -27,10 +27,22 @@ pub struct ModelRun {
     pub samples: Vec<Sample>,
     /// The deformed shape at the plan's snapshot times that were reached.
     pub snapshots: Vec<Snapshot>,
-    /// Whether every output time was reached, or where and why the run stopped.
+    /// Whether every output time was reached and the energy balance held, or where and why the
+    /// run stopped or is doubtful.
     pub status: Status,
+    /// What the energy audit found over the accepted steps; `None` if the run did not start
+    /// (its initial state or equations failed).
+    pub energy: Option<EnergyBalance>,
     /// Differences from the first model's tip history (not for the first model itself).
     pub comparison: Option<Comparison>,
+}
+
+impl ModelRun {
+    /// Whether the model has an energy balance (all but the simplified model): its audit error
+    /// is an integration error; the simplified model's is the energy its equations create.
+    pub fn has_energy_balance(&self) -> bool {
+        self.kind != ModelKind::Simplified
+    }
 }
 
 /// The tip and the energies at one output time.
@@ -48,6 +60,14 @@ pub struct Sample {
     pub kinetic: f64,
     /// Strain energy `½ xᵀ K x` (J).
     pub strain: f64,
+    /// Work of the applied loads since `t = 0`, `W = ∫ ẋ·Q dt` (J).
+    pub work: f64,
+    /// Energy dissipated by the structural damping since `t = 0`, `D = ∫ ẋᵀ C ẋ dt` (J).
+    pub dissipated: f64,
+    /// The energy balance `(H − H(0) − W + D) / E` at this time, relative to the energy the run
+    /// has held or been given up to here ([`crate::solve::EnergyBalance`]); positive is energy
+    /// created.
+    pub balance_error: f64,
 }
 
 impl Sample {

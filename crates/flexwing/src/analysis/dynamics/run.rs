@@ -4,13 +4,17 @@
 
 use std::time::Instant;
 
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use super::audit::integrate_audited;
 use super::outcome::{compare_with_first, DynamicOutcome, ModelRun, Sample, Snapshot};
 use super::{DynamicPlan, Initial};
 use crate::analysis::models::ModelKind;
 use crate::analysis::{Progress, Status, Stop};
 use crate::error::{Error, SolveError};
 use crate::model::{AppliedLoads, FullModel, ReducedModel, StructuralModel};
-use crate::solve::integrate::{integrate, IntegratorStats};
+use crate::solve::integrate::IntegratorStats;
 use crate::solve::{solve_static, Damping, EquationsOfMotion, Modes, StaticOptions, TimeFunction};
 
 /// Run the dynamic analysis of `plan`. `progress` hears each model's start and the fraction of
@@ -66,6 +70,14 @@ pub fn run(plan: &DynamicPlan, progress: &mut dyn Progress) -> Result<DynamicOut
     };
     let mut runs = Vec::with_capacity(kinds.len());
     for (k, kind) in kinds.iter().enumerate() {
+        if progress.cancelled() {
+            runs.push(ModelRun::not_run(
+                kind,
+                plan,
+                Stop::Interrupted { time: None },
+            ));
+            continue;
+        }
         progress.start(k, kinds.len(), &kind.label());
         let run = match (kind.mode_indices(), &modes) {
             (Some(indices), Some(modes)) => {
@@ -80,6 +92,25 @@ pub fn run(plan: &DynamicPlan, progress: &mut dyn Progress) -> Result<DynamicOut
     }
     compare_with_first(&mut runs, full.beam().length());
     Ok(DynamicOutcome { runs })
+}
+
+impl ModelRun {
+    /// A run of `kind` that did not get to integrate, with the reason.
+    fn not_run(kind: &ModelKind, plan: &DynamicPlan, stop: Stop) -> Self {
+        ModelRun {
+            kind: kind.clone(),
+            dofs: 0,
+            integrator: plan.integrator,
+            gyroscopic: plan.gyroscopic_of(kind),
+            stats: IntegratorStats::default(),
+            wall_time_s: 0.0,
+            samples: Vec::new(),
+            snapshots: Vec::new(),
+            status: Status::Stopped(stop),
+            energy: None,
+            comparison: None,
+        }
+    }
 }
 
 /// What every model's simulation shares.
@@ -107,16 +138,8 @@ impl Simulator<'_> {
         let plan = self.plan;
         let gyroscopic = plan.gyroscopic_of(kind);
         let mut run = ModelRun {
-            kind: kind.clone(),
             dofs: model.n_dofs(),
-            integrator: plan.integrator,
-            gyroscopic,
-            stats: IntegratorStats::default(),
-            wall_time_s: 0.0,
-            samples: Vec::new(),
-            snapshots: Vec::new(),
-            status: Status::Complete,
-            comparison: None,
+            ..ModelRun::not_run(kind, plan, Stop::Interrupted { time: None })
         };
         let (x0, xdot0) = match self.initial_state(model, reduced) {
             Ok(s) => s,
@@ -139,36 +162,40 @@ impl Simulator<'_> {
                 return run;
             }
         };
-        let y0 = eom.state(&x0, &xdot0);
         let end = plan.end_time;
-        let mut report = |t: f64| progress.advance((t / end).clamp(0.0, 1.0));
+        // The caller's cancellation, polled after every step, stops the integrator through the
+        // equations' halt flag.
+        let halt = Arc::new(AtomicBool::new(false));
+        let flag = Arc::clone(&halt);
+        let mut report = |t: f64| {
+            progress.advance((t / end).clamp(0.0, 1.0));
+            if progress.cancelled() {
+                flag.store(true, Ordering::Relaxed);
+            }
+        };
         let start = Instant::now();
-        let result = integrate(
+        let audited = integrate_audited(
+            &mut eom,
+            &x0,
+            &xdot0,
+            &plan.output_times,
             plan.integrator,
             &plan.settings,
-            &mut eom,
-            0.0,
-            &y0,
-            &plan.output_times,
+            &plan.audit,
+            Some(halt),
             &mut report,
         );
         run.wall_time_s = start.elapsed().as_secs_f64();
-        let trajectory = match result {
-            Ok((trajectory, stats)) => {
-                run.stats = stats;
-                trajectory
-            }
-            Err(failure) => {
-                run.stats = failure.stats;
-                run.status = Status::Stopped(Stop::Integration(failure.error));
-                failure.trajectory
-            }
-        };
+        run.stats = audited.stats;
+        run.status = audited.status;
+        let trajectory = audited.trajectory;
         let n = model.n_dofs();
+        let balance = audited.balance;
         let mut next_snapshot = self.snapshots.iter().peekable();
         for (index, (&t, y)) in trajectory.t.iter().zip(&trajectory.y).enumerate() {
             let q = model.full_coordinates(&y[..n]);
             let (kinetic, strain) = eom.energies(y);
+            let (work, dissipated) = (y[2 * n], y[2 * n + 1]);
             let shape = self.full.shape(&q);
             let (tip_x, tip_y, tip_twist) = shape.tip();
             run.samples.push(Sample {
@@ -178,12 +205,16 @@ impl Simulator<'_> {
                 tip_twist,
                 kinetic,
                 strain,
+                work,
+                dissipated,
+                balance_error: balance.relative(kinetic + strain, work, dissipated),
             });
             if next_snapshot.peek() == Some(&&index) {
                 next_snapshot.next();
                 run.snapshots.push(Snapshot { index, t, shape });
             }
         }
+        run.energy = Some(balance);
         run
     }
 

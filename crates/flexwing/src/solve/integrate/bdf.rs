@@ -66,12 +66,7 @@ pub struct Bdf {
 }
 
 fn rms(v: &[f64], scale: &[f64]) -> f64 {
-    (v.iter()
-        .zip(scale)
-        .map(|(a, s)| (a / s).powi(2))
-        .sum::<f64>()
-        / v.len().max(1) as f64)
-        .sqrt()
+    super::scaled_rms(v, scale)
 }
 
 /// `R` of the step-size change (Shampine & Reichelt, eq. 2.4).
@@ -263,13 +258,7 @@ impl State {
             self.scale[i] = atol[i] + rtol * self.y_new[i].abs();
         }
         let e = coef.error_const[self.order];
-        let s: f64 = self
-            .dcorr
-            .iter()
-            .zip(&self.scale)
-            .map(|(v, sc)| (e * v / sc).powi(2))
-            .sum();
-        (s / self.dcorr.len().max(1) as f64).sqrt()
+        e.abs() * rms(&self.dcorr, &self.scale)
     }
 
     /// Accept the step: `D^{j+1} y_n = D^j y_n − D^j y_{n−1}` from the correction.
@@ -515,6 +504,9 @@ impl Bdf {
             next_out = st.dense_output(t_new, t_out, next_out, &mut traj);
             st.t = t_new;
             progress(st.t);
+            if system.step_accepted(st.t, &st.d[0]).is_break() {
+                return fail(traj, stats, SolveError::Halted { time: st.t });
+            }
             if st.n_equal_steps < st.order + 1 {
                 continue;
             }

@@ -5,8 +5,8 @@
 //! (the coefficients and the continuous extension of `DOPRI5`).
 
 use super::{
-    check_output_times, error_norm, failure, outputs_at_start, IntegrationResult, IntegratorStats,
-    OdeSystem, Tolerances, Trajectory,
+    check_output_times, error_norm, failure, outputs_at_start, scaled_rms, IntegrationResult,
+    IntegratorStats, OdeSystem, Tolerances, Trajectory,
 };
 use crate::error::SolveError;
 
@@ -207,6 +207,9 @@ impl Dopri5 {
                 k.swap(0, 6); // first same as last
                 stats.steps += 1;
                 progress(t);
+                if system.step_accepted(t, &y).is_break() {
+                    return failure(traj, stats, SolveError::Halted { time: t });
+                }
                 // PI step control (Hairer, Nørsett & Wanner I, §IV.2, as in DOPRI5, β = 0.04):
                 // the previous error damps the oscillation between acceptance and rejection that
                 // a pure I controller shows when the step is limited by stability.
@@ -243,9 +246,7 @@ pub(crate) fn initial_step<S: OdeSystem>(
 ) -> f64 {
     let dim = y.len();
     let sc: Vec<f64> = (0..dim).map(|i| atol[i] + rtol * y[i].abs()).collect();
-    let norm = |v: &[f64]| {
-        (v.iter().zip(&sc).map(|(a, s)| (a / s).powi(2)).sum::<f64>() / dim.max(1) as f64).sqrt()
-    };
+    let norm = |v: &[f64]| scaled_rms(v, &sc);
     let (d0, d1) = (norm(y), norm(f0));
     let h0 = if d0 < 1e-5 || d1 < 1e-5 {
         1e-6

@@ -52,8 +52,8 @@ use nalgebra::DMatrix;
 use super::dopri5::initial_step;
 use super::lu::DenseLu;
 use super::{
-    check_output_times, failure, outputs_at_start, IntegrationResult, IntegratorStats, OdeSystem,
-    Tolerances, Trajectory,
+    check_output_times, failure, outputs_at_start, scaled_rms, IntegrationResult, IntegratorStats,
+    OdeSystem, Tolerances, Trajectory,
 };
 use crate::error::SolveError;
 
@@ -295,12 +295,6 @@ pub(crate) struct Stepper {
     scal: Vec<f64>,
     /// Newton's convergence factor carried from step to step (`RADAU5`'s `FACCON`).
     faccon: f64,
-}
-
-/// RMS norm of `v / scal`.
-fn scaled_rms(v: &[f64], scal: &[f64]) -> f64 {
-    let s: f64 = v.iter().zip(scal).map(|(a, s)| (a / s) * (a / s)).sum();
-    (s / v.len().max(1) as f64).sqrt()
 }
 
 impl Stepper {
@@ -687,6 +681,9 @@ impl GeneralizedAlpha {
             st.accept(&mut step, t_new, h);
             jac_current = false;
             progress(st.t);
+            if system.step_accepted(st.t, &st.y).is_break() {
+                return failure(traj, stats, SolveError::Halted { time: st.t });
+            }
             if last || next_out == t_out.len() {
                 return Ok((traj, stats));
             }

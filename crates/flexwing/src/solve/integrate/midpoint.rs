@@ -7,8 +7,8 @@
 
 use super::dopri5::initial_step;
 use super::{
-    check_output_times, error_norm, failure, outputs_at_start, IntegrationResult, IntegratorStats,
-    IterationMatrices, OdeSystem, Tolerances, Trajectory,
+    check_output_times, error_norm, failure, outputs_at_start, scaled_rms, IntegrationResult,
+    IntegratorStats, IterationMatrices, OdeSystem, Tolerances, Trajectory,
 };
 use crate::error::SolveError;
 
@@ -116,14 +116,7 @@ impl Stage {
                     self.dz[i] = (y0[i] + 0.5 * h * self.f[i] - self.z[i]) * (2.0 / h);
                 }
                 self.mats.solve_real(system, 0, &mut self.dz);
-                let norm = (self
-                    .dz
-                    .iter()
-                    .zip(scale)
-                    .map(|(a, s)| (a / s).powi(2))
-                    .sum::<f64>()
-                    / dim as f64)
-                    .sqrt();
+                let norm = scaled_rms(&self.dz, scale);
                 for i in 0..dim {
                     self.z[i] += self.dz[i];
                 }
@@ -340,6 +333,9 @@ impl ImplicitMidpoint {
             f0.copy_from_slice(&f1);
             stats.steps += 1;
             progress(t);
+            if system.step_accepted(t, &y).is_break() {
+                return failure(traj, stats, SolveError::Halted { time: t });
+            }
             if let Some(hn) = accepted {
                 h = hn;
             }

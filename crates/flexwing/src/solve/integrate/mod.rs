@@ -33,6 +33,8 @@ pub use radau::{Radau, RadauOptions};
 pub(crate) use iteration::IterationMatrices;
 pub(crate) use lu::{ComplexLu, DenseLu};
 
+use std::ops::ControlFlow;
+
 use nalgebra::{Complex, DMatrix};
 
 use crate::error::SolveError;
@@ -47,9 +49,20 @@ pub trait OdeSystem {
     /// `jac = ∂f/∂y (t, y)` (`dim × dim`).
     fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut DMatrix<f64>);
     /// The scale of each component's absolute tolerance (`dim` values, 1 on entry): [`integrate`]
-    /// uses `atol · scale[i]`, so that one tolerance fits components of different units.
+    /// uses `atol · scale[i]`, so that one tolerance fits components of different units. An
+    /// infinite scale makes a component uncontrolled: it is integrated like the others but left
+    /// out of every error norm (quadrature states, such as the work of the loads).
     fn atol_scale(&mut self, scale: &mut [f64]) {
         scale.fill(1.0);
+    }
+
+    /// Called by every integrator after each accepted step, with the time and the state reached
+    /// (the output times up to `t` are already recorded). `ControlFlow::Break` stops the run
+    /// there: the integrator returns the output so far with [`SolveError::Halted`]. Default:
+    /// continue.
+    fn step_accepted(&mut self, t: f64, y: &[f64]) -> ControlFlow<()> {
+        let _ = (t, y);
+        ControlFlow::Continue(())
     }
 
     /// The system's own solver of the implicit integrators' Newton systems `(c I − J) x = b`,
@@ -193,14 +206,35 @@ pub(crate) fn check_output_times(t0: f64, t_out: &[f64]) -> Result<(), crate::In
     Ok(())
 }
 
-/// Weighted RMS norm of `err` with scale `atol_i + rtol max(|a_i|, |b_i|)`.
+/// Weighted RMS norm of `err` with scale `atol_i + rtol max(|a_i|, |b_i|)`, over the
+/// error-controlled components (see [`scaled_rms`]).
 pub(crate) fn error_norm(err: &[f64], a: &[f64], b: &[f64], atol: &[f64], rtol: f64) -> f64 {
     let mut s = 0.0;
+    let mut count = 0usize;
     for i in 0..err.len() {
         let sc = atol[i] + rtol * a[i].abs().max(b[i].abs());
-        s += (err[i] / sc).powi(2);
+        if sc.is_finite() {
+            s += (err[i] / sc).powi(2);
+            count += 1;
+        }
     }
-    (s / err.len().max(1) as f64).sqrt()
+    (s / count.max(1) as f64).sqrt()
+}
+
+/// RMS norm of `v / scale` over the error-controlled components: those of finite scale. A
+/// component whose absolute tolerance is infinite ([`OdeSystem::atol_scale`]) is carried along
+/// by the integrators but neither weighs in their error estimates and Newton tests nor counts in
+/// the mean, so appending it (a quadrature of the energy balance) leaves the steps unchanged.
+pub(crate) fn scaled_rms(v: &[f64], scale: &[f64]) -> f64 {
+    let mut s = 0.0;
+    let mut count = 0usize;
+    for (a, sc) in v.iter().zip(scale) {
+        if sc.is_finite() {
+            s += (a / sc) * (a / sc);
+            count += 1;
+        }
+    }
+    (s / count.max(1) as f64).sqrt()
 }
 
 /// Tolerances shared by the adaptive integrators.
@@ -245,11 +279,12 @@ impl Tolerances {
                 format!("needs 1 or {dim} values, got {}", self.atol.len()),
             ));
         }
+        // +∞: a component left out of the error control (quadrature states).
         for &a in &self.atol {
-            if !(a.is_finite() && a > 0.0) {
+            if !(a > 0.0) {
                 return Err(crate::InputError::new(
                     format!("{field}.atol"),
-                    format!("must be a finite positive number, got {a}"),
+                    format!("must be a positive number, got {a}"),
                 ));
             }
         }

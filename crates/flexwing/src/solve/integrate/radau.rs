@@ -355,6 +355,9 @@ impl Radau {
             s.update_scale(&st.y, &set);
             next_out = s.dense_output(&st, t_out, next_out, &mut traj);
             progress(st.t);
+            if system.step_accepted(st.t, &st.y).is_break() {
+                return fail(traj, stats, SolveError::Halted { time: st.t });
+            }
             st.jac_current = false;
             if st.last || next_out == t_out.len() {
                 return Ok((traj, stats));

@@ -90,8 +90,7 @@ pub(super) struct Scratch {
 
 /// RMS norm of `v / scal`.
 fn scaled_rms(v: &[f64], scal: &[f64]) -> f64 {
-    let s: f64 = v.iter().zip(scal).map(|(a, s)| (a / s) * (a / s)).sum();
-    (s / v.len().max(1) as f64).sqrt()
+    super::scaled_rms(v, scal)
 }
 
 impl Scratch {

@@ -1,0 +1,212 @@
+//! Audited integration: every dynamic run of the analysis goes through [`integrate_audited`],
+//! which keeps the energy balance of the run (module [`crate::solve::EnergyBalance`],
+//! docs/model-choices.md "Energy audit"), stops a run whose energy runs away, and turns what the
+//! audit found into the run's status: suspect when the balance error exceeded its limit.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use crate::analysis::{Doubt, Status, Stop};
+use crate::error::{InputError, SolveError};
+use crate::model::StructuralModel;
+use crate::solve::integrate::{integrate, IntegratorSettings, IntegratorStats, Method, Trajectory};
+use crate::solve::{AuditLimits, EnergyBalance, EquationsOfMotion, Gyroscopic};
+use crate::text::short;
+
+/// The energy audit of a dynamic run: when a model's run is suspect, and when it is stopped.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AuditSettings {
+    /// Largest relative energy-balance error `|H − H(0) − W + D| / E` of a run of the full or a
+    /// reduced model before it is marked suspect; `None`: [`AuditSettings::default_tolerance`]
+    /// of the plan's integrator settings.
+    pub tolerance: Option<f64>,
+    /// Relative energy gain `(H − H(0) − W + D) / E` at which a run (of any model, the
+    /// simplified one included) is stopped as a runaway. Default [`DEFAULT_RUNAWAY`].
+    pub runaway: f64,
+}
+
+/// Default runaway limit: a run that created nine times the energy it held or was given (its
+/// energy grew tenfold without a cause) has blown up. The limit of the paper study's guard
+/// before the audit (an energy ten times the initial one).
+pub const DEFAULT_RUNAWAY: f64 = 9.0;
+
+/// Default balance tolerance of a fixed-step run, whose error no tolerance sets: 1 % of the
+/// energy held or given.
+pub const FIXED_STEP_TOLERANCE: f64 = 1e-2;
+
+/// Bounds of the balance tolerance: below `MIN_TOLERANCE` round-off in the energies decides,
+/// above `MAX_TOLERANCE` the check checks nothing.
+pub const MIN_TOLERANCE: f64 = 1e-10;
+/// See [`MIN_TOLERANCE`].
+pub const MAX_TOLERANCE: f64 = 0.5;
+
+impl Default for AuditSettings {
+    fn default() -> Self {
+        Self {
+            tolerance: None,
+            runaway: DEFAULT_RUNAWAY,
+        }
+    }
+}
+
+impl AuditSettings {
+    /// The default balance tolerance of a run with the integrator `settings`: `10⁴ rtol`,
+    /// at least `1e-5` and at most 0.1, for an adaptive step; [`FIXED_STEP_TOLERANCE`] for a
+    /// fixed step. Measured (docs/validation.md, "Energy audit"): the adaptive integrators keep
+    /// the balance within 2 to 110 `rtol` on the examples (the largest, 1.1e-4 at rtol 1e-6,
+    /// is the free vibration of examples/paper_free_vibration.toml, whose `atol = 1e-6` rad
+    /// rather than its `rtol` sets the error), and within 1100 `rtol` on a reduced model whose
+    /// only mode is damped at 20 % (the dissipated energy is a quadrature the step control does
+    /// not watch); the factor 10⁴ leaves a margin of about 10 above that.
+    pub fn default_tolerance(settings: &IntegratorSettings) -> f64 {
+        match settings.step {
+            Some(_) => FIXED_STEP_TOLERANCE,
+            None => (1e4 * settings.rtol).clamp(1e-5, 0.1),
+        }
+    }
+
+    /// The balance tolerance of a run with the integrator `settings`.
+    pub fn tolerance_for(&self, settings: &IntegratorSettings) -> f64 {
+        self.tolerance
+            .unwrap_or_else(|| Self::default_tolerance(settings))
+    }
+
+    /// Check the values; errors name `{prefix}.energy_tolerance` and `{prefix}.energy_runaway`.
+    ///
+    /// # Errors
+    /// A tolerance outside `[1e-10, 0.5]`, a runaway limit outside `[0.01, 1e6]`.
+    pub fn validate(&self, prefix: &str) -> Result<(), InputError> {
+        if let Some(t) = self.tolerance {
+            if !(MIN_TOLERANCE..=MAX_TOLERANCE).contains(&t) {
+                return Err(InputError::new(
+                    crate::field(prefix, "energy_tolerance"),
+                    format!(
+                        "must be a number in [{}, {}] (a relative energy error), got {}",
+                        short(MIN_TOLERANCE),
+                        short(MAX_TOLERANCE),
+                        short(t)
+                    ),
+                ));
+            }
+        }
+        if !(0.01..=1e6).contains(&self.runaway) {
+            return Err(InputError::new(
+                crate::field(prefix, "energy_runaway"),
+                format!(
+                    "must be a number in [0.01, 1e6] (energy created over the energy held or \
+                     given), got {}",
+                    short(self.runaway)
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The limits of the audit of a model with (`balanced`) or without an energy balance, for
+    /// the integrator `settings`, with the energy floor `floor` (J).
+    pub fn limits(&self, balanced: bool, settings: &IntegratorSettings, floor: f64) -> AuditLimits {
+        AuditLimits {
+            balance: balanced.then(|| self.tolerance_for(settings)),
+            runaway: self.runaway,
+            floor,
+        }
+    }
+}
+
+/// An audited run: the output reached, the integrator's counters, the energy balance and how the
+/// run ended.
+#[derive(Debug, Clone)]
+pub struct AuditedRun {
+    /// States at the output times reached (with the audit's `W` and `D` appended).
+    pub trajectory: Trajectory,
+    /// Counters.
+    pub stats: IntegratorStats,
+    /// What the energy audit found.
+    pub balance: EnergyBalance,
+    /// Complete, suspect (the balance error exceeded its limit) or stopped (why).
+    pub status: Status,
+}
+
+impl AuditedRun {
+    /// Why the run stopped, if it did.
+    pub fn stop(&self) -> Option<&Stop> {
+        self.status.stop()
+    }
+}
+
+/// Integrate `eom` with the energy audit from the coordinates `x0` and velocities `xdot0` at
+/// `t_out[0]` to the output times `t_out`: the audit is switched on with the limits of
+/// `audit` (no balance limit for equations without a balance: γ neglected), the run stops
+/// when its energy runs away or when `halt` is set (checked after every step; `progress` is
+/// called with the time after each step), and the status says what happened. `eom` keeps the
+/// audit on afterwards (its states carry `W` and `D`).
+#[allow(clippy::too_many_arguments)]
+pub fn integrate_audited<M: StructuralModel>(
+    eom: &mut EquationsOfMotion<'_, M>,
+    x0: &[f64],
+    xdot0: &[f64],
+    t_out: &[f64],
+    method: Method,
+    settings: &IntegratorSettings,
+    audit: &AuditSettings,
+    halt: Option<Arc<AtomicBool>>,
+    progress: &mut dyn FnMut(f64),
+) -> AuditedRun {
+    let floor = eom.energy_resolution(settings.atol);
+    let balanced = !matches!(eom.gyroscopic(), Gyroscopic::Neglected);
+    eom.set_energy_audit(Some(audit.limits(balanced, settings, floor)));
+    eom.set_halt(halt.clone());
+    let y0 = eom.state(x0, xdot0);
+    let result = integrate(method, settings, eom, t_out[0], &y0, t_out, progress);
+    let (trajectory, stats, error) = match result {
+        Ok((trajectory, stats)) => (trajectory, stats, None),
+        Err(f) => (f.trajectory, f.stats, Some(f.error)),
+    };
+    // The audit was switched on above: its balance is there.
+    let limits = audit.limits(balanced, settings, floor);
+    let mut balance = eom
+        .energy_balance()
+        .cloned()
+        .unwrap_or_else(|| EnergyBalance::start(limits, 0.0));
+    balance.finish();
+    let status = status_of(&balance, error, halt.as_deref());
+    AuditedRun {
+        trajectory,
+        stats,
+        balance,
+        status,
+    }
+}
+
+/// The status of a run that ended with `error` (if any), after the audit found `balance`.
+fn status_of(
+    balance: &EnergyBalance,
+    error: Option<SolveError>,
+    halt: Option<&AtomicBool>,
+) -> Status {
+    match error {
+        Some(SolveError::Halted { time }) => {
+            if let Some(t) = balance.runaway_at {
+                Status::Stopped(Stop::EnergyRunaway {
+                    time: t,
+                    gain: balance.max_gain,
+                    limit: balance.limits.runaway,
+                })
+            } else if halt.is_some_and(|h| h.load(Ordering::Relaxed)) {
+                Status::Stopped(Stop::Interrupted { time: Some(time) })
+            } else {
+                Status::Stopped(Stop::Integration(SolveError::Halted { time }))
+            }
+        }
+        Some(e) => Status::Stopped(Stop::Integration(e)),
+        None => match (balance.exceeded_at, balance.limits.balance) {
+            (Some(time), Some(limit)) => Status::Suspect(Doubt::EnergyBalance {
+                time,
+                max_error: balance.max_error,
+                max_error_time: balance.max_error_time,
+                limit,
+            }),
+            _ => Status::Complete,
+        },
+    }
+}
