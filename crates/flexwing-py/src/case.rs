@@ -94,12 +94,10 @@ fn parse_path(py: Python<'_>, path: &str) -> PyResult<Vec<Step>> {
     let mut steps = Vec::new();
     for part in path.split('.') {
         let (name, mut rest) = part.split_at(part.find('[').unwrap_or(part.len()));
-        if name.is_empty() && steps.is_empty() {
+        if name.is_empty() {
             return Err(bad());
         }
-        if !name.is_empty() {
-            steps.push(Step::Key(name.to_string()));
-        }
+        steps.push(Step::Key(name.to_string()));
         while !rest.is_empty() {
             let close = rest.find(']').ok_or_else(bad)?;
             let index = rest[1..close].parse::<usize>().map_err(|_| bad())?;

@@ -460,14 +460,29 @@ const STEPPER_KEYS: &[&str] = &[
     "step",
     "max_order",
     "spectral_radius",
+    "hold",
 ];
 
+/// How the load factors go over an interval of `Stepper.step`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Hold {
+    /// Linear from the previous call's factors to the new ones (first-order hold): the forces
+    /// stay continuous in time, so no step of the load rings the model's highest modes.
+    Linear,
+    /// The new factors from the start of the interval (zero-order hold): a jump of the forces
+    /// at each call, as a sampled controller's output.
+    Zero,
+}
+
 /// A dynamic run advanced one output interval per call, with the load factors set from Python
-/// between calls (held constant over each interval): for coupling the beam to a flight-dynamics
-/// or control model.
+/// between calls: for coupling the beam to a flight-dynamics or control model.
 ///
 /// Build it with ``model.stepper(loads, x0=…, xdot0=…, t0=0, integrator="radau", rtol=1e-6,
-/// atol=1e-8, …, gyroscopic=…, damping=…, scales=…)``; then ``stepper.step(dt, scales)``.
+/// atol=1e-8, …, gyroscopic=…, damping=…, scales=…, hold="linear")``; then
+/// ``stepper.step(dt, scales)``. ``hold="linear"`` (default) ramps the factors from the previous
+/// call's to the new ones over the interval (continuous forces); ``hold="zero"`` switches them at
+/// the start of the interval (a force step at every call, which rings the highest modes and
+/// costs the integrator many small steps).
 /// Each call restarts the integrator at the current state (its first step is chosen anew), and
 /// runs detached from the interpreter.
 #[pyclass(module = "flexwing", name = "Stepper")]
@@ -482,6 +497,7 @@ pub struct PyStepper {
     stats: IntegratorStats,
     calls: usize,
     rust_time_s: f64,
+    hold: Hold,
 }
 
 impl PyStepper {
@@ -550,6 +566,20 @@ impl PyStepper {
             Some(x) => arrays::vector(&x, "xdot0", Some(n))?,
             None => vec![0.0; n],
         };
+        let hold = match kw.get("hold")? {
+            None => Hold::Linear,
+            Some(h) => match arrays::text(&h, "hold")?.as_str() {
+                "linear" => Hold::Linear,
+                "zero" => Hold::Zero,
+                other => {
+                    return Err(errors::input(
+                        py,
+                        "hold",
+                        &format!("unknown value {other:?}; expected \"linear\" or \"zero\""),
+                    ))
+                }
+            },
+        };
         let t = match kw.get("t0")? {
             Some(t) => arrays::number(&t, "t0")?,
             None => 0.0,
@@ -567,14 +597,17 @@ impl PyStepper {
             stats: IntegratorStats::default(),
             calls: 0,
             rust_time_s: 0.0,
+            hold,
         })
     }
 }
 
 #[pymethods]
 impl PyStepper {
-    /// Advance by ``dt`` (s), with the load factors ``scales`` (one per load; default: those of
-    /// the previous call) held over the interval. Returns the new time (s).
+    /// Advance by ``dt`` (s) to the load factors ``scales`` (one per load; default: those of
+    /// the previous call, held). With ``hold="linear"`` (the default) the factors go linearly
+    /// from the previous ones to these over the interval; with ``hold="zero"`` they take these
+    /// values at once. Returns the new time (s).
     ///
     /// Raises ``SolverError`` if the integrator stops inside the interval (``stop["time"]``
     /// says where); the state then stays at the start of the interval.
@@ -595,18 +628,27 @@ impl PyStepper {
                 &format!("must be positive, got {dt}"),
             ));
         }
+        let (t0, t1) = (self.t, self.t + dt);
         if let Some(s) = scales {
             let s = arrays::vector(s, "scales", Some(self.scales.len()))?;
-            if s != self.scales {
-                let functions = s.iter().map(|&v| held(v)).collect();
-                errors::guard(py, || {
-                    with_eom!(self.cell, |_o, e| e.set_time_functions(functions, "scales"))
-                        .map_err(|e| errors::library_input(py, &e))
-                })?;
-                self.scales = s;
-            }
+            let functions = match self.hold {
+                Hold::Linear => self
+                    .scales
+                    .iter()
+                    .zip(&s)
+                    .map(|(&a, &b)| TimeFunction::Table {
+                        t: vec![t0, t1],
+                        value: vec![a, b],
+                    })
+                    .collect(),
+                Hold::Zero => s.iter().map(|&v| held(v)).collect(),
+            };
+            errors::guard(py, || {
+                with_eom!(self.cell, |_o, e| e.set_time_functions(functions, "scales"))
+                    .map_err(|e| errors::library_input(py, &e))
+            })?;
+            self.scales = s;
         }
-        let (t0, t1) = (self.t, self.t + dt);
         let method = self.method;
         let settings = &self.settings;
         let y0 = &self.y;
