@@ -13,8 +13,10 @@
 //!   1.5 × Euler and a tip moment M = −2 → 30 N·m, through two limit points), arc-length
 //!   continuation with the default options from the equilibrium at M = −2 N·m.
 //!
-//! The tip case runs for n = 10 … 320 to show how a static solve grows with n (full: dense O(n³)
-//! LU per Newton iteration; reduced: O(n r) per iteration plus O(r³)).
+//! The tip case runs for n = 10 … 320 with reduced models beside, and the full model alone on to
+//! n = 10 000, to show how a static solve grows with n (full: an O(n) chain sweep per Newton
+//! iteration from 10 coordinates on, `solve/tangent.rs`, dense below; reduced: O(n r) per
+//! iteration plus O(r³)).
 //!
 //! The reduced models include their own cost of building (modal analysis and projection) in a
 //! separate column, since a user pays it once per model.
@@ -29,6 +31,7 @@ use flexwing::model::{AppliedLoads, Force, FullModel, Load, ReducedModel, Struct
 use flexwing::solve::{
     arc_length_static, solve_static, sweep_static, ArcLengthOptions, Modes, StaticOptions,
 };
+use std::time::Instant;
 
 fn table4(n: usize) -> FullModel {
     flexwing::paper::table4_beam(n).expect("valid beam")
@@ -158,5 +161,54 @@ fn main() {
                 );
             }
         }
+    }
+    println!("\nTip 150 N, full model against n (slope: against the previous row)\n");
+    println!("| n | wall time | slope | Newton iterations | tip (m) |");
+    println!("|---|---|---|---|---|");
+    let sizes: &[usize] = if quick {
+        &[10, 100, 1000, 10_000]
+    } else {
+        &[10, 30, 100, 300, 1000, 3000, 10_000]
+    };
+    let mut prev: Option<(usize, f64)> = None;
+    for &n in sizes {
+        let full = table4(n);
+        let loads = full
+            .apply(
+                &[Load::PointForce {
+                    span: 1.0,
+                    force: Force::Dead { fx: 0.0, fy: 150.0 },
+                }],
+                "loads",
+            )
+            .expect("valid loads");
+        let opts = StaticOptions::default();
+        let t = if n <= 1000 {
+            measure(budget, batches, || run(&full, &loads, Case::Tip, &[])).0
+        } else {
+            // Median of three single runs.
+            let mut v: Vec<f64> = (0..3)
+                .map(|_| {
+                    let s = Instant::now();
+                    run(&full, &loads, Case::Tip, &[]);
+                    s.elapsed().as_secs_f64()
+                })
+                .collect();
+            v.sort_by(f64::total_cmp);
+            v[1]
+        };
+        let sol = solve_static(&full, &loads, &[1.0], &opts).expect("solve");
+        let tip = full.node_positions(&full.kinematics(&sol.q))[n];
+        let slope = prev.map_or("–".to_string(), |(n0, t0)| {
+            format!("{:.2}", (t / t0).ln() / (n as f64 / n0 as f64).ln())
+        });
+        println!(
+            "| {n} | {} | {slope} | {} | ({:.9}, {:.9}) |",
+            fmt_time(t),
+            sol.stats.iterations,
+            tip[0],
+            tip[1]
+        );
+        prev = Some((n, t));
     }
 }

@@ -267,3 +267,47 @@ fn follower_forces_at_mid_span_converge_at_second_order() {
         }
     }
 }
+
+#[test]
+fn tip_loads_converge_at_second_order_up_to_ten_thousand_elements() {
+    // The full model's Newton tangent is factored by the O(n) chain sweep (solve/tangent.rs),
+    // so the solve at n = 10 000 costs milliseconds (most of this test's second or so is the
+    // beam's set-up, the spring calibration). Dead and follower tip forces of 150 N (α = 3)
+    // against the elastica: the error falls as 1/n² (measured ratios between n = 1000 and
+    // 10 000: 100.0 dead, 100.1 follower) down to 1e-9 m (measured 7.8e-10 m dead, 5.3e-10 m
+    // follower at n = 10 000). Bounds: ratio in [80, 125] (second order), error below 5e-9 m.
+    for (file, force) in [
+        ("dead_tip.csv", Force::Dead { fx: 0.0, fy: 150.0 }),
+        (
+            "follower_tip.csv",
+            Force::Follower {
+                tangential: 0.0,
+                normal: 150.0,
+            },
+        ),
+    ] {
+        let row = read(file)
+            .into_iter()
+            .find(|r| r[1] == 150.0)
+            .expect("α = 3 row");
+        let error = |n: usize| {
+            let full = table4(n);
+            let loads = full.apply(&unit_tip(force), "loads").unwrap();
+            let sol =
+                flexwing::solve::solve_static(&full, &loads, &[1.0], &StaticOptions::default())
+                    .expect("converges");
+            let t = tip(&full, &sol);
+            (t[0] - row[2]).hypot(t[1] - row[3])
+        };
+        let (e1, e2) = (error(1000), error(10_000));
+        eprintln!(
+            "{file}: n = 1000 {e1:.2e} m, n = 10 000 {e2:.2e} m, ratio {:.1}",
+            e1 / e2
+        );
+        assert!(
+            (80.0..125.0).contains(&(e1 / e2)),
+            "{file}: {e1:.2e} {e2:.2e}"
+        );
+        assert!(e2 < 5e-9, "{file}: {e2:.2e}");
+    }
+}

@@ -249,6 +249,28 @@ impl FullModel {
         self.solve_mass_configured(&ws.kinetic, p, &mut ws.chain, out)
     }
 
+    /// Diagonal of `M(q)⁻¹`, or `None` if `M(q)` is not positive definite: one chain
+    /// factorization and `n_dofs` unit solves, O(n²) time and O(n) memory (the dense inverse
+    /// would take O(n²) memory). Used once per run to give momentum tolerances their meaning
+    /// (`EquationsOfMotion::state_atol`).
+    pub fn inverse_mass_diagonal(&self, q: &[f64], ws: &mut Workspace) -> Option<Vec<f64>> {
+        let nd = self.n_dofs();
+        assert_eq!(q.len(), nd, "q must have n_dofs entries");
+        ws.configure(self, q);
+        if !self.factor_mass_configured(&ws.kinetic, &mut ws.chain) {
+            return None;
+        }
+        let (mut unit, mut col) = (vec![0.0; nd], vec![0.0; nd]);
+        let mut diagonal = vec![0.0; nd];
+        for k in 0..nd {
+            unit[k] = 1.0;
+            self.solve_factored(&ws.kinetic, &mut ws.chain, &unit, &mut col);
+            unit[k] = 0.0;
+            diagonal[k] = col[k];
+        }
+        Some(diagonal)
+    }
+
     /// Jacobian `∂g_i/∂q` (3 × `n_dofs`) of the mass centre of element `i` (0-based).
     pub fn mass_centre_jacobian(&self, kin: &Kinematics, i: usize) -> DMatrix<f64> {
         let mut jac = DMatrix::zeros(3, self.n_dofs());
@@ -328,7 +350,8 @@ impl StructuralModel for FullModel {
             kinetic_at: vec![f64::NAN; self.n_dofs()],
             duals: KineticBuffers::new(self),
             chain: ChainScratch::new(self.n),
-            identity: DMatrix::identity(self.n_dofs(), self.n_dofs()),
+            // Allocated on first use by the dense derivatives (n² entries).
+            identity: DMatrix::zeros(0, 0),
         }
     }
 
@@ -412,6 +435,10 @@ impl StructuralModel for FullModel {
         dp: &mut DMatrix<f64>,
         dgamma: &mut DMatrix<f64>,
     ) {
+        let nd = self.n_dofs();
+        if ws.identity.nrows() != nd {
+            ws.identity = DMatrix::identity(nd, nd);
+        }
         self.kinetic_directional(q, qdot, &ws.identity, &mut ws.duals, dp, dgamma);
     }
 
@@ -439,5 +466,9 @@ impl StructuralModel for FullModel {
 
     fn full_model(&self) -> &FullModel {
         self
+    }
+
+    fn as_full_model(&self) -> Option<&FullModel> {
+        Some(self)
     }
 }

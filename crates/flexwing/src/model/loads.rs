@@ -675,3 +675,80 @@ impl Resultants {
         }
     }
 }
+
+impl FullModel {
+    /// The load stiffness `G = −∂Q/∂q` in the chain form of the O(n) Newton sweeps
+    /// (`model::chain_newton`, docs/model-choices.md, "O(n) Newton systems"). In absolute angles
+    /// `G` is, for element `j`, a local 2 × 2 block `local[j] = [g_θθ, g_θψ, g_ψψ]` (levers of
+    /// the forces, gravity, and the follower rates that act on joint `j` itself), plus the total
+    /// rate `rate[j] = Σ_k ∂F_k/∂θ_j` of the follower forces turned by `θ_j` (a follower force
+    /// on element `k` turns with the tangent at its point, so with `θ_{k−1}`, `θ_k`, `θ_{k+1}`),
+    /// which acts on every inboard joint `i < j` through its lever: `G_abs[θ_i, θ_j] = −ℓ_i n_i
+    /// · rate[j]`. This is exact for follower forces at nodes and element midpoints; a follower
+    /// force strictly between a node and a midpoint adds terms next to the diagonal that the
+    /// chain form leaves out (its Newton iterations are then simplified ones: they still
+    /// converge to the exact residual's root, more slowly). Returns true when `G` is symmetric
+    /// (no follower force acts).
+    pub(super) fn chain_load_stiffness(
+        &self,
+        kin: &Kinematics,
+        r: &Resultants,
+        local: &mut [[f64; 3]],
+        rate: &mut [[f64; 2]],
+    ) -> bool {
+        let n = self.n;
+        let (c, s) = (&kin.cos_theta, &kin.sin_theta);
+        let mut outboard = [0.0; 2];
+        let mut symmetric = true;
+        let w = r.gravity;
+        let mut mass_out = 0.0;
+        for j in (0..n).rev() {
+            let lever = [
+                self.ell[j] * outboard[0] + r.arm_force[j][0],
+                self.ell[j] * outboard[1] + r.arm_force[j][1],
+            ];
+            // Element j's own force turned by θ_j, through its arm.
+            let arm = r.arm_rate[j][1];
+            // The force of the outboard element j + 1 turned by θ_j, through the lever ℓ_j.
+            let next = if j + 1 < n {
+                [
+                    self.ell[j] * r.force_rate[j + 1][0][0],
+                    self.ell[j] * r.force_rate[j + 1][0][1],
+                ]
+            } else {
+                [0.0; 2]
+            };
+            // −∂/∂θ_j of n_j · lever_j.
+            let mut tt = c[j] * lever[0] + s[j] * lever[1]
+                - (-s[j] * (arm[0] + next[0]) + c[j] * (arm[1] + next[1]));
+            let (mut tp, mut pp) = (0.0, 0.0);
+            if w != 0.0 {
+                let (mj, d) = (self.mass[j], self.d0[j]);
+                let (cp, sp) = (kin.cos_psi[j], kin.sin_psi[j]);
+                tt -= w
+                    * (s[j] * self.ell[j] * mass_out
+                        + mj * (0.5 * self.ell[j] * s[j] + d * sp * c[j]));
+                if self.torsion {
+                    tp = -w * mj * d * cp * s[j];
+                    pp = -w * mj * d * sp * c[j];
+                }
+                mass_out += mj;
+            }
+            local[j] = [tt, tp, pp];
+            let mut total = r.force_rate[j][1];
+            if j > 0 {
+                let inboard = r.force_rate[j - 1][2];
+                total = [total[0] + inboard[0], total[1] + inboard[1]];
+            }
+            if j + 1 < n {
+                let outboard = r.force_rate[j + 1][0];
+                total = [total[0] + outboard[0], total[1] + outboard[1]];
+            }
+            rate[j] = total;
+            symmetric &= !r.has_rates;
+            outboard[0] += r.force[j][0];
+            outboard[1] += r.force[j][1];
+        }
+        symmetric
+    }
+}

@@ -134,3 +134,47 @@ pub(crate) fn suffix_sum_blocks(x: &mut DMatrix<f64>, n: usize) {
         }
     }
 }
+
+impl FullModel {
+    /// Diagonal of the mass matrix `M(q)` at `kin`, into `out` (`n_dofs` entries), in O(n)
+    /// without forming `M`: `M_ii` is the kinetic energy (times 2) of the part outboard of
+    /// joint `i` turning rigidly at unit rate about it, `Σ_{k≥i} m_k |g_k,xy − P_{i−1}|²` for a
+    /// bending joint (turning about `ẑ` through node `i − 1`) and `Σ_{k≥i} (m_k d0_k² + J_k)` for a
+    /// torsion joint (turning about each element's axis). Accumulated from the tip about the
+    /// moving node (parallel-axis recursion), so that no large terms cancel.
+    ///
+    /// # Panics
+    /// If `out.len() != n_dofs()`.
+    pub fn mass_diagonal_into(&self, kin: &Kinematics, out: &mut [f64]) {
+        let n = self.n;
+        assert_eq!(
+            out.len(),
+            self.n_dofs(),
+            "diagonal buffer has the wrong length"
+        );
+        let nodes = self.node_positions(kin);
+        let centres = self.mass_centres(kin);
+        // About node i: I = Σ m |g − P_i|², s = Σ m (g − P_i), mass Σ m, over k > i.
+        let (mut inertia, mut first, mut mass) = (0.0, [0.0; 2], 0.0);
+        let mut torsion = 0.0;
+        for i in (0..n).rev() {
+            // Move the reference point from node i + 1 to node i: d = P_{i+1} − P_i.
+            let d = [nodes[i + 1][0] - nodes[i][0], nodes[i + 1][1] - nodes[i][1]];
+            inertia +=
+                2.0 * (d[0] * first[0] + d[1] * first[1]) + (d[0] * d[0] + d[1] * d[1]) * mass;
+            first[0] += mass * d[0];
+            first[1] += mass * d[1];
+            let r = [centres[i][0] - nodes[i][0], centres[i][1] - nodes[i][1]];
+            let m = self.mass[i];
+            inertia += m * (r[0] * r[0] + r[1] * r[1]);
+            first[0] += m * r[0];
+            first[1] += m * r[1];
+            mass += m;
+            out[i] = inertia;
+            if self.torsion {
+                torsion += m * self.d0[i] * self.d0[i] + self.inertia[i];
+                out[n + i] = torsion;
+            }
+        }
+    }
+}

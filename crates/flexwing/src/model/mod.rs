@@ -5,6 +5,7 @@
 //! are `θ = T q_b`, `ψ = T q_t` with `T` the lower-triangular matrix of ones.
 
 pub mod aero;
+mod chain_newton;
 mod chain_solve;
 mod full;
 mod kinematics;
@@ -14,6 +15,7 @@ mod mass;
 mod reduced;
 mod shape;
 
+pub(crate) use chain_newton::{ChainFactor, ChainLinearization, Shift};
 pub use full::{FullModel, Workspace};
 pub use kinematics::Kinematics;
 pub(crate) use kinetic::KineticScratch;
@@ -140,6 +142,12 @@ pub trait StructuralModel {
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64>;
     /// The full model underneath (itself for the full model).
     fn full_model(&self) -> &FullModel;
+    /// This model as the full model, when it is one (its coordinates are the joint rotations):
+    /// the solvers then solve their Newton systems by O(n) sweeps along the chain
+    /// (`model::chain_newton`). `None` (the default) for other models.
+    fn as_full_model(&self) -> Option<&FullModel> {
+        None
+    }
 }
 
 /// [`StructuralModel::hamiltonian_derivatives_into`] from `B = ∂(M ẋ)/∂x` and dense products:

@@ -7,14 +7,37 @@
 //! ```
 //!
 //! with the gyroscopic term `γ` exact, by central differences of `−½ pᵀ M(x)⁻¹ p`, or neglected,
-//! and an exact Jacobian `∂(ẋ, ṗ)/∂(x, p)` for the implicit integrators.
+//! an exact Jacobian `∂(ẋ, ṗ)/∂(x, p)` for the implicit integrators, and for the full model O(n)
+//! solves of their Newton systems with the Jacobian's structural part (`eom_newton.rs`).
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{Complex, DMatrix, DVector};
 
-use super::integrate::OdeSystem;
+use super::eom_newton::ChainNewton;
+use super::integrate::{NewtonSolver, OdeSystem};
 use crate::error::InputError;
 use crate::model::{AppliedLoads, StructuralModel};
 use crate::text::short;
+
+/// From this many coordinates on, [`NewtonSystems::Auto`] solves the full model's Newton systems
+/// by O(n) chain sweeps instead of dense LU factorizations of the exact Jacobian (measured on
+/// case (b), docs/performance.md, "O(n) Newton systems").
+pub const CHAIN_NEWTON_MIN_DOFS: usize = 40;
+
+/// How the implicit integrators solve the Newton systems `(c I − J) Δ = r` of the equations of
+/// motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum NewtonSystems {
+    /// [`NewtonSystems::Chain`] for the full model from [`CHAIN_NEWTON_MIN_DOFS`] coordinates on,
+    /// [`NewtonSystems::Dense`] otherwise. The default.
+    #[default]
+    Auto,
+    /// The exact Jacobian, formed (O(n²)) and factored densely (O(n³)).
+    Dense,
+    /// Full model only: O(n) sweeps along the chain with the Jacobian's structural part (mass,
+    /// stiffness, load stiffness, Rayleigh damping); the velocity-dependent terms are left to a
+    /// simplified Newton iteration (`eom_newton.rs`). Never forms the Jacobian.
+    Chain,
+}
 
 /// How the gyroscopic term `γ = ∂T/∂x|_ẋ = −½ ∂(pᵀ M⁻¹ p)/∂x|_p` is obtained.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -253,22 +276,24 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     loads: &'a AppliedLoads,
     time_functions: Vec<TimeFunction>,
     gyroscopic: Gyroscopic,
+    /// `K`, dense, when it is not diagonal (empty otherwise).
     k: DMatrix<f64>,
     /// The diagonal of `K` when `K` is diagonal (the full model): `K x` in O(n).
     k_diag: Option<Vec<f64>>,
     c: Option<DMatrix<f64>>,
+    damping: Damping,
     ws: M::Workspace,
     n: usize,
     scales: Vec<f64>,
     xdot: Vec<f64>,
     gamma: Vec<f64>,
     force: DVector<f64>,
-    dgamma: DMatrix<f64>,
-    load_jac: DMatrix<f64>,
     x_shift: Vec<f64>,
-    identity: DMatrix<f64>,
-    minv: DMatrix<f64>,
-    dxdx: DMatrix<f64>,
+    fd_velocity: Vec<f64>,
+    /// Buffers of the dense Jacobian, allocated on its first evaluation.
+    dense: Option<DenseBuffers>,
+    newton: NewtonSystems,
+    chain: Option<ChainNewton>,
     /// Right-hand-side evaluations.
     pub rhs_evaluations: usize,
     /// Jacobian evaluations.
@@ -303,9 +328,18 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         let n = model.n_dofs();
         let mut ws = model.workspace();
         let c = damping_matrix(model, &mut ws, damping)?;
-        let k = model.stiffness_matrix();
-        let diagonal = (0..n).all(|j| (0..n).all(|i| i == j || k[(i, j)] == 0.0));
-        let k_diag = diagonal.then(|| k.diagonal().as_slice().to_vec());
+        // The full model's K is diagonal: never form it (n² entries at large n).
+        let (k, k_diag) = match model.as_full_model() {
+            Some(full) => (DMatrix::zeros(0, 0), Some(full.stiffness().to_vec())),
+            None => {
+                let k = model.stiffness_matrix();
+                let diagonal = (0..n).all(|j| (0..n).all(|i| i == j || k[(i, j)] == 0.0));
+                match diagonal {
+                    true => (DMatrix::zeros(0, 0), Some(k.diagonal().as_slice().to_vec())),
+                    false => (k, None),
+                }
+            }
+        };
         Ok(Self {
             model,
             loads,
@@ -315,20 +349,47 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             k,
             k_diag,
             c,
+            damping: damping.clone(),
             ws,
             n,
             x_shift: vec![0.0; n],
-            identity: DMatrix::identity(n, n),
-            minv: DMatrix::zeros(n, n),
-            dxdx: DMatrix::zeros(n, n),
+            fd_velocity: vec![0.0; n],
             xdot: vec![0.0; n],
             gamma: vec![0.0; n],
             force: DVector::zeros(n),
-            dgamma: DMatrix::zeros(n, n),
-            load_jac: DMatrix::zeros(n, n),
+            dense: None,
+            newton: NewtonSystems::Auto,
+            chain: None,
             rhs_evaluations: 0,
             jacobian_evaluations: 0,
         })
+    }
+
+    /// Choose how the implicit integrators solve the Newton systems (default
+    /// [`NewtonSystems::Auto`]).
+    ///
+    /// # Errors
+    /// [`NewtonSystems::Chain`] for a model other than the full model (field `newton_systems`).
+    pub fn set_newton_systems(&mut self, choice: NewtonSystems) -> Result<(), InputError> {
+        if choice == NewtonSystems::Chain && self.model.as_full_model().is_none() {
+            return Err(InputError::new(
+                "newton_systems",
+                "the chain solves need the full model; a reduced model has dense Newton systems",
+            ));
+        }
+        self.newton = choice;
+        self.chain = None;
+        Ok(())
+    }
+
+    /// Whether the Newton systems are solved by chain sweeps (the resolved choice).
+    pub fn uses_chain_newton(&self) -> bool {
+        self.model.as_full_model().is_some()
+            && match self.newton {
+                NewtonSystems::Auto => self.n >= CHAIN_NEWTON_MIN_DOFS,
+                NewtonSystems::Dense => false,
+                NewtonSystems::Chain => true,
+            }
     }
 
     /// Number of coordinates `x` (the state has twice as many).
@@ -363,10 +424,30 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     ///   of its size in `p_k` alone carries the kinetic energy `½ (M⁻¹)_kk δp_k²` that an error of
     ///   the coordinate's tolerance in `x_k` alone carries as strain energy `½ K_kk δx_k²` (for
     ///   a reduced model on mass-normalized modes, the modal frequency times the amplitude's
-    ///   tolerance; for a coordinate without stiffness, `1 / (M(0)⁻¹)_kk` per second).
+    ///   tolerance; for a coordinate without stiffness, `1 / (M(0)⁻¹)_kk` per second). For the
+    ///   full model `1 / (M(0)⁻¹)_kk` is replaced by the diagonal `M_kk(0)` (the inertia of the
+    ///   chain outboard of joint k with the other joints locked), which keeps this O(n).
     pub fn state_atol(&mut self, atol: f64) -> Vec<f64> {
         let r = self.n;
         let x0 = vec![0.0; r];
+        if let Some(full) = self.model.as_full_model() {
+            // q = x: every coordinate gets `atol`; (M(0)⁻¹)_kk by one chain factorization and
+            // n unit solves, O(n²) once per run (about 1 s at n = 10 000) in O(n) memory.
+            let k = full.stiffness();
+            let mut v = vec![atol; r];
+            match full.inverse_mass_diagonal(&x0, &mut full.workspace()) {
+                Some(minv) => v.extend((0..r).map(|i| {
+                    if k[i] > 0.0 {
+                        atol * (k[i] / minv[i]).sqrt()
+                    } else {
+                        atol / minv[i]
+                    }
+                })),
+                // A mass matrix that is not positive definite fails every run anyway.
+                None => v.extend(std::iter::repeat_n(atol, r)),
+            }
+            return v;
+        }
         let q0 = self.model.full_coordinates(&x0);
         let joints = q0.len();
         let mut unit = x0.clone();
@@ -384,11 +465,17 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             })
             .collect();
         // M(0)⁻¹ by the model's own velocity solve, column by column.
-        let positive =
-            self.model
-                .velocities_block_into(&x0, &self.identity, &mut self.ws, &mut self.minv);
+        let identity = DMatrix::identity(r, r);
+        let mut minv = DMatrix::zeros(r, r);
+        let positive = self
+            .model
+            .velocities_block_into(&x0, &identity, &mut self.ws, &mut minv);
         for k in 0..r {
-            let (stiffness, inverse_mass) = (self.k[(k, k)], self.minv[(k, k)]);
+            let stiffness = match &self.k_diag {
+                Some(d) => d[k],
+                None => self.k[(k, k)],
+            };
+            let inverse_mass = minv[(k, k)];
             let momentum_per_coordinate = match (positive, stiffness > 0.0) {
                 (true, true) => (stiffness / inverse_mass).sqrt(),
                 (true, false) => 1.0 / inverse_mass,
@@ -443,8 +530,15 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         let n = self.n;
         let v = self.velocities(y);
         let kinetic = 0.5 * y[n..].iter().zip(&v).map(|(a, b)| a * b).sum::<f64>();
-        let x = DVector::from_column_slice(&y[..n]);
-        let strain = 0.5 * x.dot(&(&self.k * &x));
+        let x = &y[..n];
+        let strain = 0.5
+            * match &self.k_diag {
+                Some(k) => (0..n).map(|i| k[i] * x[i] * x[i]).sum::<f64>(),
+                None => {
+                    let x = DVector::from_column_slice(x);
+                    x.dot(&(&self.k * &x))
+                }
+            };
         (kinetic, strain)
     }
 
@@ -467,7 +561,7 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     }
 
     /// `γ` by central differences of `H_T(x) = ½ pᵀ M(x)⁻¹ p` at fixed `p`: `γ = −∂H_T/∂x`.
-    /// Each of the `2 n` energies costs one velocity solve; `self.dxdx` column 0 is scratch.
+    /// Each of the `2 n` energies costs one velocity solve.
     fn gyroscopic_fd(&mut self, x: &[f64], p: &[f64], h: f64) {
         let n = self.n;
         self.x_shift.copy_from_slice(x);
@@ -475,8 +569,7 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             let mut half_energy = [0.0; 2];
             for (k, sign) in [1.0, -1.0].iter().enumerate() {
                 self.x_shift[i] = x[i] + sign * h;
-                let v = self.dxdx.column_mut(0);
-                let v = v.data.into_slice_mut();
+                let v = &mut self.fd_velocity;
                 half_energy[k] = if self
                     .model
                     .velocities_into(&self.x_shift, p, &mut self.ws, v)
@@ -498,6 +591,9 @@ fn damping_matrix<M: StructuralModel>(
     ws: &mut M::Workspace,
     damping: &Damping,
 ) -> Result<Option<DMatrix<f64>>, InputError> {
+    if *damping == Damping::None {
+        return Ok(None);
+    }
     let n = model.n_dofs();
     let x0 = vec![0.0; n];
     let mut m0 = DMatrix::zeros(n, n);
@@ -588,6 +684,7 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
             jac.fill(f64::NAN);
             return;
         }
+        let d = self.dense.get_or_insert_with(|| DenseBuffers::new(n));
         let with_gamma = !matches!(self.gyroscopic, Gyroscopic::Neglected);
         // ∂ẋ/∂x = −M⁻¹ B and dγ/dx|_p = G_x + Bᵀ ∂ẋ/∂x: O(n²) for the full model (dual numbers
         // through the O(n) velocity solve), a few dense products for the reduced one.
@@ -596,41 +693,140 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
             p,
             &mut self.ws,
             with_gamma,
-            &mut self.dxdx,
-            &mut self.dgamma,
+            &mut d.dxdx,
+            &mut d.dgamma,
         );
-        self.model.load_jacobian_into(
-            x,
-            self.loads,
-            &self.scales,
-            &mut self.ws,
-            &mut self.load_jac,
-        );
+        self.model
+            .load_jacobian_into(x, self.loads, &self.scales, &mut self.ws, &mut d.load_jac);
         // M⁻¹ by one factorization and one O(n) velocity solve per column.
         self.model
-            .velocities_block_into(x, &self.identity, &mut self.ws, &mut self.minv);
-        jac.view_mut((0, 0), (n, n)).copy_from(&self.dxdx);
-        jac.view_mut((0, n), (n, n)).copy_from(&self.minv);
+            .velocities_block_into(x, &d.identity, &mut self.ws, &mut d.minv);
+        jac.view_mut((0, 0), (n, n)).copy_from(&d.dxdx);
+        jac.view_mut((0, n), (n, n)).copy_from(&d.minv);
         let mut dpdx = jac.view_mut((n, 0), (n, n));
-        dpdx.copy_from(&self.load_jac);
-        dpdx -= &self.k;
+        dpdx.copy_from(&d.load_jac);
+        match &self.k_diag {
+            Some(k) => {
+                for i in 0..n {
+                    dpdx[(i, i)] -= k[i];
+                }
+            }
+            None => dpdx -= &self.k,
+        }
         if with_gamma {
-            dpdx += &self.dgamma;
+            dpdx += &d.dgamma;
         }
         if let Some(c) = &self.c {
-            dpdx.gemm(-1.0, c, &self.dxdx, 1.0);
+            dpdx.gemm(-1.0, c, &d.dxdx, 1.0);
         }
         // ∂ṗ/∂p = (Bᵀ − C) M⁻¹ with Bᵀ M⁻¹ = (M⁻¹ B)ᵀ = −(∂ẋ/∂x)ᵀ since M is symmetric.
         let mut dpdp = jac.view_mut((n, n), (n, n));
         if matches!(self.gyroscopic, Gyroscopic::Neglected) {
             dpdp.fill(0.0);
         } else {
-            dpdp.copy_from(&self.dxdx.transpose());
+            dpdp.copy_from(&d.dxdx.transpose());
             dpdp.neg_mut();
         }
         if let Some(c) = &self.c {
-            dpdp.gemm(-1.0, c, &self.minv, 1.0);
+            dpdp.gemm(-1.0, c, &d.minv, 1.0);
         }
+    }
+
+    fn newton_solver(&mut self) -> Option<&mut dyn NewtonSolver> {
+        if !self.uses_chain_newton() {
+            return None;
+        }
+        if self.chain.is_none() {
+            let full = self.model.as_full_model()?;
+            let gyroscopic = !matches!(self.gyroscopic, Gyroscopic::Neglected);
+            self.chain = Some(ChainNewton::new(full, &self.damping, gyroscopic));
+        }
+        Some(self)
+    }
+}
+
+/// Buffers of the dense Jacobian (`n_dofs × n_dofs` each).
+struct DenseBuffers {
+    dgamma: DMatrix<f64>,
+    load_jac: DMatrix<f64>,
+    identity: DMatrix<f64>,
+    minv: DMatrix<f64>,
+    dxdx: DMatrix<f64>,
+}
+
+impl DenseBuffers {
+    fn new(n: usize) -> Self {
+        let z = || DMatrix::zeros(n, n);
+        Self {
+            dgamma: z(),
+            load_jac: z(),
+            identity: DMatrix::identity(n, n),
+            minv: z(),
+            dxdx: z(),
+        }
+    }
+}
+
+/// The full model's O(n) Newton solves (`eom_newton.rs`); reached only through
+/// [`OdeSystem::newton_solver`], which offers them when [`EquationsOfMotion::uses_chain_newton`].
+impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
+    fn linearize(&mut self, t: f64, y: &[f64]) -> bool {
+        let model = self.model;
+        let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) else {
+            return false;
+        };
+        self.jacobian_evaluations += 1;
+        for (s, f) in self.scales.iter_mut().zip(&self.time_functions) {
+            *s = f.at(t);
+        }
+        chain.linearize(full, self.loads, &self.scales, y)
+    }
+
+    fn factor_real(&mut self, slot: usize, c: f64) -> bool {
+        let model = self.model;
+        match (model.as_full_model(), self.chain.as_mut()) {
+            (Some(full), Some(chain)) => chain.factor_real(full, slot, c),
+            _ => false,
+        }
+    }
+
+    fn factor_complex(&mut self, slot: usize, c: Complex<f64>) -> bool {
+        let model = self.model;
+        match (model.as_full_model(), self.chain.as_mut()) {
+            (Some(full), Some(chain)) => chain.factor_complex(full, slot, c),
+            _ => false,
+        }
+    }
+
+    fn solve_real(&mut self, slot: usize, b: &mut [f64]) {
+        let model = self.model;
+        if let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) {
+            chain.solve_real(full, slot, b);
+        }
+    }
+
+    fn solve_complex(&mut self, slot: usize, re: &mut [f64], im: &mut [f64]) {
+        let model = self.model;
+        if let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) {
+            chain.solve_complex(full, slot, re, im);
+        }
+    }
+
+    /// A linearization and its sweeps cost a few right-hand sides.
+    fn cheap_linearization(&self) -> bool {
+        true
+    }
+
+    /// The joint momenta's error scale is set by the root's (`p_1` is the angular momentum of
+    /// the whole beam), so a Newton error small in it can be a large velocity error of the
+    /// outboard elements, which, left in the state, grows through the gyroscopic term until
+    /// Newton fails (docs/model-choices.md, "O(n) Newton systems"). The bound keeps that error
+    /// in proportion, `1e5 · M_nn(0)/M_11(0)` (the tip joint's inertia over the root's, ~n⁻³:
+    /// no bound below a few hundred elements); the constant is measured on case (b) with Radau
+    /// at rtol 1e-2 (n = 1000 needs ≤ 1e-3, n = 3000 ≤ 1e-5). The chain's Newton iteration is
+    /// exact, so each iteration divides the error by ~1e9 and the bound costs at most one.
+    fn newton_tolerance(&self) -> Option<f64> {
+        self.chain.as_ref().map(|c| c.newton_tolerance())
     }
 }
 

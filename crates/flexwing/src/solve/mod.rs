@@ -4,16 +4,21 @@ pub mod aeroelastic;
 mod continuation;
 mod dynamics;
 mod eigen;
+mod eom_newton;
 pub mod integrate;
 mod lanczos;
 mod modes;
+mod newton_tangent;
 mod statics;
 mod tangent;
 
 pub use continuation::{arc_length_static, ArcLengthOptions, PathError, PathPoint, StaticPath};
-pub use dynamics::{Damping, EquationsOfMotion, Gyroscopic, TimeFunction};
+pub use dynamics::{
+    Damping, EquationsOfMotion, Gyroscopic, NewtonSystems, TimeFunction, CHAIN_NEWTON_MIN_DOFS,
+};
 pub use eigen::generalized_symmetric_eigen;
 pub use modes::{ModeShape, Modes, ModesMethod, ModesStats, DENSE_MAX_DOFS};
+pub use newton_tangent::CHAIN_TANGENT_MIN_DOFS;
 pub use statics::{
     continue_static, linear_static, solve_static, sweep_static, StaticOptions, StaticSolution,
     StaticStats, SweepError,

@@ -23,6 +23,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::newton_tangent::{Stiffness, Tangent};
 use crate::error::{SolveError, StaticFailure};
 use crate::model::{AppliedLoads, FullModel, StructuralModel};
 
@@ -114,7 +115,8 @@ pub struct StaticStats {
     pub iterations: usize,
     /// Evaluations of the residual `K x − Q(x)`.
     pub residual_evaluations: usize,
-    /// Evaluations and LU factorizations of the tangent `K − ∂Q/∂x` in Newton iterations.
+    /// Evaluations and factorizations of the tangent `K − ∂Q/∂x` in Newton iterations (O(n)
+    /// chain sweeps for the full model, dense LU otherwise: `solve/newton_tangent.rs`).
     pub factorizations: usize,
     /// Stability checks (a tangent evaluation and one Cholesky attempt, or one LU for
     /// non-conservative loads).
@@ -394,9 +396,9 @@ pub(super) struct Newton<'a, M: StructuralModel> {
     loads: &'a AppliedLoads,
     options: StaticOptions,
     ws: M::Workspace,
-    pub(super) k: DMatrix<f64>,
+    stiffness: Stiffness,
     f: DVector<f64>,
-    jac: DMatrix<f64>,
+    tangent: Tangent,
     pub(super) stats: StaticStats,
 }
 
@@ -408,9 +410,9 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
             loads,
             options,
             ws: model.workspace(),
-            k: model.stiffness_matrix(),
+            stiffness: Stiffness::new(model),
             f: DVector::zeros(nd),
-            jac: DMatrix::zeros(nd, nd),
+            tangent: Tangent::new(model),
             stats: StaticStats::default(),
         }
     }
@@ -425,7 +427,7 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
             &mut self.ws,
             &mut self.f,
         );
-        &self.k * x - &self.f
+        self.stiffness.times(x) - &self.f
     }
 
     /// Generalized forces `Q(x; scales)` (into a new vector).
@@ -441,19 +443,20 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
         out
     }
 
-    /// The tangent `K − ∂Q/∂x` at `x` (into a new matrix).
+    /// The tangent `K − ∂Q/∂x` at `x`, formed densely (into a new matrix; for the bordered
+    /// systems of arc-length continuation and the stability of non-conservative loads).
     pub(super) fn tangent(&mut self, x: &DVector<f64>, scales: &[f64]) -> DMatrix<f64> {
-        self.model.load_jacobian_into(
-            x.as_slice(),
-            self.loads,
-            scales,
-            &mut self.ws,
-            &mut self.jac,
-        );
-        &self.k - &self.jac
+        let nd = x.len();
+        let mut jac = DMatrix::zeros(nd, nd);
+        self.model
+            .load_jacobian_into(x.as_slice(), self.loads, scales, &mut self.ws, &mut jac);
+        self.stiffness.dense(nd) - jac
     }
 
-    /// Stability of the equilibrium `x` (see [`StaticSolution::stable`]).
+    /// Stability of the equilibrium `x` (see [`StaticSolution::stable`]): for conservative loads
+    /// from the pivots of the O(n) chain factorization of the tangent (Sylvester's law of
+    /// inertia) where the model has one, else by a dense Cholesky attempt; for follower loads
+    /// from the sign of the dense tangent's determinant.
     pub(super) fn stability(
         &mut self,
         x: &DVector<f64>,
@@ -461,6 +464,15 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
         conservative: bool,
     ) -> Option<bool> {
         self.stats.stability_checks += 1;
+        if conservative
+            && self
+                .tangent
+                .factor(self.model, &mut self.ws, x.as_slice(), self.loads, scales)
+        {
+            if let Some(positive) = self.tangent.positive_definite() {
+                return Some(positive);
+            }
+        }
         let tangent = self.tangent(x, scales);
         tangent_stability(tangent, conservative)
     }
@@ -471,7 +483,7 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
     }
 
     pub(super) fn converged(&self, x: &DVector<f64>, r: &DVector<f64>) -> bool {
-        let scale = (&self.k * x).amax().max(self.f.amax());
+        let scale = self.stiffness.times(x).amax().max(self.f.amax());
         r.amax() <= self.options.tolerance * scale || r.amax() == 0.0
     }
 
@@ -496,20 +508,19 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
             }
             self.stats.iterations += 1;
             self.stats.factorizations += 1;
-            self.model.load_jacobian_into(
-                x.as_slice(),
-                self.loads,
-                scales,
-                &mut self.ws,
-                &mut self.jac,
-            );
-            let tangent = &self.k - &self.jac;
-            let Some(dx) = tangent.lu().solve(&(-&r)) else {
+            let factored =
+                self.tangent
+                    .factor(self.model, &mut self.ws, x.as_slice(), self.loads, scales);
+            let mut dx = -&r;
+            if factored {
+                self.tangent.solve(self.model, &mut dx);
+            }
+            if !factored || !dx.iter().all(|v| v.is_finite()) {
                 return Newtonian::Failed {
                     iterations: it + 1,
                     residual: r.amax(),
                 };
-            };
+            }
             // The first step shows a load step that is too large (from an equilibrium it is the
             // linear response); later iterates that stray are caught at convergence.
             if let (Some((x0, limit)), 0) = (anchor, it) {

@@ -5,12 +5,10 @@
 //! # References
 //! Hairer, Lubich & Wanner, *Geometric Numerical Integration*, 2nd ed., §II.1, §VI.3.
 
-use nalgebra::{DMatrix, DVector};
-
 use super::dopri5::initial_step;
 use super::{
     check_output_times, error_norm, failure, outputs_at_start, IntegrationResult, IntegratorStats,
-    OdeSystem, Tolerances, Trajectory,
+    IterationMatrices, OdeSystem, Tolerances, Trajectory,
 };
 use crate::error::SolveError;
 
@@ -50,13 +48,15 @@ pub struct ImplicitMidpoint {
     pub options: MidpointOptions,
 }
 
-/// Newton state of one implicit midpoint stage, with Jacobian reuse.
+/// Newton state of one implicit midpoint stage, with Jacobian reuse: `I − (h/2) J` is factored
+/// as `(2/h) I − J` in real slot 0 of the iteration matrices, for the step `h` in `lu_h`.
 struct Stage {
-    jac: DMatrix<f64>,
-    lu: Option<(f64, nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>)>,
+    mats: IterationMatrices,
+    lu_h: Option<f64>,
     jac_fresh: bool,
     f: Vec<f64>,
     z: Vec<f64>,
+    dz: Vec<f64>,
 }
 
 impl Stage {
@@ -75,20 +75,31 @@ impl Stage {
     ) -> bool {
         let dim = y0.len();
         let tm = t + 0.5 * h;
+        // Cheap linearizations: a fresh one at every step, else only when Newton fails.
+        let cheap = self.mats.cheap_linearization();
+        if cheap {
+            self.jac_fresh = false;
+        }
         for attempt in 0..2 {
-            if attempt == 1 {
+            if attempt == 1 || cheap {
                 if self.jac_fresh {
                     return false;
                 }
-                system.jacobian(tm, y0, &mut self.jac);
+                let ok = self.mats.linearize(system, tm, y0);
                 stats.jacobian_evaluations += 1;
                 self.jac_fresh = true;
-                self.lu = None;
+                self.lu_h = None;
+                if !ok {
+                    return false;
+                }
             }
-            if self.lu.as_ref().is_none_or(|(hh, _)| *hh != h) {
-                let m = DMatrix::identity(dim, dim) - &self.jac * (0.5 * h);
-                self.lu = Some((h, m.lu()));
+            if self.lu_h != Some(h) {
                 stats.factorizations += 1;
+                if !self.mats.factor_real(system, 0, 2.0 / h) {
+                    self.lu_h = None;
+                    continue;
+                }
+                self.lu_h = Some(h);
             }
             self.z.copy_from_slice(y0);
             let mut old: Option<f64> = None;
@@ -100,11 +111,13 @@ impl Stage {
                 if self.f.iter().any(|v| !v.is_finite()) {
                     break;
                 }
-                let g = DVector::from_fn(dim, |i, _| y0[i] + 0.5 * h * self.f[i] - self.z[i]);
-                let Some(dz) = self.lu.as_ref().and_then(|(_, l)| l.solve(&g)) else {
-                    break;
-                };
-                let norm = (dz
+                // (I − h/2 J) dz = g  ⇔  ((2/h) I − J) dz = (2/h) g.
+                for i in 0..dim {
+                    self.dz[i] = (y0[i] + 0.5 * h * self.f[i] - self.z[i]) * (2.0 / h);
+                }
+                self.mats.solve_real(system, 0, &mut self.dz);
+                let norm = (self
+                    .dz
                     .iter()
                     .zip(scale)
                     .map(|(a, s)| (a / s).powi(2))
@@ -112,7 +125,7 @@ impl Stage {
                     / dim as f64)
                     .sqrt();
                 for i in 0..dim {
-                    self.z[i] += dz[i];
+                    self.z[i] += self.dz[i];
                 }
                 if !norm.is_finite() {
                     break;
@@ -191,13 +204,16 @@ impl ImplicitMidpoint {
         stats.rhs_evaluations += 1;
         let mut next_out = outputs_at_start(t0, y0, t_out, &mut traj);
         let mut stage = Stage {
-            jac: DMatrix::zeros(dim, dim),
-            lu: None,
+            mats: IterationMatrices::new(system),
+            lu_h: None,
             jac_fresh: true,
             f: vec![0.0; dim],
             z: vec![0.0; dim],
+            dz: vec![0.0; dim],
         };
-        system.jacobian(t, &y, &mut stage.jac);
+        // A system that cannot be linearized at the start fails its first step's Newton
+        // iteration, after one more try (`Stage::step`).
+        let _ = stage.mats.linearize(system, t, &y);
         stats.jacobian_evaluations += 1;
         let mut h = match opts.step {
             Some(h) => h,
@@ -229,7 +245,7 @@ impl ImplicitMidpoint {
                 );
             }
             let scale: Vec<f64> = (0..dim).map(|i| atol[i] + rtol * y[i].abs()).collect();
-            let tol = opts.newton_tolerance;
+            let tol = stage.mats.newton_tolerance(opts.newton_tolerance);
             let accepted = if opts.step.is_some() {
                 // Fixed step: if Newton fails, cover the step with 2, 4, … equal sub-steps.
                 let mut parts = 1usize;
@@ -251,7 +267,7 @@ impl ImplicitMidpoint {
                         break;
                     }
                     stats.rejected_steps += 1;
-                    stage.lu = None;
+                    stage.lu_h = None;
                     parts *= 2;
                     if parts > 1024 {
                         return fail(traj, stats, SolveError::NewtonFailed { time: t, step: sub });
@@ -285,7 +301,7 @@ impl ImplicitMidpoint {
                 if !ok {
                     stats.rejected_steps += 1;
                     h = 0.25 * h_try;
-                    stage.lu = None;
+                    stage.lu_h = None;
                     continue;
                 }
                 for i in 0..dim {

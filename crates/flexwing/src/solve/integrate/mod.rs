@@ -8,16 +8,20 @@
 //! options stay public for tuning beyond the shared settings.
 //!
 //! Each returns the solution at the requested output times (dense output, no extra steps) and its
-//! counters. A run that cannot continue returns the output produced so far with the error, so that
+//! counters. The implicit ones solve their Newton systems `(c I − J) Δ = r` with the system's own
+//! solver when it offers one ([`OdeSystem::newton_solver`]), else by dense LU factorizations of
+//! the Jacobian (`iteration.rs`). A run that cannot continue returns the output produced so far with the error, so that
 //! callers can keep it and mark it incomplete.
 
 mod bdf;
 mod dopri5;
 mod generalized_alpha;
+mod iteration;
 mod lu;
 mod method;
 mod midpoint;
 mod radau;
+mod radau_step;
 
 pub use bdf::{Bdf, BdfOptions};
 pub use dopri5::{Dopri5, Dopri5Options};
@@ -26,7 +30,9 @@ pub use method::{integrate, IntegratorSettings, Method, MIN_RTOL};
 pub use midpoint::{ImplicitMidpoint, MidpointOptions};
 pub use radau::{Radau, RadauOptions};
 
-use nalgebra::DMatrix;
+pub(crate) use iteration::IterationMatrices;
+
+use nalgebra::{Complex, DMatrix};
 
 use crate::error::SolveError;
 
@@ -43,6 +49,47 @@ pub trait OdeSystem {
     /// uses `atol · scale[i]`, so that one tolerance fits components of different units.
     fn atol_scale(&mut self, scale: &mut [f64]) {
         scale.fill(1.0);
+    }
+
+    /// The system's own solver of the implicit integrators' Newton systems `(c I − J) x = b`,
+    /// when it has one that is faster than a dense LU factorization of `J` (a structured
+    /// factorization, an approximate Jacobian for a simplified Newton iteration, …). The
+    /// default, `None`, makes the integrators form `J` with [`OdeSystem::jacobian`] and factor
+    /// `c I − J` densely. The answer must not change during an integration.
+    fn newton_solver(&mut self) -> Option<&mut dyn NewtonSolver> {
+        None
+    }
+}
+
+/// Solves the Newton systems `(c I − J̃) x = b` of the implicit integrators for real and complex
+/// shifts `c`, `J̃` the system's Jacobian or an approximation of it (then the integrators' Newton
+/// iterations are simplified Newton iterations, and converge more slowly), taken at the point
+/// of the last [`NewtonSolver::linearize`]. Shifts are factored into numbered slots that are
+/// kept independently (Radau IIA keeps a real and a complex one; BDF, the midpoint rule and
+/// generalized-α one real one), real and complex slots apart.
+pub trait NewtonSolver {
+    /// Take `(t, y)` as the point of `J̃` (what [`OdeSystem::jacobian`] is to the dense path).
+    /// False if the system cannot be linearized there (the integrator then shrinks its step).
+    fn linearize(&mut self, t: f64, y: &[f64]) -> bool;
+    /// Factor `c I − J̃` for the real shift `c` into real slot `slot`. False if it is singular.
+    fn factor_real(&mut self, slot: usize, c: f64) -> bool;
+    /// Factor `c I − J̃` for the complex shift `c` into complex slot `slot`. False if singular.
+    fn factor_complex(&mut self, slot: usize, c: Complex<f64>) -> bool;
+    /// `b ← (c I − J̃)⁻¹ b` with the factorization in real slot `slot`.
+    fn solve_real(&mut self, slot: usize, b: &mut [f64]);
+    /// `re + i im ← (c I − J̃)⁻¹ (re + i im)` with the factorization in complex slot `slot`.
+    fn solve_complex(&mut self, slot: usize, re: &mut [f64], im: &mut [f64]);
+    /// Whether a linearization and its factorizations cost less than a step, so that the
+    /// integrators linearize at every step instead of reusing `J̃` while Newton converges
+    /// (a fresh `J̃` converges in fewer iterations). Default false.
+    fn cheap_linearization(&self) -> bool {
+        false
+    }
+    /// The loosest stopping tolerance of the Newton iterations, relative to the error scale,
+    /// that the system can take, when tighter than the integrators' defaults (`None`, the
+    /// default, for no bound). An option set by the caller wins over it.
+    fn newton_tolerance(&self) -> Option<f64> {
+        None
     }
 }
 

@@ -3,10 +3,15 @@
 //!
 //! The `3N` Newton system of the stages is transformed with the eigenvectors `T` of the inverse
 //! coefficient matrix `A⁻¹` into one real `N × N` system `(γ/h I − J)` and one complex system
-//! `((α + iβ)/h I − J)`: one real and one complex LU per factorization instead of a `3N` one. The
-//! Jacobian is reused from step to step while Newton converges fast (contraction `θ ≤
-//! jacobian_reuse`), and the factorizations are kept when the step size changes by a factor in
-//! `[1, 1.2]`.
+//! `((α + iβ)/h I − J)`: one real and one complex LU per factorization instead of a `3N` one (or
+//! the system's own solver of both, `OdeSystem::newton_solver`: the full beam model's O(n) chain
+//! sweeps). The Jacobian is reused from step to step while Newton converges fast (contraction
+//! `θ ≤ jacobian_reuse`), and the factorizations are kept when the step size changes by a factor
+//! in `[1, 1.2]`; a system whose linearizations are cheap is linearized at every step instead.
+//!
+//! `integrate` is the driver: it keeps `RADAU5`'s control flow and calls the named parts of a
+//! step in `radau_step.rs` (iteration matrices, starting values, Newton iteration, error
+//! estimate, step-size proposal, collocation polynomial and dense output).
 //!
 //! Tolerances are transformed as in `RADAU5`: the error estimate is of order 3 while the method is
 //! of order 5, and `rtol' = 0.1 rtol^(2/3)`, `atol' = atol rtol'/rtol` make the global error
@@ -19,13 +24,11 @@
 //! K. Gustafsson, "Control-theoretic techniques for stepsize selection in implicit Runge–Kutta
 //! methods", ACM TOMS 20 (1994) 496–517 (the predictive controller).
 
-use nalgebra::DMatrix;
-
 use super::dopri5::initial_step;
-use super::lu::{ComplexLu, DenseLu};
+use super::radau_step::{propose_step, Newton, Scratch, Settings, State};
 use super::{
-    check_output_times, failure, outputs_at_start, IntegrationResult, IntegratorStats, OdeSystem,
-    Tolerances, Trajectory,
+    check_output_times, failure, outputs_at_start, IntegrationResult, IntegratorStats,
+    IterationMatrices, OdeSystem, Tolerances, Trajectory,
 };
 use crate::error::SolveError;
 
@@ -47,7 +50,8 @@ pub struct RadauOptions {
     /// step (`RADAU5`'s `THET`). Default 0.1, `RADAU5`'s advice for Jacobians that are expensive
     /// (a beam model's costs about ten right-hand sides; on the paper's case (b) it halves the
     /// Jacobian evaluations against `RADAU5`'s default 0.001). A negative value recomputes it at
-    /// every step.
+    /// every step. Not used when the system linearizes cheaply
+    /// (`NewtonSolver::cheap_linearization`): it is then linearized at every step.
     pub jacobian_reuse: f64,
     /// When the proposed new step over the current one lies in `[lower, upper]`, the step and
     /// the factorizations are kept (`RADAU5`'s `WORK(5)`, `WORK(6)`). Default `(1.0, 1.2)`;
@@ -55,7 +59,8 @@ pub struct RadauOptions {
     /// right-hand sides.
     pub unchanged_step_ratio: (f64, f64),
     /// Stopping tolerance of the Newton iteration relative to the error scale (`RADAU5`'s
-    /// `FNEWT`); `None` (default) for `max(10 ε/rtol', min(0.03, √rtol'))`.
+    /// `FNEWT`); `None` (default) for `max(10 ε/rtol', min(0.03, √rtol'))`, or the system's
+    /// bound if it is tighter (`NewtonSolver::newton_tolerance`).
     pub newton_tolerance: Option<f64>,
 }
 
@@ -77,9 +82,10 @@ impl Default for RadauOptions {
 /// The Radau IIA implicit Runge–Kutta integrator of order 5, for stiff systems.
 ///
 /// Counters: `factorizations` counts the pairs (one real, one complex LU) of `N × N` iteration
-/// matrices, as `RADAU5`'s `NDEC`; `rhs_evaluations` includes those of the error estimate and of
-/// the initial step; `newton_iterations` counts the solves of the transformed system (each costs
-/// three right-hand sides).
+/// matrices, as `RADAU5`'s `NDEC` (with a system's own solver: its factorization pairs, and
+/// `jacobian_evaluations` its linearizations); `rhs_evaluations` includes those of the error
+/// estimate and of the initial step; `newton_iterations` counts the solves of the transformed
+/// system (each costs three right-hand sides).
 #[derive(Debug, Clone, Default)]
 pub struct Radau {
     /// Options.
@@ -87,141 +93,47 @@ pub struct Radau {
 }
 
 // Nodes and the constants of RADAU5 (Hairer & Wanner II, §IV.8, and the code).
-const SQ6: f64 = 2.449_489_742_783_178;
-const C1: f64 = (4.0 - SQ6) / 10.0;
-const C2: f64 = (4.0 + SQ6) / 10.0;
-const C1M1: f64 = C1 - 1.0;
-const C2M1: f64 = C2 - 1.0;
-const C1MC2: f64 = C1 - C2;
+pub(super) const SQ6: f64 = 2.449_489_742_783_178;
+pub(super) const C1: f64 = (4.0 - SQ6) / 10.0;
+pub(super) const C2: f64 = (4.0 + SQ6) / 10.0;
+pub(super) const C1M1: f64 = C1 - 1.0;
+pub(super) const C2M1: f64 = C2 - 1.0;
+pub(super) const C1MC2: f64 = C1 - C2;
 /// Coefficients of the embedded error estimate.
-const DD1: f64 = -(13.0 + 7.0 * SQ6) / 3.0;
-const DD2: f64 = (-13.0 + 7.0 * SQ6) / 3.0;
-const DD3: f64 = -1.0 / 3.0;
+pub(super) const DD1: f64 = -(13.0 + 7.0 * SQ6) / 3.0;
+pub(super) const DD2: f64 = (-13.0 + 7.0 * SQ6) / 3.0;
+pub(super) const DD3: f64 = -1.0 / 3.0;
 /// The real eigenvalue `γ` of `A⁻¹`, and its complex pair `α ± iβ`.
-const GAMMA: f64 = 3.637_834_252_744_496;
-const ALPHA: f64 = 2.681_082_873_627_752_3;
-const BETA: f64 = 3.050_430_199_247_410_5;
+pub(super) const GAMMA: f64 = 3.637_834_252_744_496;
+pub(super) const ALPHA: f64 = 2.681_082_873_627_752_3;
+pub(super) const BETA: f64 = 3.050_430_199_247_410_5;
 /// Eigenvectors of `A⁻¹` (`T`) and the inverse (`T⁻¹`): `T⁻¹ A⁻¹ T = [[γ, 0, 0], [0, α, −β],
 /// [0, β, α]]`.
-const T11: f64 = 9.123_239_487_089_295e-2;
-const T12: f64 = -0.141_255_295_020_954_2;
-const T13: f64 = -3.002_919_410_514_742_4e-2;
-const T21: f64 = 0.241_717_932_707_107;
-const T22: f64 = 0.204_129_352_293_799_94;
-const T23: f64 = 0.382_942_112_757_261_8;
-const T31: f64 = 0.966_048_182_615_093;
-const TI11: f64 = 4.325_579_890_063_155;
-const TI12: f64 = 0.339_199_251_815_809_87;
-const TI13: f64 = 0.541_770_539_935_874_9;
-const TI21: f64 = -4.178_718_591_551_905;
-const TI22: f64 = -0.327_682_820_761_062_4;
-const TI23: f64 = 0.476_623_554_500_550_45;
-const TI31: f64 = -0.502_872_634_945_786_9;
-const TI32: f64 = 2.571_926_949_855_605;
-const TI33: f64 = -0.596_039_204_828_224_9;
+pub(super) const T11: f64 = 9.123_239_487_089_295e-2;
+pub(super) const T12: f64 = -0.141_255_295_020_954_2;
+pub(super) const T13: f64 = -3.002_919_410_514_742_4e-2;
+pub(super) const T21: f64 = 0.241_717_932_707_107;
+pub(super) const T22: f64 = 0.204_129_352_293_799_94;
+pub(super) const T23: f64 = 0.382_942_112_757_261_8;
+pub(super) const T31: f64 = 0.966_048_182_615_093;
+pub(super) const TI11: f64 = 4.325_579_890_063_155;
+pub(super) const TI12: f64 = 0.339_199_251_815_809_87;
+pub(super) const TI13: f64 = 0.541_770_539_935_874_9;
+pub(super) const TI21: f64 = -4.178_718_591_551_905;
+pub(super) const TI22: f64 = -0.327_682_820_761_062_4;
+pub(super) const TI23: f64 = 0.476_623_554_500_550_45;
+pub(super) const TI31: f64 = -0.502_872_634_945_786_9;
+pub(super) const TI32: f64 = 2.571_926_949_855_605;
+pub(super) const TI33: f64 = -0.596_039_204_828_224_9;
 /// Safety factor of the step-size selection.
-const SAFE: f64 = 0.9;
+pub(super) const SAFE: f64 = 0.9;
 /// Bounds of `h/h_new` (`RADAU5`'s `FACL`, `FACR`): the step grows at most 8-fold and shrinks at
 /// most 5-fold.
-const FACL: f64 = 5.0;
-const FACR: f64 = 1.0 / 8.0;
+pub(super) const FACL: f64 = 5.0;
+pub(super) const FACR: f64 = 1.0 / 8.0;
 /// Default bounds of [`RadauOptions::unchanged_step_ratio`].
-const QUOT1: f64 = 1.0;
-const QUOT2: f64 = 1.2;
-
-/// What the simplified Newton iteration of one step ended with.
-enum Newton {
-    Converged,
-    /// Diverging, too slow, or a non-finite value: halve the step.
-    Failed,
-    /// Converging too slowly for the iterations left: retry with the step times this factor.
-    Slow(f64),
-}
-
-/// Scratch of the integrator, allocated once per run.
-struct Scratch {
-    jac: DMatrix<f64>,
-    e1: DenseLu,
-    e2: ComplexLu,
-    /// Stage increments `Z_i = Y_i − y` (and the right-hand sides during an iteration).
-    z: [Vec<f64>; 3],
-    /// Transformed increments `W = T⁻¹ Z`.
-    w: [Vec<f64>; 3],
-    /// Coefficients of the collocation polynomial of the last accepted step.
-    cont: [Vec<f64>; 3],
-    /// Stage state, error-estimate vectors.
-    tmp: Vec<f64>,
-    f2: Vec<f64>,
-    err: Vec<f64>,
-    /// `f(t, y)` at the start of the step.
-    f0: Vec<f64>,
-    scal: Vec<f64>,
-}
-
-impl Scratch {
-    fn new(n: usize) -> Self {
-        Self {
-            jac: DMatrix::zeros(n, n),
-            e1: DenseLu::new(n),
-            e2: ComplexLu::new(n),
-            z: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
-            w: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
-            cont: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
-            tmp: vec![0.0; n],
-            f2: vec![0.0; n],
-            err: vec![0.0; n],
-            f0: vec![0.0; n],
-            scal: vec![0.0; n],
-        }
-    }
-
-    /// Factor `γ/h I − J` and `(α + iβ)/h I − J`; false if either is singular.
-    fn factor(&mut self, h: f64) -> bool {
-        let n = self.jac.nrows();
-        let (fac1, alphn, betan) = (GAMMA / h, ALPHA / h, BETA / h);
-        let j = self.jac.as_slice();
-        let m1 = self.e1.matrix_mut();
-        for (a, &b) in m1.iter_mut().zip(j) {
-            *a = -b;
-        }
-        for i in 0..n {
-            m1[i + i * n] += fac1;
-        }
-        let (m2r, m2i) = self.e2.matrix_mut();
-        for (a, &b) in m2r.iter_mut().zip(j) {
-            *a = -b;
-        }
-        m2i.fill(0.0);
-        for i in 0..n {
-            m2r[i + i * n] += alphn;
-            m2i[i + i * n] = betan;
-        }
-        self.e1.factor() && self.e2.factor()
-    }
-
-    /// Solve the transformed Newton system for the corrections of `W`: on entry `z` holds
-    /// `T⁻¹ F(Z)`, on exit the corrections `ΔW` (`RADAU5`'s `SLVRAD`).
-    fn solve(&mut self, h: f64) {
-        let (fac1, alphn, betan) = (GAMMA / h, ALPHA / h, BETA / h);
-        let n = self.tmp.len();
-        let [z1, z2, z3] = &mut self.z;
-        let [w1, w2, w3] = &self.w;
-        for i in 0..n {
-            z1[i] -= w1[i] * fac1;
-            let (s2, s3) = (-w2[i], -w3[i]);
-            z2[i] += s2 * alphn - s3 * betan;
-            z3[i] += s3 * alphn + s2 * betan;
-        }
-        self.e1.solve_in_place(z1);
-        self.e2.solve_in_place(z2, z3);
-    }
-}
-
-/// RMS norm of `v / scal`.
-fn scaled_rms(v: &[f64], scal: &[f64]) -> f64 {
-    let s: f64 = v.iter().zip(scal).map(|(a, s)| (a / s) * (a / s)).sum();
-    (s / v.len().max(1) as f64).sqrt()
-}
+pub(super) const QUOT1: f64 = 1.0;
+pub(super) const QUOT2: f64 = 1.2;
 
 impl Radau {
     fn validate(&self, dim: usize) -> Result<(), crate::InputError> {
@@ -305,8 +217,180 @@ impl Radau {
         if next_out == t_out.len() {
             return Ok((traj, stats));
         }
+        let mut s = Scratch::new(system);
+        let set = self.settings(n, t0, t_end, &s.mats);
+        system.rhs(t0, y0, &mut s.f0);
+        stats.rhs_evaluations += 1;
+        if s.f0.iter().any(|v| !v.is_finite()) {
+            return fail(traj, stats, SolveError::NonFinite { time: t0 });
+        }
+        s.update_scale(y0, &set);
+        let h = match opts.first_step {
+            Some(h) => h,
+            None => initial_step(system, t0, y0, &s.f0, &set.atol, set.rtol, 3, &mut stats),
+        }
+        .min(set.hmaxn);
+        let mut st = State {
+            t: t0,
+            y: y0.to_vec(),
+            h,
+            h_old: h,
+            first: true,
+            reject: false,
+            last: false,
+            need_jac: true,
+            need_lu: true,
+            jac_current: false,
+            faccon: 1.0,
+            theta: 0.0,
+            n_singular: 0,
+            last_failure_non_finite: false,
+            h_acc: h,
+            err_acc: 1e-2,
+        };
+        if st.h >= t_end - st.t {
+            st.h = t_end - st.t;
+            st.last = true;
+        }
+        st.h_old = st.h;
+        st.h_acc = st.h;
 
-        // Tolerances as RADAU5 (module documentation).
+        loop {
+            if stats.steps + stats.rejected_steps >= opts.max_steps {
+                let steps = stats.steps + stats.rejected_steps;
+                return fail(traj, stats, SolveError::TooManySteps { time: st.t, steps });
+            }
+            if !st.last && t_end - (st.t + st.h) <= 1e-8 * st.h {
+                // A step that would stop a rounding error short of the end (after a kept or a
+                // rejected step) is stretched to it: the step after it would be too small.
+                st.h = t_end - st.t;
+                st.last = true;
+                st.need_lu = true;
+            }
+            if !(0.1 * st.h.abs() > st.t.abs() * f64::EPSILON) || !st.h.is_finite() {
+                let e = if st.last_failure_non_finite {
+                    SolveError::NonFinite { time: st.t }
+                } else {
+                    SolveError::StepSizeTooSmall {
+                        time: st.t,
+                        step: st.h,
+                    }
+                };
+                return fail(traj, stats, e);
+            }
+
+            // Iteration matrices: a new Jacobian and/or new factorizations when asked for.
+            let mut singular = false;
+            if st.need_jac {
+                singular = !s.mats.linearize(system, st.t, &st.y);
+                stats.jacobian_evaluations += 1;
+                st.jac_current = !singular;
+                st.need_jac = false;
+                st.need_lu = true;
+            }
+            if st.need_lu && !singular {
+                stats.factorizations += 1;
+                singular = !s.factor(system, st.h);
+                st.need_lu = singular;
+            }
+            if singular {
+                // Singular iteration matrix: RADAU5 halves the step, five times at most.
+                st.n_singular += 1;
+                if st.n_singular >= 5 {
+                    let e = SolveError::NewtonFailed {
+                        time: st.t,
+                        step: st.h,
+                    };
+                    return fail(traj, stats, e);
+                }
+                stats.rejected_steps += 1;
+                st.h *= 0.5;
+                st.reject = true;
+                st.last = false;
+                st.need_jac = !st.jac_current;
+                st.need_lu = true;
+                continue;
+            }
+            let t_new = if st.last { t_end } else { st.t + st.h };
+
+            s.starting_values(&st);
+            let newt = match s.newton(system, &mut st, &set, t_new, &mut stats) {
+                Newton::Converged(newt) => newt,
+                outcome => {
+                    st.h *= match outcome {
+                        Newton::Slow(f) => f,
+                        _ => 0.5,
+                    };
+                    stats.rejected_steps += 1;
+                    st.reject = true;
+                    st.last = false;
+                    st.need_jac = !st.jac_current;
+                    st.need_lu = true;
+                    continue;
+                }
+            };
+            st.last_failure_non_finite = false;
+
+            let err = s.error_estimate(system, &st, &mut stats);
+
+            if err >= 1.0 {
+                // Rejected.
+                let h_new = propose_step(&st, &set, err, newt, false);
+                st.reject = true;
+                st.last = false;
+                st.h = if st.first { 0.1 * st.h } else { h_new };
+                stats.rejected_steps += 1;
+                st.need_lu = true;
+                st.need_jac = !st.jac_current;
+                continue;
+            }
+
+            // Accepted.
+            st.first = false;
+            stats.steps += 1;
+            let mut h_new = propose_step(&st, &set, err, newt, stats.steps > 1);
+            st.h_acc = st.h;
+            st.err_acc = err.max(1e-2);
+            s.accept(&mut st, t_new);
+            s.update_scale(&st.y, &set);
+            next_out = s.dense_output(&st, t_out, next_out, &mut traj);
+            progress(st.t);
+            st.jac_current = false;
+            if st.last || next_out == t_out.len() {
+                return Ok((traj, stats));
+            }
+            system.rhs(st.t, &st.y, &mut s.f0);
+            stats.rhs_evaluations += 1;
+            if s.f0.iter().any(|v| !v.is_finite()) {
+                return fail(traj, stats, SolveError::NonFinite { time: st.t });
+            }
+
+            // The next step: kept with its factorizations when close enough to the proposal.
+            h_new = h_new.min(set.hmaxn);
+            if st.reject {
+                h_new = h_new.min(st.h);
+            }
+            st.reject = false;
+            if st.t + h_new / set.quot1 >= t_end {
+                st.h = t_end - st.t;
+                st.last = true;
+            } else {
+                let qt = h_new / st.h;
+                if !set.relinearize && st.theta <= set.thet && (set.quot1..=set.quot2).contains(&qt)
+                {
+                    continue;
+                }
+                st.h = h_new;
+            }
+            st.need_lu = true;
+            st.need_jac = set.relinearize || st.theta > set.thet;
+        }
+    }
+
+    /// The settings of a run of dimension `n` on `[t0, t_end]`: tolerances transformed as
+    /// `RADAU5` (module documentation) and the Newton and step-size constants.
+    fn settings(&self, n: usize, t0: f64, t_end: f64, mats: &IterationMatrices) -> Settings {
+        let opts = &self.options;
         let rtol_user = opts.tolerances.rtol;
         let rtol = 0.1 * rtol_user.powf(2.0 / 3.0);
         let atol: Vec<f64> = opts
@@ -316,324 +400,20 @@ impl Radau {
             .map(|a| a * rtol / rtol_user)
             .collect();
         let nit = opts.max_newton_iterations;
-        let thet = opts.jacobian_reuse;
-        let fnewt = opts
-            .newton_tolerance
-            .unwrap_or_else(|| (10.0 * f64::EPSILON / rtol).max(0.03f64.min(rtol.sqrt())));
         let (quot1, quot2) = opts.unchanged_step_ratio;
-        let cfac = SAFE * (1 + 2 * nit) as f64;
-        let hmaxn = opts.max_step.min(t_end - t0);
-
-        let mut s = Scratch::new(n);
-        let mut t = t0;
-        let mut y = y0.to_vec();
-        system.rhs(t, &y, &mut s.f0);
-        stats.rhs_evaluations += 1;
-        if s.f0.iter().any(|v| !v.is_finite()) {
-            return fail(traj, stats, SolveError::NonFinite { time: t });
-        }
-        for i in 0..n {
-            s.scal[i] = atol[i] + rtol * y[i].abs();
-        }
-        let mut h = match opts.first_step {
-            Some(h) => h,
-            None => initial_step(system, t, &y, &s.f0, &atol, rtol, 3, &mut stats),
-        }
-        .min(hmaxn);
-        let mut last = false;
-        if h >= t_end - t {
-            h = t_end - t;
-            last = true;
-        }
-        let mut h_old = h;
-        let mut first = true;
-        let mut reject = false;
-        let mut need_jac = true;
-        let mut need_lu = true;
-        // The Jacobian is at the current (t, y) (RADAU5's CALJAC).
-        let mut jac_current = false;
-        let mut faccon: f64 = 1.0;
-        let mut n_singular = 0;
-        let mut last_failure_non_finite = false;
-        // Predictive controller: the last accepted step and its error.
-        let (mut h_acc, mut err_acc) = (h, 1e-2);
-
-        loop {
-            if stats.steps + stats.rejected_steps >= opts.max_steps {
-                let steps = stats.steps + stats.rejected_steps;
-                return fail(traj, stats, SolveError::TooManySteps { time: t, steps });
-            }
-            if !last && t_end - (t + h) <= 1e-8 * h {
-                // A step that would stop a rounding error short of the end (after a kept or a
-                // rejected step) is stretched to it: the step after it would be too small.
-                h = t_end - t;
-                last = true;
-                need_lu = true;
-            }
-            if !(0.1 * h.abs() > t.abs() * f64::EPSILON) || !h.is_finite() {
-                let e = if last_failure_non_finite {
-                    SolveError::NonFinite { time: t }
-                } else {
-                    SolveError::StepSizeTooSmall { time: t, step: h }
-                };
-                return fail(traj, stats, e);
-            }
-            if need_jac {
-                system.jacobian(t, &y, &mut s.jac);
-                stats.jacobian_evaluations += 1;
-                jac_current = true;
-                need_jac = false;
-                need_lu = true;
-            }
-            if need_lu {
-                stats.factorizations += 1;
-                if !s.factor(h) {
-                    // Singular iteration matrix: RADAU5 halves the step, five times at most.
-                    n_singular += 1;
-                    if n_singular >= 5 {
-                        return fail(traj, stats, SolveError::NewtonFailed { time: t, step: h });
-                    }
-                    stats.rejected_steps += 1;
-                    h *= 0.5;
-                    reject = true;
-                    last = false;
-                    need_jac = !jac_current;
-                    continue;
-                }
-                need_lu = false;
-            }
-            let t_new = if last { t_end } else { t + h };
-
-            // Starting values: the collocation polynomial of the previous step, extrapolated.
-            if first {
-                for k in 0..3 {
-                    s.z[k].fill(0.0);
-                    s.w[k].fill(0.0);
-                }
-            } else {
-                let c3q = h / h_old;
-                let (c1q, c2q) = (C1 * c3q, C2 * c3q);
-                for i in 0..n {
-                    let (ak1, ak2, ak3) = (s.cont[0][i], s.cont[1][i], s.cont[2][i]);
-                    let z1 = c1q * (ak1 + (c1q - C2M1) * (ak2 + (c1q - C1M1) * ak3));
-                    let z2 = c2q * (ak1 + (c2q - C2M1) * (ak2 + (c2q - C1M1) * ak3));
-                    let z3 = c3q * (ak1 + (c3q - C2M1) * (ak2 + (c3q - C1M1) * ak3));
-                    s.z[0][i] = z1;
-                    s.z[1][i] = z2;
-                    s.z[2][i] = z3;
-                    s.w[0][i] = TI11 * z1 + TI12 * z2 + TI13 * z3;
-                    s.w[1][i] = TI21 * z1 + TI22 * z2 + TI23 * z3;
-                    s.w[2][i] = TI31 * z1 + TI32 * z2 + TI33 * z3;
-                }
-            }
-
-            // Simplified Newton iteration.
-            faccon = faccon.max(f64::EPSILON).powf(0.8);
-            let mut theta = thet.abs();
-            let mut newt = 0;
-            let mut dyno_old = 0.0;
-            let mut thq_old = 0.0;
-            let outcome = loop {
-                if newt >= nit {
-                    break Newton::Failed;
-                }
-                let nodes = [t + C1 * h, t + C2 * h, t_new];
-                let mut finite = true;
-                for k in 0..3 {
-                    for i in 0..n {
-                        s.tmp[i] = y[i] + s.z[k][i];
-                    }
-                    system.rhs(nodes[k], &s.tmp, &mut s.z[k]);
-                    finite &= s.z[k].iter().all(|v| v.is_finite());
-                }
-                stats.rhs_evaluations += 3;
-                if !finite {
-                    last_failure_non_finite = true;
-                    break Newton::Failed;
-                }
-                {
-                    let [z1, z2, z3] = &mut s.z;
-                    for i in 0..n {
-                        let (a1, a2, a3) = (z1[i], z2[i], z3[i]);
-                        z1[i] = TI11 * a1 + TI12 * a2 + TI13 * a3;
-                        z2[i] = TI21 * a1 + TI22 * a2 + TI23 * a3;
-                        z3[i] = TI31 * a1 + TI32 * a2 + TI33 * a3;
-                    }
-                }
-                s.solve(h);
-                stats.newton_iterations += 1;
-                newt += 1;
-                let dyno = ((scaled_rms(&s.z[0], &s.scal).powi(2)
-                    + scaled_rms(&s.z[1], &s.scal).powi(2)
-                    + scaled_rms(&s.z[2], &s.scal).powi(2))
-                    / 3.0)
-                    .sqrt();
-                if !dyno.is_finite() {
-                    last_failure_non_finite = true;
-                    break Newton::Failed;
-                }
-                if newt > 1 && newt < nit {
-                    let thq = dyno / dyno_old;
-                    theta = if newt == 2 {
-                        thq
-                    } else {
-                        (thq * thq_old).sqrt()
-                    };
-                    thq_old = thq;
-                    if theta < 0.99 {
-                        faccon = theta / (1.0 - theta);
-                        let dyth = faccon * dyno * theta.powi((nit - 1 - newt) as i32) / fnewt;
-                        if dyth >= 1.0 {
-                            let qnewt = dyth.clamp(1e-4, 20.0);
-                            break Newton::Slow(
-                                0.8 * qnewt.powf(-1.0 / (4.0 + nit as f64 - 1.0 - newt as f64)),
-                            );
-                        }
-                    } else {
-                        break Newton::Failed;
-                    }
-                }
-                dyno_old = dyno.max(f64::EPSILON);
-                let [z1, z2, z3] = &mut s.z;
-                let [w1, w2, w3] = &mut s.w;
-                for i in 0..n {
-                    let (f1, f2, f3) = (w1[i] + z1[i], w2[i] + z2[i], w3[i] + z3[i]);
-                    w1[i] = f1;
-                    w2[i] = f2;
-                    w3[i] = f3;
-                    z1[i] = T11 * f1 + T12 * f2 + T13 * f3;
-                    z2[i] = T21 * f1 + T22 * f2 + T23 * f3;
-                    z3[i] = T31 * f1 + f2;
-                }
-                if faccon * dyno <= fnewt {
-                    break Newton::Converged;
-                }
-            };
-            match outcome {
-                Newton::Converged => {}
-                Newton::Failed | Newton::Slow(_) => {
-                    h *= match outcome {
-                        Newton::Slow(f) => f,
-                        _ => 0.5,
-                    };
-                    stats.rejected_steps += 1;
-                    reject = true;
-                    last = false;
-                    need_jac = !jac_current;
-                    need_lu = true;
-                    continue;
-                }
-            }
-            last_failure_non_finite = false;
-
-            // Error estimate (RADAU5's ESTRAD): (γ/h I − J)⁻¹ filters the stiff components of
-            // the difference to the embedded order-3 solution.
-            let (hee1, hee2, hee3) = (DD1 / h, DD2 / h, DD3 / h);
-            for i in 0..n {
-                s.f2[i] = hee1 * s.z[0][i] + hee2 * s.z[1][i] + hee3 * s.z[2][i];
-                s.err[i] = s.f2[i] + s.f0[i];
-            }
-            s.e1.solve_in_place(&mut s.err);
-            let mut err = scaled_rms(&s.err, &s.scal).max(1e-10);
-            if err >= 1.0 && (first || reject) {
-                for i in 0..n {
-                    s.tmp[i] = y[i] + s.err[i];
-                }
-                system.rhs(t, &s.tmp, &mut s.err);
-                stats.rhs_evaluations += 1;
-                for i in 0..n {
-                    s.err[i] += s.f2[i];
-                }
-                s.e1.solve_in_place(&mut s.err);
-                err = scaled_rms(&s.err, &s.scal).max(1e-10);
-                if !err.is_finite() {
-                    err = 1e10;
-                }
-            }
-
-            // New step size: at most 8 times larger, 5 times smaller.
-            let fac = SAFE.min(cfac / (newt + 2 * nit) as f64);
-            let mut quot = (err.powf(0.25) / fac).clamp(FACR, FACL);
-            let mut h_new = h / quot;
-            if err < 1.0 {
-                // Accepted.
-                first = false;
-                stats.steps += 1;
-                if stats.steps > 1 {
-                    // Predictive controller of Gustafsson.
-                    let facgus =
-                        ((h_acc / h) * (err * err / err_acc).powf(0.25) / SAFE).clamp(FACR, FACL);
-                    quot = quot.max(facgus);
-                    h_new = h / quot;
-                }
-                h_acc = h;
-                err_acc = err.max(1e-2);
-                h_old = h;
-                t = t_new;
-                {
-                    let [z1, z2, z3] = &s.z;
-                    let [c1, c2, c3] = &mut s.cont;
-                    for i in 0..n {
-                        y[i] += z3[i];
-                        c1[i] = (z2[i] - z3[i]) / C2M1;
-                        let ak = (z1[i] - z2[i]) / C1MC2;
-                        let acont3 = (ak - z1[i] / C1) / C2;
-                        c2[i] = (ak - c1[i]) / C1M1;
-                        c3[i] = c2[i] - acont3;
-                    }
-                }
-                for i in 0..n {
-                    s.scal[i] = atol[i] + rtol * y[i].abs();
-                }
-                // Dense output on (t − h, t] from the collocation polynomial (exact at t).
-                while next_out < t_out.len() && t_out[next_out] <= t {
-                    let tt = t_out[next_out];
-                    let sq = (tt - t) / h_old;
-                    let [c1, c2, c3] = &s.cont;
-                    let yo: Vec<f64> = (0..n)
-                        .map(|i| y[i] + sq * (c1[i] + (sq - C2M1) * (c2[i] + (sq - C1M1) * c3[i])))
-                        .collect();
-                    traj.t.push(tt);
-                    traj.y.push(yo);
-                    next_out += 1;
-                }
-                progress(t);
-                jac_current = false;
-                if last || next_out == t_out.len() {
-                    return Ok((traj, stats));
-                }
-                system.rhs(t, &y, &mut s.f0);
-                stats.rhs_evaluations += 1;
-                if s.f0.iter().any(|v| !v.is_finite()) {
-                    return fail(traj, stats, SolveError::NonFinite { time: t });
-                }
-                h_new = h_new.min(hmaxn);
-                if reject {
-                    h_new = h_new.min(h);
-                }
-                reject = false;
-                if t + h_new / quot1 >= t_end {
-                    h = t_end - t;
-                    last = true;
-                } else {
-                    let qt = h_new / h;
-                    if theta <= thet && (quot1..=quot2).contains(&qt) {
-                        // Keep the step and the factorizations.
-                        continue;
-                    }
-                    h = h_new;
-                }
-                need_lu = true;
-                need_jac = theta > thet;
-            } else {
-                // Rejected.
-                reject = true;
-                last = false;
-                h = if first { 0.1 * h } else { h_new };
-                stats.rejected_steps += 1;
-                need_lu = true;
-                need_jac = !jac_current;
-            }
+        Settings {
+            rtol,
+            atol,
+            nit,
+            thet: opts.jacobian_reuse,
+            fnewt: opts.newton_tolerance.unwrap_or_else(|| {
+                mats.newton_tolerance((10.0 * f64::EPSILON / rtol).max(0.03f64.min(rtol.sqrt())))
+            }),
+            relinearize: mats.cheap_linearization(),
+            quot1,
+            quot2,
+            cfac: SAFE * (1 + 2 * nit) as f64,
+            hmaxn: opts.max_step.min(t_end - t0),
         }
     }
 }
@@ -641,6 +421,8 @@ impl Radau {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    use nalgebra::DMatrix;
 
     use crate::solve::integrate::tests::Oscillator;
 

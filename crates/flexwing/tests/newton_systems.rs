@@ -1,0 +1,251 @@
+//! The implicit integrators' Newton systems solved by O(n) chain sweeps (`NewtonSystems::Chain`)
+//! against the dense path (the exact Jacobian, dense LU): the same trajectories at n ≤ 160, for
+//! bending and coupled bending–torsion beams and for Radau, BDF and the midpoint rule; and at
+//! n = 1000 (dense is out of reach there) the case (b) setting against a run with half the step
+//! and a tenth of the tolerance. These are consistency tests of the solver (the dense path is
+//! validated against independent references in `tests/dynamics.rs`).
+
+mod common;
+
+use common::*;
+use flexwing::beam::{Calibration, Profile};
+use flexwing::model::{Force, FullModel, Load};
+use flexwing::solve::integrate::{
+    Bdf, BdfOptions, ImplicitMidpoint, IntegratorStats, MidpointOptions, Radau, RadauOptions,
+    Tolerances, Trajectory,
+};
+use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, NewtonSystems, TimeFunction};
+
+fn table4(n: usize) -> FullModel {
+    model(
+        1.0,
+        &bending_only(Profile::Uniform(50.0), Profile::Uniform(0.2)),
+        n,
+        Calibration::TipLoad,
+    )
+}
+
+/// Which integrator, with its step control.
+#[derive(Clone, Copy)]
+enum Method {
+    /// Radau with rtol and a step cap.
+    Radau(f64, f64),
+    /// BDF (order ≤ 2) with rtol.
+    Bdf(f64),
+    /// Fixed-step implicit midpoint.
+    Midpoint(f64),
+}
+
+/// Integrate `model` under `loads` (each scaled by `10 sin(ω t)`-type functions `tf`) from rest
+/// over the output times `t`, with the Newton systems `newton`; coordinate atol `20 rtol / n`
+/// rad per joint (`flexwing reproduce` uses atol = rtol at n = 20; scaled with the joint's
+/// share of the span so that the tolerance on the tip angle does not grow with n).
+fn run(
+    model: &FullModel,
+    loads: &[Load],
+    tf: Vec<TimeFunction>,
+    t: &[f64],
+    method: Method,
+    newton: NewtonSystems,
+) -> (Trajectory, IntegratorStats) {
+    let applied = model.apply(loads, "loads").unwrap();
+    let mut eom =
+        EquationsOfMotion::new(model, &applied, tf, Gyroscopic::Exact, &Damping::None).unwrap();
+    eom.set_newton_systems(newton).unwrap();
+    let n = model.n_elements();
+    let y0 = vec![0.0; 2 * model.n_dofs()];
+    let tolerances = |rtol: f64, eom: &mut EquationsOfMotion<'_, FullModel>| Tolerances {
+        rtol,
+        atol: eom.state_atol(20.0 * rtol / n as f64),
+    };
+    let result = match method {
+        Method::Radau(rtol, max_step) => Radau {
+            options: RadauOptions {
+                tolerances: tolerances(rtol, &mut eom),
+                max_step,
+                ..Default::default()
+            },
+        }
+        .integrate(&mut eom, 0.0, &y0, t, &mut |_| {}),
+        Method::Bdf(rtol) => Bdf {
+            options: BdfOptions {
+                tolerances: tolerances(rtol, &mut eom),
+                ..Default::default()
+            },
+        }
+        .integrate(&mut eom, 0.0, &y0, t, &mut |_| {}),
+        Method::Midpoint(step) => ImplicitMidpoint {
+            options: MidpointOptions {
+                tolerances: tolerances(1e-6, &mut eom),
+                step: Some(step),
+                ..Default::default()
+            },
+        }
+        .integrate(&mut eom, 0.0, &y0, t, &mut |_| {}),
+    };
+    let (traj, stats) = result.unwrap_or_else(|f| panic!("{newton:?}: {f}"));
+    assert_eq!(traj.t.len(), t.len());
+    (traj, stats)
+}
+
+/// Largest distance between the tips (and, with torsion, largest twist difference at the tip
+/// times the span) of two trajectories.
+fn tip_difference(model: &FullModel, a: &Trajectory, b: &Trajectory) -> f64 {
+    let nd = model.n_dofs();
+    let n = model.n_elements();
+    let length = model.beam().length();
+    a.y.iter()
+        .zip(&b.y)
+        .map(|(ya, yb)| {
+            let (ka, kb) = (model.kinematics(&ya[..nd]), model.kinematics(&yb[..nd]));
+            let (pa, pb) = (model.node_positions(&ka)[n], model.node_positions(&kb)[n]);
+            let twist = (ka.psi[n - 1] - kb.psi[n - 1]).abs() * length;
+            (pa[0] - pb[0]).hypot(pa[1] - pb[1]).max(twist)
+        })
+        .fold(0.0, f64::max)
+}
+
+fn times(end: f64, dt: f64) -> Vec<f64> {
+    (0..=(end / dt).round() as usize)
+        .map(|k| k as f64 * dt)
+        .collect()
+}
+
+fn case_b_load() -> (Vec<Load>, Vec<TimeFunction>) {
+    (
+        vec![Load::PointForce {
+            span: 1.0,
+            force: Force::Dead { fx: 0.0, fy: 10.0 },
+        }],
+        vec![TimeFunction::Sine {
+            omega: 20.0,
+            phase: 0.0,
+        }],
+    )
+}
+
+#[test]
+fn radau_on_case_b_gives_the_dense_paths_trajectory() {
+    let (loads, tf) = case_b_load();
+    // Tight tolerance at n = 40: both paths converge to the same solution, so they agree to
+    // the integration error (measured 9.6e-8 m; bound 5e-7 m, rtol 1e-6).
+    let model = table4(40);
+    let t = times(1.0, 0.005);
+    let method = Method::Radau(1e-6, f64::INFINITY);
+    let (dense, _) = run(&model, &loads, tf.clone(), &t, method, NewtonSystems::Dense);
+    let (chain, stats) = run(&model, &loads, tf.clone(), &t, method, NewtonSystems::Chain);
+    let d = tip_difference(&model, &dense, &chain);
+    eprintln!("n = 40, rtol 1e-6: chain − dense {d:.2e} m, {stats:?}");
+    assert!(d < 5e-7, "{d:.2e}");
+    // The case (b) setting of `flexwing reproduce` at n = 160: both are ~7e-5 m from the
+    // converged tip (benches/dynamics.rs); they differ by much less (measured 2.7e-6 m; bound
+    // 2e-5 m, a third of the integration error), and the chain's Newton iteration is exact
+    // (measured 1.25 iterations per step, the dense path's 1.29; bound 2.2).
+    let model = table4(160);
+    let method = Method::Radau(1e-2, 6e-3);
+    let (dense, dense_stats) = run(&model, &loads, tf.clone(), &t, method, NewtonSystems::Dense);
+    let (chain, stats) = run(&model, &loads, tf, &t, method, NewtonSystems::Chain);
+    let d = tip_difference(&model, &dense, &chain);
+    eprintln!("n = 160, reproduce setting: chain − dense {d:.2e} m; dense {dense_stats:?}, chain {stats:?}");
+    assert!(d < 2e-5, "{d:.2e}");
+    assert!(stats.newton_iterations as f64 <= 2.2 * stats.steps as f64);
+    assert!(stats.steps < dense_stats.steps + 20, "{stats:?}");
+}
+
+#[test]
+fn coupled_torsion_beam_gives_the_dense_paths_trajectory() {
+    // The Table 1 beam (bending–torsion coupling through d0 = 0.267 m), n = 24 (48 coordinates),
+    // tip force 100 sin(2 t) N and tip torque 50 sin(3 t) N·m, 2 s, Radau at rtol 1e-8 with both
+    // Newton systems, and the dense path at rtol 1e-10 as reference. Measured: dense 3.5e-5 m and
+    // chain 5.1e-5 m from the reference (the integration error at rtol 1e-8, on a 16 m span),
+    // 1.6e-5 m apart. Bounds: 1e-4 m from the reference, 5e-5 m apart.
+    let model = model(16.0, &table1_section(), 24, Calibration::TipLoad);
+    let loads = vec![
+        Load::PointForce {
+            span: 16.0,
+            force: Force::Dead { fx: 0.0, fy: 100.0 },
+        },
+        Load::Torque {
+            span: 16.0,
+            value: 50.0,
+        },
+    ];
+    let tf = vec![
+        TimeFunction::Sine {
+            omega: 2.0,
+            phase: 0.0,
+        },
+        TimeFunction::Sine {
+            omega: 3.0,
+            phase: 0.0,
+        },
+    ];
+    let t = times(2.0, 0.02);
+    let method = Method::Radau(1e-8, f64::INFINITY);
+    let (dense, _) = run(&model, &loads, tf.clone(), &t, method, NewtonSystems::Dense);
+    let (chain, stats) = run(&model, &loads, tf.clone(), &t, method, NewtonSystems::Chain);
+    let tight = Method::Radau(1e-10, f64::INFINITY);
+    let (reference, _) = run(&model, &loads, tf, &t, tight, NewtonSystems::Dense);
+    let d = tip_difference(&model, &dense, &chain);
+    let (ed, ec) = (
+        tip_difference(&model, &dense, &reference),
+        tip_difference(&model, &chain, &reference),
+    );
+    eprintln!("Table 1 beam, n = 24: chain − dense {d:.2e} m, errors dense {ed:.2e} chain {ec:.2e}, {stats:?}");
+    assert!(ed < 1e-4 && ec < 1e-4, "{ed:.2e} {ec:.2e}");
+    assert!(d < 5e-5, "{d:.2e}");
+}
+
+#[test]
+fn bdf_and_midpoint_give_the_dense_paths_trajectories() {
+    // The chain path linearizes at every step, the dense one reuses its Jacobian: different
+    // Newton iterates and, for BDF, slightly different steps, so the two agree to a fraction
+    // of the integration error. Measured (n = 40, 0.3 s of case (b)): BDF at rtol 1e-5 1.5e-6 m
+    // apart (its error is ~2e-4 m, docs/performance.md), the midpoint rule with fixed 1 ms
+    // steps (same steps) 3e-10 m. Bounds 2e-5 m and 1e-8 m.
+    let (loads, tf) = case_b_load();
+    let model = table4(40);
+    let t = times(0.3, 0.005);
+    for (method, bound) in [(Method::Bdf(1e-5), 2e-5), (Method::Midpoint(1e-3), 1e-8)] {
+        let (dense, _) = run(&model, &loads, tf.clone(), &t, method, NewtonSystems::Dense);
+        let (chain, stats) = run(&model, &loads, tf.clone(), &t, method, NewtonSystems::Chain);
+        let d = tip_difference(&model, &dense, &chain);
+        eprintln!("chain − dense {d:.2e} m, {stats:?}");
+        assert!(d < bound, "{d:.2e}");
+    }
+}
+
+#[test]
+fn case_b_at_n_1000_converges_with_the_step() {
+    // Dense Newton systems are out of reach at n = 1000 (2000 states); the case (b) setting
+    // (rtol 1e-2, steps ≤ 6 ms) against half the step and a tenth of the tolerance over the
+    // first 0.3 s: measured 2.7e-5 m, within the integration error of the setting at every n
+    // (benches/dynamics.rs: 6.7e-5 … 7.0e-5 m over 1 s from n = 10 to 3000); bound 1e-4 m.
+    let (loads, tf) = case_b_load();
+    let model = table4(1000);
+    let t = times(0.3, 0.005);
+    let (coarse, stats) = run(
+        &model,
+        &loads,
+        tf.clone(),
+        &t,
+        Method::Radau(1e-2, 6e-3),
+        NewtonSystems::Auto,
+    );
+    let (fine, _) = run(
+        &model,
+        &loads,
+        tf,
+        &t,
+        Method::Radau(1e-3, 3e-3),
+        NewtonSystems::Auto,
+    );
+    let d = tip_difference(&model, &coarse, &fine);
+    eprintln!("n = 1000: coarse − fine {d:.2e} m, {stats:?}");
+    assert!(d < 1e-4, "{d:.2e}");
+    // Exact Newton: measured 1.9 iterations per step with the tighter stopping tolerance.
+    assert!(
+        stats.newton_iterations as f64 <= 2.5 * stats.steps as f64,
+        "{stats:?}"
+    );
+}
