@@ -83,20 +83,22 @@ def test_matrices_are_row_major_as_numpy_expects(equations):
 @pytest.mark.parametrize(
     "bad, cls, field",
     [
-        (np.zeros(5), flexwing.InputError, "y"),
-        (np.zeros((2, 6)), flexwing.InputError, "y"),
-        (np.zeros(12, dtype=np.complex128), flexwing.ArgumentTypeError, "y"),
-        (np.zeros(12, dtype=bool), flexwing.ArgumentTypeError, "y"),
-        (np.array(["a"] * 12), flexwing.ArgumentTypeError, "y"),
-        (np.array([object()] * 12), flexwing.ArgumentTypeError, "y"),
-        (np.r_[np.zeros(11), np.nan], flexwing.InputError, "y[11]"),
-        (np.r_[np.zeros(3), -np.inf, np.zeros(8)], flexwing.InputError, "y[3]"),
-        (None, flexwing.ArgumentTypeError, "y"),
+        # Each entry builds the bad state for a model of n_dofs coordinates (state: 2 n_dofs).
+        (lambda n: np.zeros(5), flexwing.InputError, "y"),
+        (lambda n: np.zeros((2, n)), flexwing.InputError, "y"),
+        (lambda n: np.zeros(2 * n, dtype=np.complex128), flexwing.ArgumentTypeError, "y"),
+        (lambda n: np.zeros(2 * n, dtype=bool), flexwing.ArgumentTypeError, "y"),
+        (lambda n: np.array(["a"] * (2 * n)), flexwing.ArgumentTypeError, "y"),
+        (lambda n: np.array([object()] * (2 * n)), flexwing.ArgumentTypeError, "y"),
+        (lambda n: np.r_[np.zeros(11), np.nan, np.zeros(2 * n - 12)], flexwing.InputError, "y[11]"),
+        (lambda n: np.r_[np.zeros(3), -np.inf, np.zeros(2 * n - 4)], flexwing.InputError, "y[3]"),
+        (lambda n: None, flexwing.ArgumentTypeError, "y"),
     ],
+    ids=["short", "2-D", "complex", "bool", "str", "object", "NaN", "-inf", "None"],
 )
 def test_bad_arrays_are_refused_naming_the_argument(equations, bad, cls, field):
     with pytest.raises(cls) as info:
-        equations.rhs(0.0, bad)
+        equations.rhs(0.0, bad(equations.n_dofs))
     assert info.value.field == field
 
 

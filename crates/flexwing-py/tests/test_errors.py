@@ -104,7 +104,7 @@ BAD = [
     ("too many modes", lambda: FULL.modes(count=99), InputError, "count"),
     ("negative mode count", lambda: FULL.modes(count=-1), InputError, "count"),
     ("unknown key of a case", lambda: flexwing.Case(beam=BEAM, bogus=1), CaseFileError, None),
-    ("misspelt key in a case", lambda: flexwing.Case(beam={**BEAM, "lenght": 1.0}), CaseFileError, "beam"),
+    ("misspelt key in a case", lambda: flexwing.Case(beam={**BEAM, "lenght": 1.0}), CaseFileError, "beam.lenght"),
     ("negative elements in a case", lambda: flexwing.Case(beam={**BEAM, "elements": -4}), CaseFileError, "beam.elements"),
     ("string value in a case", lambda: flexwing.Case(beam={**BEAM, "length": "1"}), CaseFileError, "beam.length"),
     ("case data not a dict", lambda: flexwing.Case([1, 2]), ArgumentTypeError, "data"),

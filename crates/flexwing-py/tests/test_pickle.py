@@ -48,7 +48,7 @@ def test_results_pickle(sine_case, static_case):
 
 
 def test_model_level_objects_pickle():
-    beam = flexwing.Beam(length=2.0, stations=[0.0, 0.5, 2.0], EI=[60.0, 40.0], x=[0.0, 2.0], mass_per_length=0.3)
+    beam = flexwing.Beam(length=2.0, stations=[0.0, 0.5, 1.0, 1.5, 2.0], EI=[60.0, 40.0], x=[0.0, 2.0], mass_per_length=0.3)
     full = flexwing.FullModel(beam)
     reduced = full.reduced([1, 3])
     for obj in [beam, full, reduced]:
