@@ -3,7 +3,8 @@
 # then the Python package — built with maturin from the same release build and installed into a
 # virtual environment (`.venv`, created if missing; `FLEXWING_VENV` picks another), where pytest
 # runs its suite (crates/flexwing-py/tests) against the `flexwing` binary of the same build.
-# Needs only Rust and Python ≥ 3.9 with its venv module; maturin, numpy, pytest and
+# Needs only Rust and Python ≥ 3.11 with its venv module (the pinned numpy needs 3.11; the
+# package itself runs on ≥ 3.9); maturin, numpy, pytest and
 # dask[distributed] come from PyPI (crates/flexwing-py/requirements-test.txt).
 #
 #   ./test.sh                 everything
