@@ -95,7 +95,7 @@ fn item<'py>(
             Err(e) => ("error", None, Some(e), 0.0),
             Ok((Err(f), wall)) => ("error", None, Some(f.to_py(py)), wall),
             Ok((Ok(outcome), wall)) => {
-                let (result, incomplete) = to_python(py, &outcome)?;
+                let (result, incomplete) = to_python(py, &outcome, wall)?;
                 match incomplete {
                     None => ("complete", Some(result), None, wall),
                     Some(i) => {

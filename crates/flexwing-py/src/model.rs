@@ -381,9 +381,14 @@ impl PyFullModel {
         let count = count.map(|c| arrays::count(c, "count")).transpose()?;
         let plan = ModesPlan::new(self.model.clone(), count, "count")
             .map_err(|e| errors::library_input(py, &e))?;
-        let outcome = errors::detached(py, || run_modes(&plan, &mut NoProgress))?
-            .map_err(|e| errors::solve(py, &e))?;
+        let (outcome, rust_time_s) = errors::detached(py, || {
+            let start = std::time::Instant::now();
+            let outcome = run_modes(&plan, &mut NoProgress);
+            (outcome, start.elapsed().as_secs_f64())
+        })?;
+        let outcome = outcome.map_err(|e| errors::solve(py, &e))?;
         let raw = crate::convert::modes::raw(py, &self.model, &outcome)?;
+        raw.set_item("rust_time_s", rust_time_s)?;
         crate::convert::build(py, "modes", raw)
     }
 

@@ -4,6 +4,8 @@
 //! result. [`Analysis`] is the one list of analyses: a new analysis (flutter, …) is one variant,
 //! one arm in [`execute`] and one converter in `convert/`.
 
+use std::time::Instant;
+
 use flexwing::analysis::dynamics::{DynamicOutcome, DynamicPlan};
 use flexwing::analysis::modes::{ModesOutcome, ModesPlan};
 use flexwing::analysis::statics::{StaticOutcome, StaticPlan};
@@ -122,10 +124,12 @@ pub fn execute(
 /// The first thing that did not complete: `(model label, stop dict, message)`.
 type Incomplete<'py> = (Option<String>, Option<Bound<'py, PyDict>>, String);
 
-/// The result object of `outcome`, and what did not complete first (if anything).
+/// The result object of `outcome`, and what did not complete first (if anything);
+/// `rust_time_s` is the wall time of [`execute`] (the Rust side of the call, plan included).
 pub fn to_python<'py>(
     py: Python<'py>,
     outcome: &Outcome,
+    rust_time_s: f64,
 ) -> PyResult<(Bound<'py, PyAny>, Option<Incomplete<'py>>)> {
     let first_stop = |runs: Vec<(String, &flexwing::analysis::Status)>, sweep: Option<&str>| {
         for (label, status) in runs {
@@ -140,10 +144,12 @@ pub fn to_python<'py>(
     Ok(match outcome {
         Outcome::Modes(plan, o) => {
             let raw = convert::modes::raw(py, &plan.model, o)?;
+            raw.set_item("rust_time_s", rust_time_s)?;
             (convert::build(py, "modes", raw)?, None)
         }
         Outcome::Static(plan, o, sweep) => {
             let raw = convert::statics::raw(py, plan, o, sweep.as_deref())?;
+            raw.set_item("rust_time_s", rust_time_s)?;
             let runs = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
             let mut incomplete = first_stop(runs, sweep.as_deref())?;
             if incomplete.is_none() {
@@ -160,6 +166,7 @@ pub fn to_python<'py>(
         }
         Outcome::Dynamic(plan, o) => {
             let raw = convert::dynamics::raw(py, plan, o)?;
+            raw.set_item("rust_time_s", rust_time_s)?;
             let runs = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
             (convert::build(py, "dynamic", raw)?, first_stop(runs, None)?)
         }
@@ -192,10 +199,14 @@ pub fn run_case<'py>(
     check: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let mut reporter = crate::progress::PyProgress::new(progress);
-    let outcome = py.detach(|| execute(case, analysis, &mut reporter));
+    let (outcome, rust_time_s) = py.detach(|| {
+        let start = Instant::now();
+        let outcome = execute(case, analysis, &mut reporter);
+        (outcome, start.elapsed().as_secs_f64())
+    });
     reporter.check()?;
     let outcome = outcome.map_err(|f| f.to_py(py))?;
-    let (result, incomplete) = to_python(py, &outcome)?;
+    let (result, incomplete) = to_python(py, &outcome, rust_time_s)?;
     match incomplete {
         Some(i) if check => Err(incomplete_error(py, &result, i)),
         _ => Ok(result),

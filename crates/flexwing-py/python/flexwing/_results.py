@@ -83,6 +83,8 @@ class ModesResult(_Result):
             normalized (m), ``(k, n + 1)``.
         twist: nodal twist per unit modal amplitude (rad), ``(k, n + 1)``; zeros without torsion.
         n_elements, n_dofs: size of the model.
+        rust_time_s: wall time of the analysis on the Rust side (s), the interpreter released:
+            the call's time beyond it is the binding's (argument checks, NumPy conversion).
     """
 
     mode: np.ndarray
@@ -95,6 +97,7 @@ class ModesResult(_Result):
     twist: np.ndarray
     n_elements: int
     n_dofs: int
+    rust_time_s: float
     extra: Dict[str, Any] = field(default_factory=dict)
 
     status = "complete"
@@ -173,6 +176,8 @@ class StaticResult(_Result):
         status: ``"complete"`` if every model reached every point and the loaded modes (if
             asked for) were found, else ``"stopped"``.
         sweep_load: the index of the swept load, or ``None``.
+        rust_time_s: wall time of the analysis on the Rust side (s), plan and every model
+            included (see ``ModesResult.rust_time_s``).
     """
 
     runs: List[StaticRun]
@@ -180,6 +185,7 @@ class StaticResult(_Result):
     loaded_modes_error: Optional[Dict[str, Any]]
     status: str
     sweep_load: Optional[int]
+    rust_time_s: float
     extra: Dict[str, Any] = field(default_factory=dict)
 
     @property
@@ -268,11 +274,14 @@ class DynamicResult(_Result):
         runs: one :class:`DynamicRun` per model: full, simplified, then the reduced models.
         status: ``"complete"`` if every model reached every output time, else ``"stopped"``.
         end_time: the simulated time (s).
+        rust_time_s: wall time of the analysis on the Rust side (s), plan, modes and every
+            model included (see ``ModesResult.rust_time_s``).
     """
 
     runs: List[DynamicRun]
     status: str
     end_time: float
+    rust_time_s: float
     extra: Dict[str, Any] = field(default_factory=dict)
 
     @property
