@@ -629,8 +629,10 @@ impl PyStepper {
             ));
         }
         let (t0, t1) = (self.t, self.t + dt);
+        let mut load_time_s = 0.0;
         if let Some(s) = scales {
             let s = arrays::vector(s, "scales", Some(self.scales.len()))?;
+            let start = Instant::now();
             let functions = match self.hold {
                 Hold::Linear => self
                     .scales
@@ -647,6 +649,7 @@ impl PyStepper {
                 with_eom!(self.cell, |_o, e| e.set_time_functions(functions, "scales"))
                     .map_err(|e| errors::library_input(py, &e))
             })?;
+            load_time_s = start.elapsed().as_secs_f64();
             self.scales = s;
         }
         let method = self.method;
@@ -667,7 +670,7 @@ impl PyStepper {
             (result, start.elapsed().as_secs_f64())
         })?;
         self.calls += 1;
-        self.rust_time_s += elapsed;
+        self.rust_time_s += load_time_s + elapsed;
         match result {
             Ok((mut trajectory, stats)) => {
                 self.stats += stats;
@@ -785,7 +788,8 @@ impl PyStepper {
     /// Counters summed over the calls: the integrator's (``steps``, ``rejected_steps``,
     /// ``rhs_evaluations``, ``jacobian_evaluations``, ``factorizations``,
     /// ``newton_iterations``), ``calls``, and ``rust_time_s``, the wall time spent in the
-    /// integrator (s): a call's cost beyond it is the binding's overhead.
+    /// library (s: setting the load factors and integrating): a call's cost beyond it is the
+    /// binding's overhead.
     #[getter]
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let s = &self.stats;

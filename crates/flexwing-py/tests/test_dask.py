@@ -64,6 +64,12 @@ def test_a_sweep_on_two_workers_equals_the_serial_sweep(client):
     assert (np.diff(tips[:, 0]) > 0).all() and (tips[:, 0] > tips[:, 1]).all()
 
 
+def test_results_reduced_on_the_workers_equal_the_serial_ones(client):
+    cases = sweep_dask.sweep_cases(forces=[50.0, 150.0], stiffnesses=[45.0, 55.0, 65.0])
+    serial = [sweep_dask.tip(i) for i in flexwing.solve_many(cases, "static")]
+    assert sweep_dask.run_sweep(client, cases, chunk=4, keep=sweep_dask.tip) == serial
+
+
 def test_the_indices_follow_the_input_order_across_chunks(client):
     cases = sweep_dask.sweep_cases(forces=[10.0, 20.0, 30.0, 40.0, 50.0], stiffnesses=[50.0])
     items = sweep_dask.run_sweep(client, cases, chunk=2)

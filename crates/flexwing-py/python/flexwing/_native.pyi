@@ -315,7 +315,8 @@ class Stepper:
     def stats(self) -> Dict[str, Union[int, float]]:
         """Counters summed over the calls: the integrator's (``steps``, ``rejected_steps``,
         ``rhs_evaluations``, ``jacobian_evaluations``, ``factorizations``,
-        ``newton_iterations``), ``calls``, and ``rust_time_s`` (s spent in the integrator)."""
+        ``newton_iterations``), ``calls``, and ``rust_time_s`` (s spent in the library: setting
+        the load factors and integrating)."""
 
 def solve_many(
     cases: Iterable[Union[Case, Mapping[str, Any]]],
