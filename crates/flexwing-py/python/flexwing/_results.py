@@ -28,14 +28,18 @@ __all__ = [
 ]
 
 
+_FIELDS: Dict[type, frozenset] = {}
+
+
 def _from_raw(cls, raw: Dict[str, Any]):
     """An instance of the dataclass ``cls`` from the dict ``raw``; keys that ``cls`` does not
     declare go to its ``extra`` dict."""
-    names = {f.name for f in dataclasses.fields(cls)}
+    names = _FIELDS.get(cls)
+    if names is None:
+        names = _FIELDS[cls] = frozenset(f.name for f in dataclasses.fields(cls))
     known = {k: v for k, v in raw.items() if k in names}
-    extra = {k: v for k, v in raw.items() if k not in names}
     if "extra" in names:
-        known["extra"] = extra
+        known["extra"] = {k: v for k, v in raw.items() if k not in names}
     return cls(**known)
 
 
