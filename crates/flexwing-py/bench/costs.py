@@ -18,6 +18,8 @@ compare medians, not single runs).
    force, full model) by ``solve_many`` serially, and on 1 and 2 Dask worker processes
    (LocalCluster, chunks of 100 cases), bringing back whole results or only the tips (reduced
    on the workers), cluster start-up excluded and reported apart.
+4. sweep-dynamic: 16 dynamic cases (case (b), full model, force amplitude swept), serially and
+   on 1 and 2 workers, one case a task.
 """
 
 from __future__ import annotations
@@ -146,9 +148,42 @@ def sweep(n_cases: int, repeats: int, chunk: int) -> None:
     print(json.dumps({"cases": len(cases), "serial_s": median(serial), "dask_s": rows}))
 
 
+def sweep_dynamic(n_cases: int, repeats: int) -> None:
+    """Heavier cases: case (b) (full model only, 1 s) with the force amplitude swept, one case a
+    task: here the per-task overhead is negligible and the workers' cores are the limit."""
+    sys.path.insert(0, str(ROOT / "examples" / "python"))
+    import sweep_dask
+    from dask.distributed import Client, LocalCluster
+
+    base = flexwing.Case.load(ROOT / "examples" / "paper_sine.toml").replace({"dynamic.reduced": []})
+    cases = [base.replace({"loads[0].fy": float(f)}) for f in np.linspace(5.0, 15.0, n_cases)]
+    serial = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        items = flexwing.solve_many(cases, "dynamic")
+        serial.append(time.perf_counter() - start)
+    print(f"sweep of {n_cases} dynamic cases (case (b), full model), medians of {repeats}:")
+    print(f"  serial solve_many                  {median(serial):8.3f} s  ({1e3 * median(serial) / n_cases:.1f} ms a case)")
+    last = lambda i: (i.index, i.status, float(i.result.runs[0].tip_y[-1]))  # noqa: E731
+    for workers in (1, 2):
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
+        client = Client(cluster)
+        sweep_dask.run_sweep(client, cases[:2], chunk=1, analysis="dynamic")  # warm-up
+        times = []
+        for _ in range(repeats):
+            start = time.perf_counter()
+            out = sweep_dask.run_sweep(client, cases, chunk=1, analysis="dynamic", keep=last)
+            times.append(time.perf_counter() - start)
+        assert out == [last(i) for i in items]
+        client.close()
+        cluster.close()
+        print(f"  Dask, {workers} worker(s), one case a task {median(times):8.3f} s  "
+              f"(speed-up {median(serial) / median(times):.2f})")
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("parts", nargs="*", default=["case-b", "stepper", "sweep"])
+    p.add_argument("parts", nargs="*", default=["case-b", "stepper", "sweep", "sweep-dynamic"])
     p.add_argument("--repeats", type=int, default=11)
     p.add_argument("--calls", type=int, default=2000)
     p.add_argument("--cases", type=int, default=2000)
@@ -161,6 +196,8 @@ def main() -> None:
         stepper(a.calls)
     if "sweep" in a.parts:
         sweep(a.cases, max(3, a.repeats // 3), a.chunk)
+    if "sweep-dynamic" in a.parts:
+        sweep_dynamic(16, 3)
 
 
 if __name__ == "__main__":
