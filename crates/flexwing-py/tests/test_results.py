@@ -69,3 +69,19 @@ def test_snapshots_at_chosen_output_times(sine_case):
     model = flexwing.Case.load(example("paper_tip_force.toml")).model()
     shape = model.shape(full.q[-1])
     np.testing.assert_array_equal(shape["y"], full.y[-1])
+
+
+def test_progress_callbacks(sine_case, static_case):
+    """The analysis callback gets (fraction of the whole analysis, model label): fractions in
+    [0, 1], non-decreasing, ending at 1, at most ~once per percent of each model (the binding
+    throttles), and every model's label; solve_many's gets (done, total) once per case."""
+    calls = []
+    result = sine_case.dynamics(progress=lambda done, label: calls.append((done, label)))
+    fractions = [d for d, _ in calls]
+    assert all(0.0 <= d <= 1.0 for d in fractions)
+    assert fractions == sorted(fractions) and fractions[-1] == 1.0
+    assert {label for _, label in calls} == {r.label for r in result.runs}
+    assert len(calls) <= len(result.runs) * 103  # start, <= 100 steps of 1 %, finish
+    done = []
+    flexwing.solve_many([static_case] * 3, "static", progress=lambda d, t: done.append((d, t)))
+    assert done == [(1, 3), (2, 3), (3, 3)]
