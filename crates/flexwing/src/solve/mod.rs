@@ -21,5 +21,5 @@ pub use modes::{ModeShape, Modes, ModesMethod, ModesStats, DENSE_MAX_DOFS};
 pub use newton_tangent::CHAIN_TANGENT_MIN_DOFS;
 pub use statics::{
     continue_static, linear_static, solve_static, sweep_static, StaticOptions, StaticSolution,
-    StaticStats, SweepError,
+    StaticStats, SweepError, FOLLOWER_STABILITY_MAX_DOFS,
 };

@@ -142,7 +142,9 @@ pub struct StaticSolution {
     ///   (a saddle or a neutral state); under follower loads its determinant is negative (static
     ///   divergence, unstable whatever the mass and damping);
     /// * `None`: follower (non-conservative) loads with a positive determinant: statics cannot
-    ///   tell (the point may still flutter); not assessed.
+    ///   tell (the point may still flutter); not assessed. Also `None` under follower loads for
+    ///   models above [`FOLLOWER_STABILITY_MAX_DOFS`] coordinates, where the determinant's dense
+    ///   LU (O(n³)) would cost more than the solve.
     ///
     /// Load control ([`solve_static`], [`continue_static`], [`sweep_static`]) never returns a
     /// point with `Some(false)`: it stops with [`SolveError::StaticUnstable`] instead. Arc-length
@@ -151,6 +153,13 @@ pub struct StaticSolution {
     /// Solver counters.
     pub stats: StaticStats,
 }
+
+/// Above this many coordinates the stability of an equilibrium under follower loads is not
+/// assessed ([`StaticSolution::stable`] is `None`): its test, the sign of the tangent's
+/// determinant, takes a dense LU, O(n³) — about 0.05 s at 600 coordinates, an hour at 20 000
+/// (measured 12 min for the two n = 10 000 solves of tests/statics_elastica.rs). The O(n) chain
+/// sweep gives the inertia of symmetric tangents only.
+pub const FOLLOWER_STABILITY_MAX_DOFS: usize = 600;
 
 /// Solve `K x = Q(x; scales)` for the loads `loads` scaled by `scales`, starting at rest
 /// (`x = 0`, no load) and following the equilibrium path as the load factor steps from 0 to 1.
@@ -463,6 +472,9 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
         scales: &[f64],
         conservative: bool,
     ) -> Option<bool> {
+        if !conservative && self.model.n_dofs() > FOLLOWER_STABILITY_MAX_DOFS {
+            return None;
+        }
         self.stats.stability_checks += 1;
         if conservative
             && self

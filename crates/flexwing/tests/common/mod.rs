@@ -8,6 +8,7 @@ use flexwing::model::{AppliedLoads, Force, FullModel, Load};
 use flexwing::solve::TimeFunction;
 use std::path::PathBuf;
 
+pub mod aero_reference;
 pub mod elastica;
 
 /// A two-point (linear root → tip) table over `[0, length]`.
@@ -144,14 +145,10 @@ pub fn euler_bernoulli_roots(count: usize) -> Vec<f64> {
         .collect()
 }
 
-/// Patil's HALE wing (Patil, Hodges & Cesnik, J. Aircraft 38(1), 2001): semi-span 16 m, chord
-/// 1 m, elastic axis and mass centre at mid-chord, m = 0.75 kg/m, I = 0.1 kg·m, GJ = 1e4 N·m²,
-/// flap EI = 2e4 N·m², ρ = 0.0889 kg/m³, c_lα = 2π; `n` equal elements.
-pub fn patil_wing(
-    n: usize,
-    aerodynamics: flexwing::model::aero::Aerodynamics,
-) -> flexwing::model::aero::Aeroelastic {
-    use flexwing::model::aero::{AeroSection, Aeroelastic};
+/// The structure of Patil's HALE wing (Patil, Hodges & Cesnik, J. Aircraft 38(1), 2001):
+/// semi-span 16 m, m = 0.75 kg/m, I = 0.1 kg·m, GJ = 1e4 N·m², flap EI = 2e4 N·m², mass centre
+/// on the elastic axis; `n` equal elements, tip-load calibration.
+pub fn patil_structure(n: usize) -> FullModel {
     let section = coupled(
         Profile::Uniform(2e4),
         Profile::Uniform(0.75),
@@ -159,7 +156,7 @@ pub fn patil_wing(
         Profile::Uniform(0.1),
         Profile::Uniform(0.0),
     );
-    let full = FullModel::new(
+    FullModel::new(
         Beam::new(
             16.0,
             &section,
@@ -167,20 +164,25 @@ pub fn patil_wing(
             Calibration::TipLoad,
         )
         .unwrap(),
-    );
-    let aero = AeroSection::new(Profile::Uniform(1.0), Profile::Uniform(0.5));
-    Aeroelastic::new(&full, &aero, 0.0889, aerodynamics, "aero").unwrap()
+    )
 }
 
-/// The Goland wing (Goland, J. Appl. Mech. 12, 1945): L = 6.096 m, c = 1.8288 m, elastic axis at
-/// 33 % chord, mass centre at 43 %, EI = 9.77e6 N·m², GJ = 0.99e6 N·m², m = 35.71 kg/m,
-/// I = 8.64 kg·m about the elastic axis (the reading that gives the classical torsion frequency
-/// 15.2 Hz), sea level ρ = 1.225 kg/m³, c_lα = 2π.
-pub fn goland_wing(
+/// Patil's HALE wing: [`patil_structure`] with chord 1 m, elastic axis at mid-chord,
+/// ρ = 0.0889 kg/m³, c_lα = 2π.
+pub fn patil_wing(
     n: usize,
     aerodynamics: flexwing::model::aero::Aerodynamics,
 ) -> flexwing::model::aero::Aeroelastic {
     use flexwing::model::aero::{AeroSection, Aeroelastic};
+    let aero = AeroSection::new(Profile::Uniform(1.0), Profile::Uniform(0.5));
+    Aeroelastic::new(&patil_structure(n), &aero, 0.0889, aerodynamics, "aero").unwrap()
+}
+
+/// The structure of the Goland wing (Goland, J. Appl. Mech. 12, 1945): L = 6.096 m,
+/// c = 1.8288 m, elastic axis at 33 % chord, mass centre at 43 %, EI = 9.77e6 N·m²,
+/// GJ = 0.99e6 N·m², m = 35.71 kg/m, I = 8.64 kg·m about the elastic axis (the reading that gives
+/// the classical torsion frequency 15.2 Hz); `n` equal elements.
+pub fn goland_structure(n: usize) -> FullModel {
     let c = 1.8288;
     let section = SectionProperties {
         ei: Profile::Uniform(9.77e6),
@@ -192,7 +194,7 @@ pub fn goland_wing(
             offset: Profile::Uniform((0.33 - 0.43) * c),
         }),
     };
-    let full = FullModel::new(
+    FullModel::new(
         Beam::new(
             6.096,
             &section,
@@ -200,7 +202,15 @@ pub fn goland_wing(
             Calibration::TipLoad,
         )
         .unwrap(),
-    );
-    let aero = AeroSection::new(Profile::Uniform(c), Profile::Uniform(0.33));
-    Aeroelastic::new(&full, &aero, 1.225, aerodynamics, "aero").unwrap()
+    )
+}
+
+/// The Goland wing: [`goland_structure`] with sea level ρ = 1.225 kg/m³, c_lα = 2π.
+pub fn goland_wing(
+    n: usize,
+    aerodynamics: flexwing::model::aero::Aerodynamics,
+) -> flexwing::model::aero::Aeroelastic {
+    use flexwing::model::aero::{AeroSection, Aeroelastic};
+    let aero = AeroSection::new(Profile::Uniform(1.8288), Profile::Uniform(0.33));
+    Aeroelastic::new(&goland_structure(n), &aero, 1.225, aerodynamics, "aero").unwrap()
 }

@@ -10,6 +10,7 @@
 mod chain;
 mod fluid;
 mod lag;
+mod peters_poles;
 mod strip;
 mod theodorsen;
 
@@ -71,8 +72,9 @@ pub enum Aerodynamics {
     QuasiSteady,
     /// Wagner's function by R. T. Jones' two-state approximation, with the apparent mass.
     Wagner,
-    /// Peters' finite-state inflow with `states` states per strip (1 to 16; 4–8 are usual), with
-    /// the apparent mass.
+    /// Peters' finite-state inflow with `states` states per strip (1 to 15; 4–10 are usual: the
+    /// 1995 coefficients approximate Theodorsen's function best near 8–10 states and worse beyond),
+    /// with the apparent mass.
     Peters {
         /// Number of inflow states per strip.
         states: usize,
@@ -101,9 +103,9 @@ impl Aerodynamics {
     }
 }
 
-/// Largest number of Peters states accepted (the fit deteriorates beyond ~10 in double
-/// precision, `model/aero/lag.rs`).
-const MAX_PETERS_STATES: usize = 16;
+/// Largest number of Peters states accepted: 16 states of the 1995 coefficients have an unstable
+/// pole (`model/aero/lag.rs`); every smaller count is realized exactly to round-off.
+const MAX_PETERS_STATES: usize = lag::PETERS_MAX_STATES;
 
 /// The flight condition: free-stream speed, root angle of attack and gravity.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -193,7 +195,7 @@ impl Aeroelastic<FullModel> {
     /// # Errors
     /// A section profile that is not finite, a chord or lift slope that is not positive, an
     /// elastic axis outside `[0, 1]`, a negative drag coefficient, a density that is not positive,
-    /// a number of Peters states outside `1..=16`.
+    /// a number of Peters states outside `1..=15`.
     pub fn new(
         structure: &FullModel,
         section: &AeroSection,
@@ -323,7 +325,7 @@ impl<M: AeroStructure> Aeroelastic<M> {
     /// The same structure and strips with another aerodynamic model.
     ///
     /// # Errors
-    /// A number of Peters states outside `1..=16` (field `{field}.states`).
+    /// A number of Peters states outside `1..=15` (field `{field}.states`).
     pub fn with_aerodynamics(
         &self,
         aerodynamics: Aerodynamics,
@@ -459,6 +461,12 @@ mod tests {
                 ok.clone(),
                 1.0,
                 Aerodynamics::Peters { states: 0 },
+                "wing.aero.aerodynamics.states",
+            ),
+            (
+                ok.clone(),
+                1.0,
+                Aerodynamics::Peters { states: 16 },
                 "wing.aero.aerodynamics.states",
             ),
         ];

@@ -28,6 +28,32 @@ use crate::model::{AppliedLoads, Load};
 use crate::solve::integrate::OdeSystem;
 use crate::solve::{Damping, EquationsOfMotion, Gyroscopic, TimeFunction};
 
+/// The aeroelastic system linearized about a static equilibrium, with the lag of every strip
+/// left as its transfer function `T_i(s)` (docs/aeroelastic-model.md §5): the eigenvalues other
+/// than the lag's are the roots of
+/// `det[s² M + s C̃ + K̃ − Σ_i T_i(s/r_i) g_i (w_x,i + s w_v,i)ᵀ] = 0`, with `g_i` the column `i`
+/// of `load_per_upwash` and `w_x,i`, `w_v,i` the rows `i` of the upwash derivatives. For a
+/// finite-state model `T_i` is the lag's transfer function, for the p-k method Theodorsen's
+/// `C(k)`. Model coordinates throughout; all derivatives exact (dual numbers).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinearSystem {
+    /// The wet mass matrix `M` (structure plus fluid inertia), `n × n`.
+    pub mass: DMatrix<f64>,
+    /// `C̃ = C − ∂Q/∂ẋ` at fixed lagged upwash: structural damping and the non-circulatory rate
+    /// terms, `n × n`.
+    pub damping: DMatrix<f64>,
+    /// `K̃ = K − ∂Q_other/∂x − ∂Q_aero/∂x` at fixed lagged upwash, `n × n`.
+    pub stiffness: DMatrix<f64>,
+    /// `g_i = ∂Q/∂w_eff,i`: generalized force per unit lagged upwash of strip `i`, `n × strips`.
+    pub load_per_upwash: DMatrix<f64>,
+    /// `∂w_i/∂x`: upwash at the three-quarter chord per unit coordinate, `strips × n`.
+    pub upwash_displacement: DMatrix<f64>,
+    /// `∂w_i/∂ẋ`, `strips × n`.
+    pub upwash_velocity: DMatrix<f64>,
+    /// `r_i = V_i/b_i` (1/s): the lag's time scale per strip, `s̄ = s/r_i`.
+    pub lag_rates: Vec<f64>,
+}
+
 /// The first-order aeroelastic system on `y = (x, p, a)` for the integrators and the stability
 /// analysis. Evaluations of the right-hand side allocate nothing.
 pub struct AeroelasticEquations<'a, M: AeroStructure> {
@@ -190,8 +216,25 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     /// The system linearized at the static equilibrium `(x, p = 0, a)` at time 0
     /// (`linear.rs`): `M`, `C̃ = C − Q_v`, `K̃ = K − ∂Q_other/∂x − Q_x`, `G`, `W_x`, `W_v`, `r_i`.
     pub(crate) fn linearize(&mut self, x: &[f64], a: &[f64]) -> Linearization {
+        let m = self.linear_system(x, a);
+        Linearization::new(
+            m.mass,
+            m.damping,
+            m.stiffness,
+            &m.load_per_upwash,
+            &m.upwash_displacement,
+            &m.upwash_velocity,
+            &m.lag_rates,
+            self.eval.lag().cloned(),
+        )
+    }
+
+    /// The matrices of the system linearized at the static equilibrium `(x, p = 0, a)` at time
+    /// 0, `a` the steady lag states of `x` ([`Self::steady_states`]); see [`LinearSystem`].
+    /// O(n²) but for the dual-number derivatives, O(n · n_dofs).
+    pub fn linear_system(&mut self, x: &[f64], a: &[f64]) -> LinearSystem {
         // At p = 0 the momentum and gyroscopic derivatives vanish: ∂ṗ/∂x = −K + ∂Q_o/∂x,
-        // ∂ṗ/∂ẋ = −C. O(n²) but for the products of `Linearization::new`.
+        // ∂ṗ/∂ẋ = −C.
         let n = self.n;
         let model = self.aero.structure();
         let mut mass = DMatrix::zeros(n, n);
@@ -215,23 +258,22 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         let d = &self.derivatives;
         stiffness -= &d.qx;
         damping -= &d.qv;
-        let rates: Vec<f64> = self
+        let lag_rates: Vec<f64> = self
             .aero
             .strips
             .iter()
             .zip(&self.eval.air)
             .map(|(s, air)| air.speed / s.b)
             .collect();
-        Linearization::new(
+        LinearSystem {
             mass,
             damping,
             stiffness,
-            &d.g,
-            &d.wx,
-            &d.wv,
-            &rates,
-            self.eval.lag().cloned(),
-        )
+            load_per_upwash: d.g.clone(),
+            upwash_displacement: d.wx.clone(),
+            upwash_velocity: d.wv.clone(),
+            lag_rates,
+        }
     }
 
     fn set_air(&mut self, t: f64) {

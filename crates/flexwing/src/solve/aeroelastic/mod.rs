@@ -2,13 +2,14 @@
 //! aerodynamics, static aeroelastic equilibrium and divergence, stability and flutter, the
 //! frequency-domain (p-k) check, and time responses to gusts and manoeuvres.
 
+mod balance;
 mod clu;
 mod equations;
 mod evaluator;
 mod flight;
 mod linear;
 
-pub use equations::AeroelasticEquations;
+pub use equations::{AeroelasticEquations, LinearSystem};
 pub use flight::{FlightHistory, Gust, GustShape};
 mod statics;
 

@@ -75,11 +75,12 @@ pub const MIN_RTOL: f64 = 1e-13;
     serde(default, deny_unknown_fields)
 )]
 pub struct IntegratorSettings {
-    /// Relative tolerance, in `[1e-13, 1)`. Default `1e-6`.
+    /// Relative tolerance, in `[1e-13, 1)`. Default `1e-3` (as SciPy's and MATLAB's solvers):
+    /// case (b)'s tip to about 1e-4 m (docs/performance.md, "Error weights in physical units").
     pub rtol: f64,
     /// Absolute tolerance in the units of the system's coordinates (rad for a beam), scaled per
     /// component by [`OdeSystem::atol_scale`] (the momenta of the equations of motion). Default
-    /// `1e-8`.
+    /// `1e-5` rad.
     pub atol: f64,
     /// Budget of steps per run, accepted and rejected. Default 1 000 000.
     pub max_steps: usize,
@@ -100,8 +101,8 @@ pub struct IntegratorSettings {
 impl Default for IntegratorSettings {
     fn default() -> Self {
         Self {
-            rtol: 1e-6,
-            atol: 1e-8,
+            rtol: 1e-3,
+            atol: 1e-5,
             max_steps: 1_000_000,
             max_step: None,
             step: None,
@@ -206,7 +207,7 @@ impl IntegratorSettings {
 ///     fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) { dy[0] = -y[0]; }
 ///     fn jacobian(&mut self, _t: f64, _y: &[f64], j: &mut DMatrix<f64>) { j[(0, 0)] = -1.0; }
 /// }
-/// let settings = IntegratorSettings::default();
+/// let settings = IntegratorSettings { rtol: 1e-6, atol: 1e-8, ..Default::default() };
 /// for method in Method::ALL {
 ///     let (trajectory, _) = integrate(method, &settings, &mut Decay, 0.0, &[1.0], &[1.0], &mut |_| {})?;
 ///     assert!((trajectory.y[0][0] - (-1.0f64).exp()).abs() < 1e-4, "{method:?}");
