@@ -477,8 +477,9 @@ enum Hold {
 /// A dynamic run advanced one output interval per call, with the load factors set from Python
 /// between calls: for coupling the beam to a flight-dynamics or control model.
 ///
-/// Build it with ``model.stepper(loads, x0=…, xdot0=…, t0=0, integrator="radau", rtol=1e-6,
-/// atol=1e-8, …, gyroscopic=…, damping=…, scales=…, hold="linear")``; then
+/// Build it with ``model.stepper(loads, x0=…, xdot0=…, t0=0, integrator=…, rtol=…, atol=…, …,
+/// gyroscopic=…, damping=…, scales=…, hold="linear")`` (the integrator settings and their
+/// defaults are those of the case file's ``[dynamic]``); then
 /// ``stepper.step(dt, scales)``. ``hold="linear"`` (default) ramps the factors from the previous
 /// call's to the new ones over the interval (continuous forces); ``hold="zero"`` switches them at
 /// the start of the interval (a force step at every call, which rings the highest modes and
