@@ -48,6 +48,7 @@ use std::path::Path;
 use serde::Deserialize;
 
 pub use error::{one_line, CaseError};
+pub use loads::library_loads;
 pub use property::Property;
 pub use spec::{
     BeamSpec, CalibrationSpec, Case, DampingKindSpec, DampingSpec, DirectionSpec, DynamicSpec,

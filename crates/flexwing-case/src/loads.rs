@@ -19,12 +19,7 @@ impl Case {
     /// empty name, a node beyond the tip. The values (positions on the beam, finite numbers, a
     /// torque on a bending-only beam) are checked by the library when the loads are applied.
     pub(crate) fn to_loads(&self, beam: &Beam) -> Result<Vec<Load>, InputError> {
-        check_names(&self.loads)?;
-        self.loads
-            .iter()
-            .enumerate()
-            .map(|(i, spec)| load(i, spec, beam))
-            .collect()
+        library_loads(&self.loads, beam)
     }
 
     /// Index of the load named `name`.
@@ -33,6 +28,24 @@ impl Case {
             .iter()
             .position(|l| l.name.as_deref() == Some(name))
     }
+}
+
+/// The library loads of `[[loads]]` tables on `beam`, in order, with node indices turned into
+/// span positions: what [`Case`] does with its own loads, for a front end that takes load tables
+/// without a whole case (the Python model level). Errors name `loads[i]…`; a `time` or `active`
+/// key is not read here (a dynamic plan reads them).
+///
+/// # Errors
+/// As the loads of a case: a key that does not belong to the load's type or direction, a
+/// missing key, a repeated or empty name, a node beyond the tip. The values are checked by the
+/// library when the loads are applied ([`flexwing::model::FullModel::apply`]).
+pub fn library_loads(specs: &[LoadSpec], beam: &Beam) -> Result<Vec<Load>, InputError> {
+    check_names(specs)?;
+    specs
+        .iter()
+        .enumerate()
+        .map(|(i, spec)| load(i, spec, beam))
+        .collect()
 }
 
 fn check_names(loads: &[LoadSpec]) -> Result<(), InputError> {

@@ -583,6 +583,37 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         v
     }
 
+    /// Replace the time history of every load (one function per load, in order): how a caller
+    /// that drives the loads itself sets them between integration calls (the Python stepper, a
+    /// flight-dynamics or control loop). The functions are not checked against a time span here;
+    /// use [`TimeFunction::validate`] for that.
+    ///
+    /// # Errors
+    /// A number of functions other than the number of loads (field `field`).
+    pub fn set_time_functions(
+        &mut self,
+        time_functions: Vec<TimeFunction>,
+        field: &str,
+    ) -> Result<(), InputError> {
+        if time_functions.len() != self.time_functions.len() {
+            return Err(InputError::new(
+                field,
+                format!(
+                    "needs one value per load ({}), got {}",
+                    self.time_functions.len(),
+                    time_functions.len()
+                ),
+            ));
+        }
+        self.time_functions = time_functions;
+        Ok(())
+    }
+
+    /// Number of loads (and of time functions).
+    pub fn n_loads(&self) -> usize {
+        self.time_functions.len()
+    }
+
     /// Velocities `ẋ = M(x)⁻¹ p` of the state `y`.
     pub fn velocities(&mut self, y: &[f64]) -> Vec<f64> {
         let (x, p) = (&y[..self.n], &y[self.n..2 * self.n]);

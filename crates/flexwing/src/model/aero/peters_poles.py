@@ -124,6 +124,7 @@ def main():
     print("/// (`Im s_j = 0`) and per conjugate pair (the member with `Im s_j > 0`), so that")
     print("/// `C(p̄) = D + Σ r_j/(p̄ − s_j)` (+ the conjugate term of every pair).")
     print("#[rustfmt::skip]")
+    print("#[allow(clippy::type_complexity)] // the table's shape, spelled out once")
     print("pub(super) const PETERS_MODAL: [(f64, &[(f64, f64, f64, f64)]); %d] = [" % N_MAX)
     for N in range(1, N_MAX + 2):
         D, poles, mats = modal(N)

@@ -5,6 +5,7 @@
 /// (`Im s_j = 0`) and per conjugate pair (the member with `Im s_j > 0`), so that
 /// `C(p̄) = D + Σ r_j/(p̄ − s_j)` (+ the conjugate term of every pair).
 #[rustfmt::skip]
+#[allow(clippy::type_complexity)] // the table's shape, spelled out once
 pub(super) const PETERS_MODAL: [(f64, &[(f64, f64, f64, f64)]); 15] = [
     (
         0.6,

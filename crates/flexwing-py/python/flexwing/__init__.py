@@ -1,0 +1,80 @@
+"""flexwing: geometrically non-linear structural dynamics of very flexible wings and their
+non-linear reduced-order models, from Python.
+
+The case level (the case file's keys, as in ``docs/case-file.md``)::
+
+    import flexwing
+    case = flexwing.Case.load("examples/paper_sine.toml")
+    result = case.dynamics()                      # full and reduced models
+    run = result.run("reduced-r2")
+    run.t, run.tip_y                              # NumPy arrays (s, m)
+
+The batch level: ``flexwing.solve_many(cases, "static")`` returns each case's status, result
+and error as data (the unit of work of a Dask sweep, see ``examples/python/sweep_dask.py``).
+
+The model level: ``Beam``, ``FullModel``, ``ReducedModel``; ``model.equations(loads)`` for
+the right-hand side, Jacobian and energies at a state; ``model.stepper(loads)`` to advance a
+run one interval at a time with the loads set between calls.
+
+Errors are ``FlexwingError`` and its subclasses (``InputError``, ``CaseFileError``,
+``ArgumentTypeError``, ``SolverError``, ``InternalError``). Units are SI. The API reference is
+``docs/python.md``.
+"""
+
+from ._errors import (
+    ArgumentTypeError,
+    CaseFileError,
+    FlexwingError,
+    InputError,
+    InternalError,
+    SolverError,
+)
+from ._native import (
+    Beam,
+    Case,
+    Equations,
+    FullModel,
+    ReducedModel,
+    Stepper,
+    __version__,
+    solve_many,
+)
+from ._results import (
+    BatchItem,
+    DynamicResult,
+    DynamicRun,
+    ModesResult,
+    StaticResult,
+    StaticRun,
+)
+
+__all__ = [
+    "Case",
+    "Beam",
+    "FullModel",
+    "ReducedModel",
+    "Equations",
+    "Stepper",
+    "solve_many",
+    "solve",
+    "ModesResult",
+    "StaticRun",
+    "StaticResult",
+    "DynamicRun",
+    "DynamicResult",
+    "BatchItem",
+    "FlexwingError",
+    "InputError",
+    "CaseFileError",
+    "ArgumentTypeError",
+    "SolverError",
+    "InternalError",
+    "__version__",
+]
+
+
+def solve(case, analysis="static"):
+    """Solve one case as ``solve_many`` does: a :class:`BatchItem` with its status, result and
+    error as data (never raises for the case's own failure). The function a Dask
+    ``client.map`` maps over cases."""
+    return solve_many([case], analysis)[0]

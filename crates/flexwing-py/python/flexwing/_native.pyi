@@ -1,0 +1,331 @@
+"""Type stubs of flexwing._native, the Rust half of the package (import ``flexwing``).
+
+Units are SI: m, rad, s, N, N m (moments), N m² (EI, GJ), kg/m, kg m, J. Arrays going in may be
+any array-like of real numbers (lists, float32/integer arrays, C- or F-ordered or strided views):
+they are converted to float64 and copied. Arrays coming out are new C-ordered float64 arrays.
+Bad input raises ``ArgumentTypeError`` (a ``TypeError``) or ``InputError`` (a ``ValueError``)
+naming the argument; the reference is docs/python.md.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Callable, Dict, Iterable, List, Literal, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from ._results import BatchItem, DynamicResult, ModesResult, StaticResult
+
+__version__: str
+
+ArrayLike = npt.ArrayLike
+Vector = npt.NDArray[np.float64]
+Matrix = npt.NDArray[np.float64]
+#: A load of the model level: the keys of a ``[[loads]]`` table without ``time``/``active``,
+#: e.g. ``{"type": "point-force", "span": 1.0, "direction": "dead", "fy": 10.0}`` (N).
+Load = Mapping[str, Any]
+#: ``callback(done, label)``: ``done`` the fraction of the analysis (0 to 1), ``label`` the model
+#: running (``"full"``, ``"reduced-r2"``, …).
+ProgressCallback = Callable[[float, str], Any]
+AnalysisName = Literal["modes", "static", "dynamic"]
+
+class Case:
+    """A flexwing case: the beam, the loads and the settings of its analyses, with the keys of
+    the case file (docs/case-file.md). Immutable; pickles as its TOML text."""
+
+    def __init__(self, data: Optional[Mapping[str, Any]] = None, /, **kwargs: Any) -> None:
+        """A case from a dict with the case file's keys and/or keyword arguments (which
+        override the dict's keys). Raises ``CaseFileError`` naming the key (``beam.section.EI``)."""
+    @staticmethod
+    def from_toml(text: str, file: Optional[str] = None) -> Case:
+        """A case from TOML text; ``file`` names it in errors."""
+    @staticmethod
+    def load(path: Union[str, os.PathLike[str]]) -> Case:
+        """Read the case file at ``path``."""
+    @staticmethod
+    def from_dict(data: Mapping[str, Any]) -> Case:
+        """A case from a dict with the case file's keys (NumPy arrays and scalars accepted)."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The case as a dict with the case file's keys (absent optional keys left out)."""
+    def to_toml(self) -> str:
+        """The case as TOML text."""
+    def replace(self, changes: Mapping[str, Any]) -> Case:
+        """A copy with the values at key paths changed: ``{"beam.section.EI": 60.0,
+        "loads[0].fy": 12.0}``. Missing tables are created; errors name the path."""
+    @property
+    def title(self) -> Optional[str]:
+        """The case's title, if any."""
+    @property
+    def file(self) -> Optional[str]:
+        """The file the case was read from, if any."""
+    def model(self) -> FullModel:
+        """The full model of ``[beam]``."""
+    def modes(self, *, progress: Optional[ProgressCallback] = None) -> ModesResult:
+        """The natural modes of ``[beam]`` (``[modes] count``, default 10), frequencies in rad/s
+        and Hz."""
+    def statics(
+        self, *, progress: Optional[ProgressCallback] = None, check: bool = True
+    ) -> StaticResult:
+        """The non-linear statics of ``[[loads]]`` and ``[static]`` (sweeps, reduced models,
+        loaded modes). With ``check`` (default), a model that stopped raises ``SolverError``
+        carrying the partial result; else each run's ``status`` says so."""
+    def dynamics(
+        self, *, progress: Optional[ProgressCallback] = None, check: bool = True
+    ) -> DynamicResult:
+        """The non-linear dynamics of ``[[loads]]`` and ``[dynamic]`` (full, simplified and
+        reduced models); ``check`` as ``statics``."""
+    def run(
+        self,
+        analysis: AnalysisName,
+        *,
+        progress: Optional[ProgressCallback] = None,
+        check: bool = True,
+    ) -> Union[ModesResult, StaticResult, DynamicResult]:
+        """Run the analysis named ``analysis`` (as the method of the same name)."""
+    def __eq__(self, other: object) -> bool: ...
+    def __reduce__(self) -> Tuple[Any, Tuple[str, Optional[str]]]: ...
+
+class Beam:
+    """A cantilever cut into rigid elements, with its section properties over the span."""
+
+    def __init__(
+        self,
+        *,
+        length: float,
+        EI: Union[float, ArrayLike],
+        mass_per_length: Union[float, ArrayLike],
+        elements: Optional[int] = None,
+        stations: Optional[ArrayLike] = None,
+        x: Optional[ArrayLike] = None,
+        GJ: Union[float, ArrayLike, None] = None,
+        polar_inertia: Union[float, ArrayLike, None] = None,
+        polar_inertia_about: Optional[Literal["mass-centre", "elastic-axis"]] = None,
+        d0: Union[float, ArrayLike, None] = None,
+        calibration: Optional[Literal["tip-load", "uniform"]] = None,
+    ) -> None:
+        """``length`` (m); ``elements`` (equal elements) or ``stations`` (node positions, m,
+        0 … length); ``EI`` (N m²) and ``mass_per_length`` (kg/m); for torsion ``GJ`` (N m²),
+        ``polar_inertia`` (kg m), ``polar_inertia_about``, ``d0`` (m, mass-centre offset). Each
+        property a number or an array of values at the stations ``x`` (m, piecewise linear).
+        ``calibration``: ``"tip-load"`` (default) or ``"uniform"``."""
+    @staticmethod
+    def from_dict(table: Mapping[str, Any]) -> Beam:
+        """A beam from a ``[beam]`` table (a dict with the case file's keys)."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The beam as a ``[beam]`` table."""
+    @property
+    def length(self) -> float:
+        """Span L (m)."""
+    @property
+    def n_elements(self) -> int:
+        """Number of elements n."""
+    @property
+    def has_torsion(self) -> bool:
+        """Whether the beam has torsion coordinates."""
+    @property
+    def nodes(self) -> Vector:
+        """Node stations x_0 = 0 … x_n = L (m), ``(n + 1,)``."""
+    @property
+    def lengths(self) -> Vector:
+        """Element lengths (m), ``(n,)``."""
+    @property
+    def masses(self) -> Vector:
+        """Element masses (kg), ``(n,)``."""
+    @property
+    def offsets(self) -> Vector:
+        """Element mass-centre offsets d0 (m), ``(n,)``."""
+    @property
+    def inertias(self) -> Vector:
+        """Element polar inertias about their mass centres (kg m²), ``(n,)``."""
+    @property
+    def bending_stiffness(self) -> Vector:
+        """Bending spring stiffnesses (N m/rad), ``(n,)``, joint i at node i."""
+    @property
+    def torsion_stiffness(self) -> Optional[Vector]:
+        """Torsion spring stiffnesses (N m/rad), ``(n,)``, or None without torsion."""
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]: ...
+
+class FullModel:
+    """The full model of a beam: n bending coordinates (joint rotations, rad), and n torsion
+    coordinates with torsion."""
+
+    def __init__(self, beam: Beam) -> None: ...
+    @property
+    def beam(self) -> Beam:
+        """The beam."""
+    @property
+    def n_dofs(self) -> int:
+        """Number of coordinates."""
+    @property
+    def n_elements(self) -> int:
+        """Number of elements."""
+    @property
+    def has_torsion(self) -> bool:
+        """Whether the model has torsion coordinates."""
+    def stiffness_matrix(self) -> Matrix:
+        """Stiffness matrix K (N m/rad), ``(n_dofs, n_dofs)``."""
+    def mass_matrix(self, q: ArrayLike) -> Matrix:
+        """Mass matrix M(q) (kg m²) at joint rotations q (rad), ``(n_dofs, n_dofs)``."""
+    def shape(self, q: ArrayLike) -> Dict[str, Vector]:
+        """The deformed shape at joint rotations q (rad): node arrays ``x``, ``y`` (m) and
+        ``twist`` (rad), each ``(n + 1,)``."""
+    def modes(self, count: Optional[int] = None) -> ModesResult:
+        """The lowest ``count`` natural modes about the undeformed state (default
+        ``min(10, n_dofs)``)."""
+    def reduced(self, modes: Union[int, Sequence[int]]) -> ReducedModel:
+        """The reduced model on ``modes``: an int r (the first r) or 1-based mode numbers."""
+    def equations(
+        self,
+        loads: Optional[Sequence[Load]] = None,
+        *,
+        scales: Optional[ArrayLike] = None,
+        gyroscopic: Optional[Literal["exact", "finite-difference", "neglected"]] = None,
+        gyroscopic_step: Optional[float] = None,
+        damping: Optional[Mapping[str, Any]] = None,
+    ) -> Equations:
+        """The equations of motion under ``loads`` (each scaled by ``scales``, default 1).
+        ``damping``: ``{"type": "rayleigh", "alpha": 1/s, "beta": s}`` or ``{"type": "modal",
+        "ratios": [...]}``."""
+    def stepper(
+        self,
+        loads: Optional[Sequence[Load]] = None,
+        *,
+        x0: Optional[ArrayLike] = None,
+        xdot0: Optional[ArrayLike] = None,
+        t0: float = 0.0,
+        scales: Optional[ArrayLike] = None,
+        integrator: str = "auto",
+        rtol: Optional[float] = None,
+        atol: Optional[float] = None,
+        max_steps: Optional[int] = None,
+        max_step: Optional[float] = None,
+        step: Optional[float] = None,
+        max_order: Optional[int] = None,
+        spectral_radius: Optional[float] = None,
+        gyroscopic: Optional[Literal["exact", "finite-difference", "neglected"]] = None,
+        gyroscopic_step: Optional[float] = None,
+        damping: Optional[Mapping[str, Any]] = None,
+        hold: Literal["linear", "zero"] = "linear",
+    ) -> Stepper:
+        """A stepper of the equations of motion under ``loads``, from the state (x0 rad, xdot0
+        rad/s) at t0 (s); the integrator settings as ``[dynamic]`` of the case file."""
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]: ...
+
+class ReducedModel:
+    """The full model projected on some of its natural modes about the undeformed state: the
+    coordinates are modal amplitudes η with q = Φ η; the geometry stays non-linear."""
+
+    def __init__(self, full: FullModel, modes: Union[int, Sequence[int]]) -> None: ...
+    @property
+    def n_dofs(self) -> int:
+        """Number of coordinates (retained modes)."""
+    @property
+    def modes(self) -> List[int]:
+        """The retained modes, 1-based."""
+    @property
+    def full_model(self) -> FullModel:
+        """The full model underneath."""
+    @property
+    def basis(self) -> Matrix:
+        """The mass-normalized mode shapes Φ as columns, ``(full n_dofs, n_dofs)``."""
+    def full_coordinates(self, x: ArrayLike) -> Vector:
+        """Joint rotations q = Φ η (rad) of modal amplitudes x."""
+    def reduce_coordinates(self, q: ArrayLike) -> Vector:
+        """Modal amplitudes η = Φᵀ M(0) q of joint rotations q (rad)."""
+    def stiffness_matrix(self) -> Matrix:
+        """Reduced stiffness K_r = Φᵀ K Φ, ``(n_dofs, n_dofs)``."""
+    def mass_matrix(self, x: ArrayLike) -> Matrix:
+        """Reduced mass matrix M_r(η) = Φᵀ M(Φ η) Φ at modal amplitudes x."""
+    def shape(self, x: ArrayLike) -> Dict[str, Vector]:
+        """The deformed shape at modal amplitudes x (see ``FullModel.shape``)."""
+    equations = FullModel.equations
+    stepper = FullModel.stepper
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]: ...
+
+class Equations:
+    """The equations of motion of a full or reduced model under scaled loads, in first-order
+    form dy/dt = f(t, y) with y = (x, p): coordinates x and conjugate momenta p."""
+
+    @property
+    def n_dofs(self) -> int:
+        """Number of coordinates x (the state has twice as many values)."""
+    @property
+    def n_loads(self) -> int:
+        """Number of loads."""
+    @property
+    def scales(self) -> Vector:
+        """The load factors (one per load), held at every time until changed."""
+    @scales.setter
+    def scales(self, value: ArrayLike) -> None: ...
+    def state(self, x: ArrayLike, xdot: ArrayLike) -> Vector:
+        """The state y = (x, p) of coordinates x and velocities xdot, ``(2 n_dofs,)``."""
+    def rhs(self, t: float, y: ArrayLike) -> Vector:
+        """dy/dt at time t (s) and state y, ``(2 n_dofs,)``."""
+    def jacobian(self, t: float, y: ArrayLike) -> Matrix:
+        """The Jacobian ∂(dy/dt)/∂y at time t (s) and state y, ``(2 n_dofs, 2 n_dofs)``."""
+    def energies(self, y: ArrayLike) -> Tuple[float, float]:
+        """Energies of the state y: (kinetic, strain) (J)."""
+    def velocities(self, y: ArrayLike) -> Vector:
+        """Velocities ẋ = M(x)⁻¹ p of the state y."""
+    def full_coordinates(self, x: ArrayLike) -> Vector:
+        """Joint rotations q (rad) of the full model for coordinates x."""
+
+class Stepper:
+    """A dynamic run advanced one output interval per call, with the load factors set from
+    Python between calls (coupling to a flight-dynamics or control model). Each call runs
+    detached from the interpreter."""
+
+    def step(self, dt: float, scales: Optional[ArrayLike] = None) -> float:
+        """Advance by dt (s) to the load factors ``scales`` (default: the previous ones, held);
+        ``hold="linear"`` ramps them over the interval, ``hold="zero"`` switches at once.
+        Returns the new time (s). Raises ``SolverError`` (``stop["time"]``) if the integrator
+        stops inside the interval; the state then stays at its start."""
+    def set_state(self, x: ArrayLike, xdot: ArrayLike, t: Optional[float] = None) -> None:
+        """Set the state from coordinates x and velocities xdot (and the time t, s)."""
+    @property
+    def t(self) -> float:
+        """Time (s)."""
+    @property
+    def n_dofs(self) -> int:
+        """Number of coordinates."""
+    @property
+    def scales(self) -> Vector:
+        """The load factors in force."""
+    @property
+    def y(self) -> Vector:
+        """The state y = (x, p)."""
+    @property
+    def x(self) -> Vector:
+        """Coordinates x (rad, or modal amplitudes of a reduced model)."""
+    @property
+    def xdot(self) -> Vector:
+        """Velocities ẋ."""
+    @property
+    def q(self) -> Vector:
+        """Joint rotations q of the full model (rad)."""
+    @property
+    def tip(self) -> Tuple[float, float, float]:
+        """Tip position and twist (x, y, twist) (m, m, rad)."""
+    def energies(self) -> Tuple[float, float]:
+        """Energies (kinetic, strain) (J)."""
+    def shape(self) -> Dict[str, Vector]:
+        """The deformed shape: node arrays ``x``, ``y`` (m) and ``twist`` (rad)."""
+    @property
+    def stats(self) -> Dict[str, Union[int, float]]:
+        """Counters summed over the calls: the integrator's (``steps``, ``rejected_steps``,
+        ``rhs_evaluations``, ``jacobian_evaluations``, ``factorizations``,
+        ``newton_iterations``), ``calls``, and ``rust_time_s`` (s spent in the library: setting
+        the load factors and integrating)."""
+
+def solve_many(
+    cases: Iterable[Union[Case, Mapping[str, Any]]],
+    analysis: AnalysisName = "static",
+    *,
+    threads: int = 1,
+    progress: Optional[Callable[[int, int], Any]] = None,
+) -> List[BatchItem]:
+    """Solve ``analysis`` for every case and return one ``BatchItem`` per case, in order, with
+    its status (``"complete"``, ``"stopped"``, ``"error"``), result, error (as data) and wall
+    time (s). No case's failure stops the others. ``threads``: threads of this process sharing
+    the cases (the interpreter released); ``progress``: ``callback(done, total)``."""

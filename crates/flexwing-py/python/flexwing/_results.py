@@ -1,0 +1,358 @@
+"""The results of the analyses: plain Python objects holding NumPy arrays, so that they pickle
+(to travel back from worker processes), print, and convert to dicts (``to_dict()``).
+
+The Rust side builds one dict per result (``flexwing._native`` converts each library outcome);
+the classes here give it attributes, documentation and helpers. A field added on the Rust side
+appears in ``to_dict()`` and, once declared here, as an attribute; until then ``extra`` holds it
+(the test suite checks that every field the bindings produce is declared).
+
+Units are SI throughout: m, rad, s, N, J. Arrays over points or output times have that axis
+first; node arrays have one column per node ``0 … n`` (0 = clamp).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional
+
+import numpy as np
+
+__all__ = [
+    "ModesResult",
+    "StaticRun",
+    "StaticResult",
+    "DynamicRun",
+    "DynamicResult",
+    "BatchItem",
+]
+
+
+_FIELDS: Dict[type, frozenset] = {}
+
+
+def _from_raw(cls, raw: Dict[str, Any]):
+    """An instance of the dataclass ``cls`` from the dict ``raw``; keys that ``cls`` does not
+    declare go to its ``extra`` dict."""
+    names = _FIELDS.get(cls)
+    if names is None:
+        names = _FIELDS[cls] = frozenset(f.name for f in dataclasses.fields(cls))
+    known = {k: v for k, v in raw.items() if k in names}
+    if "extra" in names:
+        known["extra"] = {k: v for k, v in raw.items() if k not in names}
+    return cls(**known)
+
+
+def _to_dict(value: Any) -> Any:
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        out = {}
+        for f in dataclasses.fields(value):
+            v = getattr(value, f.name)
+            if f.name == "extra":
+                out.update({k: _to_dict(x) for k, x in v.items()})
+            else:
+                out[f.name] = _to_dict(v)
+        return out
+    if isinstance(value, list):
+        return [_to_dict(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _to_dict(v) for k, v in value.items()}
+    return value
+
+
+class _Result:
+    def to_dict(self) -> Dict[str, Any]:
+        """The result as nested dicts, lists, NumPy arrays and numbers (the arrays are the
+        result's own, not copies)."""
+        return _to_dict(self)
+
+
+def _summary(obj, fields: List[str]) -> str:
+    parts = ", ".join(f"{f}={getattr(obj, f)!r}" for f in fields)
+    return f"{type(obj).__name__}({parts})"
+
+
+@dataclass(eq=False, repr=False)
+class ModesResult(_Result):
+    """Natural modes of the full model about its undeformed state, by increasing frequency.
+
+    Attributes:
+        mode: mode numbers, 1-based, shape ``(k,)``.
+        omega: circular frequencies (rad/s), ``(k,)``.
+        frequency_hz: frequencies (Hz), ``(k,)``.
+        bending_fraction: share of the strain energy in the bending springs (1: pure bending,
+            0: pure torsion), ``(k,)``.
+        x: node stations along the undeformed span (m), ``(n + 1,)``.
+        dx, dy: nodal displacements along global x and y per unit modal amplitude, mass
+            normalized (m), ``(k, n + 1)``.
+        twist: nodal twist per unit modal amplitude (rad), ``(k, n + 1)``; zeros without torsion.
+        n_elements, n_dofs: size of the model.
+        rust_time_s: wall time of the analysis on the Rust side (s), the interpreter released:
+            the call's time beyond it is the binding's (argument checks, NumPy conversion).
+    """
+
+    mode: np.ndarray
+    omega: np.ndarray
+    frequency_hz: np.ndarray
+    bending_fraction: np.ndarray
+    x: np.ndarray
+    dx: np.ndarray
+    dy: np.ndarray
+    twist: np.ndarray
+    n_elements: int
+    n_dofs: int
+    rust_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    status = "complete"
+
+    def __repr__(self) -> str:
+        return f"ModesResult({len(self.omega)} modes, omega={np.round(self.omega, 4)!r} rad/s)"
+
+
+@dataclass(eq=False, repr=False)
+class StaticRun(_Result):
+    """The equilibria of one model over the points of a static analysis (one point without a
+    sweep), up to where it stopped.
+
+    Attributes:
+        label: ``"full"``, ``"reduced-r2"`` (first 2 modes), ``"reduced-modes-1-2-4"``.
+        kind: ``"full"`` or ``"reduced"``.
+        modes: the retained modes of a reduced model (1-based), or ``None``.
+        dofs: number of coordinates of the model.
+        wall_time_s: wall time of the solve over all points (s).
+        status: ``"complete"`` or ``"stopped"`` (more values may follow).
+        stop: where and why the run stopped (``None`` if complete): a dict with ``"reason"``,
+            ``"message"`` and the values it stopped at.
+        message: the stop's one-line message, or ``None``.
+        scale: scale of the swept load at each converged point, ``(p,)`` (1 without a sweep).
+        scales: scales of all loads at each point, ``(p, loads)``.
+        tip_x, tip_y: tip position (m), ``(p,)``; tip_twist: tip twist (rad), ``(p,)``.
+        x, y: node positions (m), ``(p, n + 1)``; twist: nodal twist (rad), ``(p, n + 1)``.
+        q: joint rotations of the full model (rad), ``(p, dofs of the full model)``.
+        tip_difference: distance of the tip from the full model's at each point (m), ``(p,)``;
+            reduced models run with the full model only, else ``None``.
+        stats: solver counters per point, each ``(p,)``: ``load_steps``, ``rejected_steps``,
+            ``iterations``, ``residual_evaluations``, ``factorizations``, ``residual_norm``.
+    """
+
+    label: str
+    kind: str
+    modes: Optional[List[int]]
+    dofs: int
+    wall_time_s: float
+    status: str
+    stop: Optional[Dict[str, Any]]
+    message: Optional[str]
+    scale: np.ndarray
+    scales: np.ndarray
+    tip_x: np.ndarray
+    tip_y: np.ndarray
+    tip_twist: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    twist: np.ndarray
+    q: np.ndarray
+    tip_difference: Optional[np.ndarray]
+    stats: Dict[str, np.ndarray]
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def complete(self) -> bool:
+        """Whether every point converged."""
+        return self.status == "complete"
+
+    def __repr__(self) -> str:
+        return _summary(self, ["label", "status"]) + f" [{len(self.scale)} points]"
+
+
+@dataclass(eq=False, repr=False)
+class StaticResult(_Result):
+    """What a static analysis found.
+
+    Attributes:
+        runs: one :class:`StaticRun` per model, full model first.
+        loaded_modes: modes about the full model's last equilibrium, if asked for and found: a
+            dict of arrays ``mode``, ``omega`` (rad/s), ``frequency_hz``, ``unloaded_omega``
+            (rad/s, the same-numbered mode about the undeformed state); else ``None``.
+        loaded_modes_error: why the loaded modes failed (a dict as ``StaticRun.stop``), or
+            ``None``.
+        status: ``"complete"`` if every model reached every point and the loaded modes (if
+            asked for) were found, else ``"stopped"``.
+        sweep_load: the index of the swept load, or ``None``.
+        rust_time_s: wall time of the analysis on the Rust side (s), plan and every model
+            included (see ``ModesResult.rust_time_s``).
+    """
+
+    runs: List[StaticRun]
+    loaded_modes: Optional[Dict[str, np.ndarray]]
+    loaded_modes_error: Optional[Dict[str, Any]]
+    status: str
+    sweep_load: Optional[int]
+    rust_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def complete(self) -> bool:
+        return self.status == "complete"
+
+    def run(self, label: str) -> StaticRun:
+        """The run of the model ``label`` (``"full"``, ``"reduced-r2"``, …)."""
+        for r in self.runs:
+            if r.label == label:
+                return r
+        raise KeyError(f"no model {label!r}; the runs are {[r.label for r in self.runs]}")
+
+    @property
+    def full(self) -> Optional[StaticRun]:
+        """The full model's run, if it was solved."""
+        return next((r for r in self.runs if r.kind == "full"), None)
+
+    def __repr__(self) -> str:
+        return f"StaticResult(status={self.status!r}, runs={self.runs!r})"
+
+
+@dataclass(eq=False, repr=False)
+class DynamicRun(_Result):
+    """The simulation of one model, up to where it stopped.
+
+    Attributes:
+        label: ``"full"``, ``"simplified"``, ``"reduced-r2"``, ``"reduced-modes-1-2-4"``.
+        kind: ``"full"``, ``"simplified"`` or ``"reduced"``.
+        modes: the retained modes of a reduced model (1-based), or ``None``.
+        dofs: number of coordinates.
+        integrator: the integrator's case-file name (``"radau"``, ``"bdf"``, …).
+        gyroscopic: ``"exact"``, ``"finite-difference"`` or ``"neglected"``.
+        stats: integrator counters: ``steps``, ``rejected_steps``, ``rhs_evaluations``,
+            ``jacobian_evaluations``, ``factorizations``, ``newton_iterations``.
+        wall_time_s: wall time of the integration (s).
+        status: ``"complete"`` or ``"stopped"`` (more values may follow).
+        stop: where and why the run stopped (``None`` if complete): a dict with ``"reason"``,
+            ``"message"``, ``"time"`` (s) and the solver's values.
+        message: the stop's one-line message, or ``None``.
+        t: output times reached (s), ``(T,)``.
+        tip_x, tip_y: tip position (m), ``(T,)``; tip_twist: tip twist (rad), ``(T,)``.
+        kinetic, strain, total: energies (J), ``(T,)``.
+        snapshots: deformed shapes at the chosen output times: a dict of ``index`` ``(S,)``,
+            ``t`` ``(S,)``, and ``x``, ``y`` (m), ``twist`` (rad), each ``(S, n + 1)``.
+        comparison: differences from the first model's tip history (not for the first model):
+            a dict with ``max_tip_difference`` (m), ``relative_x``, ``relative_y``; or ``None``.
+    """
+
+    label: str
+    kind: str
+    modes: Optional[List[int]]
+    dofs: int
+    integrator: str
+    gyroscopic: str
+    stats: Dict[str, int]
+    wall_time_s: float
+    status: str
+    stop: Optional[Dict[str, Any]]
+    message: Optional[str]
+    t: np.ndarray
+    tip_x: np.ndarray
+    tip_y: np.ndarray
+    tip_twist: np.ndarray
+    kinetic: np.ndarray
+    strain: np.ndarray
+    total: np.ndarray
+    snapshots: Dict[str, np.ndarray]
+    comparison: Optional[Dict[str, Optional[float]]]
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def complete(self) -> bool:
+        """Whether every output time was reached."""
+        return self.status == "complete"
+
+    def __repr__(self) -> str:
+        return _summary(self, ["label", "status"]) + f" [{len(self.t)} output times]"
+
+
+@dataclass(eq=False, repr=False)
+class DynamicResult(_Result):
+    """What a dynamic analysis produced.
+
+    Attributes:
+        runs: one :class:`DynamicRun` per model: full, simplified, then the reduced models.
+        status: ``"complete"`` if every model reached every output time, else ``"stopped"``.
+        end_time: the simulated time (s).
+        rust_time_s: wall time of the analysis on the Rust side (s), plan, modes and every
+            model included (see ``ModesResult.rust_time_s``).
+    """
+
+    runs: List[DynamicRun]
+    status: str
+    end_time: float
+    rust_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def complete(self) -> bool:
+        return self.status == "complete"
+
+    def run(self, label: str) -> DynamicRun:
+        """The run of the model ``label`` (``"full"``, ``"reduced-r2"``, …)."""
+        for r in self.runs:
+            if r.label == label:
+                return r
+        raise KeyError(f"no model {label!r}; the runs are {[r.label for r in self.runs]}")
+
+    def __repr__(self) -> str:
+        return f"DynamicResult(status={self.status!r}, runs={self.runs!r})"
+
+
+@dataclass(eq=False, repr=False)
+class BatchItem(_Result):
+    """The outcome of one case of :func:`flexwing.solve_many`.
+
+    Attributes:
+        index: the case's position in the input.
+        status: ``"complete"``, ``"stopped"`` (a model stopped; ``result`` holds what it
+            reached) or ``"error"`` (bad input or a failed set-up; ``result`` is ``None``).
+        result: the analysis result (``ModesResult``, ``StaticResult``, ``DynamicResult``), or
+            ``None``.
+        error: the exception the case would have raised (a :class:`flexwing.FlexwingError`),
+            or ``None``; it pickles, so it travels back from workers.
+        message: the error's one-line message, or ``None``.
+        wall_time_s: wall time of the case (s), set-up included.
+    """
+
+    index: int
+    status: str
+    result: Any
+    error: Optional[BaseException]
+    message: Optional[str]
+    wall_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def complete(self) -> bool:
+        return self.status == "complete"
+
+    def unwrap(self):
+        """The result, or raise the case's error."""
+        if self.error is not None:
+            raise self.error
+        return self.result
+
+    def __repr__(self) -> str:
+        return _summary(self, ["index", "status", "message"])
+
+
+def _build(kind: str, raw: Dict[str, Any]):
+    """Build a result from the bindings' dict (called by ``flexwing._native``)."""
+    if kind == "modes":
+        return _from_raw(ModesResult, raw)
+    if kind == "static":
+        raw = dict(raw)
+        raw["runs"] = [_from_raw(StaticRun, r) for r in raw["runs"]]
+        return _from_raw(StaticResult, raw)
+    if kind == "dynamic":
+        raw = dict(raw)
+        raw["runs"] = [_from_raw(DynamicRun, r) for r in raw["runs"]]
+        return _from_raw(DynamicResult, raw)
+    if kind == "batch":
+        return _from_raw(BatchItem, raw)
+    raise ValueError(f"unknown result kind {kind!r}")

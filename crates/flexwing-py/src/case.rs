@@ -1,0 +1,394 @@
+//! `flexwing.Case`: a case file (TOML text, a file, or a dict / keyword arguments with the same
+//! keys), read by the case crate, and its analyses. Immutable; `replace` makes a changed copy
+//! (the building block of sweeps). Pickles as its TOML text.
+
+use std::path::Path;
+
+use flexwing_case::{Case, CaseError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyString, PyTuple};
+use pythonize::Depythonizer;
+
+use crate::errors;
+use crate::kwargs::Kwargs;
+use crate::model::PyFullModel;
+use crate::run::{run_case, Analysis};
+
+/// A flexwing case: the beam, the loads and the settings of its analyses, with the keys of the
+/// case file (docs/case-file.md).
+///
+/// Build it with ``Case.from_toml(text)``, ``Case.load(path)``, ``Case.from_dict(d)`` or
+/// ``Case(d)`` / ``Case(beam={...}, loads=[...], dynamic={...})`` (``static`` is a Python
+/// keyword: pass it in the dict). Run it with ``modes()``, ``statics()``, ``dynamics()``.
+#[pyclass(module = "flexwing", name = "Case", frozen)]
+pub struct PyCase {
+    pub case: Case,
+}
+
+/// `obj` with NumPy arrays and scalars turned into lists and Python numbers, tuples into lists:
+/// what the serde reader of the case takes.
+pub fn plain_value<'py>(obj: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    let py = obj.py();
+    if let Ok(d) = obj.cast::<PyDict>() {
+        let out = PyDict::new(py);
+        for (k, v) in d.iter() {
+            out.set_item(k, plain_value(&v)?)?;
+        }
+        return Ok(out.into_any());
+    }
+    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        let items = obj
+            .try_iter()?
+            .map(|v| v.and_then(|v| plain_value(&v)))
+            .collect::<PyResult<Vec<_>>>()?;
+        return Ok(PyList::new(py, items)?.into_any());
+    }
+    if obj.is_instance_of::<PyString>() {
+        return Ok(obj.clone());
+    }
+    if obj.hasattr("tolist")? && obj.hasattr("dtype")? {
+        return plain_value(&obj.call_method0("tolist")?);
+    }
+    Ok(obj.clone())
+}
+
+/// A case from a dict with the case file's keys; errors name the key (`beam.section.EI`).
+pub fn case_from_dict(obj: &Bound<'_, PyAny>) -> PyResult<Case> {
+    let py = obj.py();
+    if !obj.is_instance_of::<PyDict>() {
+        return Err(errors::argument_type(
+            py,
+            "data",
+            "must be a dict with the keys of a case file",
+        ));
+    }
+    let value = plain_value(obj)?;
+    errors::guard(py, || {
+        let mut de = Depythonizer::from_object(&value);
+        serde_path_to_error::deserialize::<_, Case>(&mut de).map_err(|e| {
+            let path = e.path().to_string();
+            let reason = flexwing_case::one_line(&e.inner().to_string());
+            let error = CaseError {
+                key: (path != ".").then_some(path),
+                ..CaseError::new(reason)
+            };
+            errors::case(py, &error)
+        })
+    })
+}
+
+/// The keys of `path` (`"beam.section.EI"`, `"loads[0].fy"`): names and list indices.
+enum Step {
+    Key(String),
+    Index(usize),
+}
+
+fn parse_path(py: Python<'_>, path: &str) -> PyResult<Vec<Step>> {
+    let bad = || {
+        errors::input(
+            py,
+            path,
+            "is not a key path such as \"beam.section.EI\" or \"loads[0].fy\"",
+        )
+    };
+    let mut steps = Vec::new();
+    for part in path.split('.') {
+        let (name, mut rest) = part.split_at(part.find('[').unwrap_or(part.len()));
+        if name.is_empty() {
+            return Err(bad());
+        }
+        steps.push(Step::Key(name.to_string()));
+        while !rest.is_empty() {
+            let close = rest.find(']').ok_or_else(bad)?;
+            let index = rest[1..close].parse::<usize>().map_err(|_| bad())?;
+            steps.push(Step::Index(index));
+            rest = &rest[close + 1..];
+            if !rest.is_empty() && !rest.starts_with('[') {
+                return Err(bad());
+            }
+        }
+    }
+    Ok(steps)
+}
+
+/// Set `path` in the nested dicts and lists of `root` to `value` (creating missing tables).
+fn set_path(root: &Bound<'_, PyAny>, path: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+    let py = root.py();
+    let steps = parse_path(py, path)?;
+    let mut node = root.clone();
+    for (k, step) in steps.iter().enumerate() {
+        let last = k + 1 == steps.len();
+        match step {
+            Step::Key(key) => {
+                let d = node.cast::<PyDict>().map_err(|_| {
+                    errors::input(py, path, &format!("{key:?} is not inside a table"))
+                })?;
+                if last {
+                    d.set_item(key, value)?;
+                    return Ok(());
+                }
+                let next = match d.get_item(key)? {
+                    Some(v) if !v.is_none() => v,
+                    _ => {
+                        let fresh = PyDict::new(py).into_any();
+                        d.set_item(key, &fresh)?;
+                        fresh
+                    }
+                };
+                node = next;
+            }
+            Step::Index(i) => {
+                let list = node
+                    .cast::<PyList>()
+                    .map_err(|_| errors::input(py, path, &format!("[{i}] is not inside a list")))?;
+                if *i >= list.len() {
+                    return Err(errors::input(
+                        py,
+                        path,
+                        &format!(
+                            "index {i} is out of range: the list has {} items",
+                            list.len()
+                        ),
+                    ));
+                }
+                if last {
+                    list.set_item(*i, value)?;
+                    return Ok(());
+                }
+                node = list.get_item(*i)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn to_dict<'py>(py: Python<'py>, case: &Case) -> PyResult<Bound<'py, PyAny>> {
+    pythonize::pythonize(py, case)
+        .map_err(|e| errors::internal(py, &format!("the case does not convert to a dict: {e}")))
+}
+
+#[pymethods]
+impl PyCase {
+    /// A case from a dict with the case file's keys, and/or keyword arguments (which override
+    /// the dict's keys).
+    #[new]
+    #[pyo3(signature = (data = None, /, **kwargs))]
+    fn new(
+        py: Python<'_>,
+        data: Option<&Bound<'_, PyAny>>,
+        kwargs: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let merged = PyDict::new(py);
+        if let Some(d) = data {
+            let d = d.cast::<PyDict>().map_err(|_| {
+                errors::argument_type(py, "data", "must be a dict with the keys of a case file")
+            })?;
+            merged.update(d.as_mapping())?;
+        }
+        if let Some(k) = kwargs {
+            merged.update(k.as_mapping())?;
+        }
+        Ok(Self {
+            case: case_from_dict(merged.as_any())?,
+        })
+    }
+
+    /// A case from TOML text; ``file`` names it in errors.
+    #[staticmethod]
+    #[pyo3(signature = (text, file = None))]
+    fn from_toml(
+        py: Python<'_>,
+        text: &Bound<'_, PyAny>,
+        file: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let text = crate::arrays::text(text, "text")?;
+        let file = file.map(|f| crate::arrays::text(f, "file")).transpose()?;
+        errors::guard(py, || {
+            Case::parse(&text, file.as_deref())
+                .map(|case| Self { case })
+                .map_err(|e| errors::case(py, &e))
+        })
+    }
+
+    /// Read the case file at ``path`` (a ``str`` or ``os.PathLike``).
+    #[staticmethod]
+    fn load(py: Python<'_>, path: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let path: String = py
+            .import("os")?
+            .call_method1("fspath", (path,))
+            .and_then(|p| p.extract())
+            .map_err(|_| errors::argument_type(py, "path", "must be a str or an os.PathLike"))?;
+        errors::guard(py, || {
+            Case::load(Path::new(&path))
+                .map(|case| Self { case })
+                .map_err(|e| errors::case(py, &e))
+        })
+    }
+
+    /// A case from a dict with the case file's keys (NumPy arrays and scalars are accepted as
+    /// values).
+    #[staticmethod]
+    fn from_dict(data: &Bound<'_, PyAny>) -> PyResult<Self> {
+        Ok(Self {
+            case: case_from_dict(data)?,
+        })
+    }
+
+    /// The case as a dict with the case file's keys (absent optional keys are left out).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_dict(py, &self.case)
+    }
+
+    /// The case as TOML text.
+    fn to_toml(&self, py: Python<'_>) -> PyResult<String> {
+        self.case.to_toml_string().map_err(|e| errors::case(py, &e))
+    }
+
+    /// A copy with the values at key paths changed: ``case.replace({"beam.section.EI": 60.0,
+    /// "loads[0].fy": 12.0})``. Missing tables are created; errors name the path.
+    fn replace(&self, py: Python<'_>, changes: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let changes = changes.cast::<PyDict>().map_err(|_| {
+            errors::argument_type(py, "changes", "must be a dict of key paths and values")
+        })?;
+        let data = to_dict(py, &self.case)?;
+        for (path, value) in changes.iter() {
+            let path: String = path
+                .extract()
+                .map_err(|_| errors::argument_type(py, "changes", "keys must be strings"))?;
+            set_path(&data, &path, &value)?;
+        }
+        let mut case = case_from_dict(&data)?;
+        case = match self.case.file() {
+            // Keep the file name for messages: reparse through TOML with it.
+            Some(file) => {
+                let text = case.to_toml_string().map_err(|e| errors::case(py, &e))?;
+                Case::parse(&text, Some(file)).map_err(|e| errors::case(py, &e))?
+            }
+            None => case,
+        };
+        Ok(Self { case })
+    }
+
+    /// The case's title, if any.
+    #[getter]
+    fn title(&self) -> Option<String> {
+        self.case.title.clone()
+    }
+
+    /// The file the case was read from, if any.
+    #[getter]
+    fn file(&self) -> Option<String> {
+        self.case.file().map(str::to_string)
+    }
+
+    /// The full model of ``[beam]``.
+    fn model(&self, py: Python<'_>) -> PyResult<PyFullModel> {
+        let model = errors::guard(py, || self.case.model().map_err(|e| errors::case(py, &e)))?;
+        Ok(PyFullModel::new(model))
+    }
+
+    /// The natural modes of ``[beam]`` (``[modes] count``, default 10).
+    ///
+    /// Keyword arguments: ``progress`` — ``callback(done, label)``, ``done`` the fraction of
+    /// the analysis (0 to 1), ``label`` the model running.
+    #[pyo3(signature = (**kwargs))]
+    fn modes<'py>(
+        &self,
+        py: Python<'py>,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.analysis(py, Analysis::Modes, kwargs, "modes")
+    }
+
+    /// The non-linear statics of ``[[loads]]`` and ``[static]`` (sweeps, reduced models,
+    /// loaded modes), as a ``StaticResult``.
+    ///
+    /// Keyword arguments: ``progress`` (as ``modes``); ``check`` (default ``True``): raise
+    /// ``SolverError`` (with the partial result) if a model stopped, else return the result
+    /// with each run's ``status``.
+    #[pyo3(signature = (**kwargs))]
+    fn statics<'py>(
+        &self,
+        py: Python<'py>,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.analysis(py, Analysis::Static, kwargs, "statics")
+    }
+
+    /// The non-linear dynamics of ``[[loads]]`` and ``[dynamic]`` (full, simplified and
+    /// reduced models), as a ``DynamicResult``. Keyword arguments as ``statics``.
+    #[pyo3(signature = (**kwargs))]
+    fn dynamics<'py>(
+        &self,
+        py: Python<'py>,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.analysis(py, Analysis::Dynamic, kwargs, "dynamics")
+    }
+
+    /// Run the analysis ``"modes"``, ``"static"`` or ``"dynamic"`` (as the methods of the same
+    /// names).
+    #[pyo3(signature = (analysis, **kwargs))]
+    fn run<'py>(
+        &self,
+        py: Python<'py>,
+        analysis: &Bound<'py, PyAny>,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let name = crate::arrays::text(analysis, "analysis")?;
+        let analysis = Analysis::parse(py, &name, "analysis")?;
+        self.analysis(py, analysis, kwargs, "run")
+    }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> crate::Reduce<'py, (String, Option<String>)> {
+        let py = slf.py();
+        let this = slf.get();
+        let text = this
+            .case
+            .to_toml_string()
+            .map_err(|e| errors::case(py, &e))?;
+        Ok((
+            slf.get_type().getattr("from_toml")?,
+            (text, this.case.file().map(str::to_string)),
+        ))
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<PyCase>()
+            .is_ok_and(|o| o.get().case == self.case)
+    }
+
+    fn __repr__(&self) -> String {
+        let what = match (&self.case.title, self.case.file()) {
+            (Some(t), _) => format!("{t:?}"),
+            (None, Some(f)) => format!("file={f:?}"),
+            (None, None) => String::new(),
+        };
+        format!("Case({what})")
+    }
+}
+
+impl PyCase {
+    fn analysis<'py>(
+        &self,
+        py: Python<'py>,
+        analysis: Analysis,
+        kwargs: Option<&Bound<'py, PyDict>>,
+        function: &str,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let allowed: &[&str] = match analysis {
+            Analysis::Modes => &["progress"],
+            _ => &["progress", "check"],
+        };
+        let kw = Kwargs::new(py, kwargs, allowed, function)?;
+        let progress = kw.get("progress")?.map(Bound::unbind);
+        let check = match kw.get("check")? {
+            None => true,
+            Some(v) => v
+                .extract::<bool>()
+                .map_err(|_| errors::argument_type(py, "check", "must be True or False"))?,
+        };
+        run_case(py, &self.case, analysis, progress, check)
+    }
+}

@@ -1,0 +1,105 @@
+//! [`DynamicOutcome`] into `DynamicResult` and its `DynamicRun`s.
+
+use flexwing::analysis::dynamics::{DynamicOutcome, DynamicPlan, ModelRun, Sample};
+use flexwing::solve::Gyroscopic;
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use super::statics::kind_name;
+use super::status::status_fields;
+use crate::arrays::{out1, out_rows};
+
+/// The case-file name of a way to get the gyroscopic term.
+pub fn gyroscopic_name(g: Gyroscopic) -> &'static str {
+    match g {
+        Gyroscopic::Exact => "exact",
+        Gyroscopic::FiniteDifference { .. } => "finite-difference",
+        Gyroscopic::Neglected => "neglected",
+    }
+}
+
+/// The dynamic outcome as the dict of `DynamicResult`.
+pub fn raw<'py>(
+    py: Python<'py>,
+    plan: &DynamicPlan,
+    outcome: &DynamicOutcome,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let runs = outcome
+        .runs
+        .iter()
+        .map(|r| run(py, plan, r))
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("runs", runs)?;
+    d.set_item(
+        "status",
+        if outcome.is_complete() {
+            "complete"
+        } else {
+            "stopped"
+        },
+    )?;
+    d.set_item("end_time", plan.end_time)?;
+    Ok(d)
+}
+
+fn run<'py>(py: Python<'py>, plan: &DynamicPlan, r: &ModelRun) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("label", r.kind.label())?;
+    d.set_item("kind", kind_name(&r.kind))?;
+    d.set_item("modes", r.kind.modes())?;
+    d.set_item("dofs", r.dofs)?;
+    d.set_item("integrator", r.integrator.name())?;
+    d.set_item("gyroscopic", gyroscopic_name(r.gyroscopic))?;
+    let s = &r.stats;
+    let stats = PyDict::new(py);
+    stats.set_item("steps", s.steps)?;
+    stats.set_item("rejected_steps", s.rejected_steps)?;
+    stats.set_item("rhs_evaluations", s.rhs_evaluations)?;
+    stats.set_item("jacobian_evaluations", s.jacobian_evaluations)?;
+    stats.set_item("factorizations", s.factorizations)?;
+    stats.set_item("newton_iterations", s.newton_iterations)?;
+    d.set_item("stats", stats)?;
+    d.set_item("wall_time_s", r.wall_time_s)?;
+    let (status, stop, message) = status_fields(py, &r.status, None)?;
+    d.set_item("status", status)?;
+    d.set_item("stop", stop)?;
+    d.set_item("message", message)?;
+    let column = |f: fn(&Sample) -> f64| out1(py, r.samples.iter().map(f).collect());
+    d.set_item("t", column(|s| s.t))?;
+    d.set_item("tip_x", column(|s| s.tip_x))?;
+    d.set_item("tip_y", column(|s| s.tip_y))?;
+    d.set_item("tip_twist", column(|s| s.tip_twist))?;
+    d.set_item("kinetic", column(|s| s.kinetic))?;
+    d.set_item("strain", column(|s| s.strain))?;
+    d.set_item("total", column(Sample::total))?;
+    let nodes = plan.model.beam().nodes().len();
+    let snapshots = PyDict::new(py);
+    let shots = &r.snapshots;
+    snapshots.set_item(
+        "index",
+        PyArray1::from_vec(py, shots.iter().map(|s| s.index as i64).collect()),
+    )?;
+    snapshots.set_item("t", out1(py, shots.iter().map(|s| s.t).collect()))?;
+    let rows = |f: fn(&flexwing::analysis::dynamics::Snapshot) -> &[f64]| {
+        let r: Vec<&[f64]> = shots.iter().map(f).collect();
+        out_rows(py, &r, nodes)
+    };
+    snapshots.set_item("x", rows(|s| &s.shape.x))?;
+    snapshots.set_item("y", rows(|s| &s.shape.y))?;
+    snapshots.set_item("twist", rows(|s| &s.shape.twist))?;
+    d.set_item("snapshots", snapshots)?;
+    let comparison = match &r.comparison {
+        None => None,
+        Some(c) => {
+            let m = PyDict::new(py);
+            m.set_item("max_tip_difference", c.max_tip_difference)?;
+            m.set_item("relative_x", c.relative_x)?;
+            m.set_item("relative_y", c.relative_y)?;
+            Some(m)
+        }
+    };
+    d.set_item("comparison", comparison)?;
+    Ok(d)
+}

@@ -1,0 +1,23 @@
+//! Library outcomes into the result objects of `python/flexwing/_results.py`: each outcome
+//! becomes a dict of NumPy arrays, numbers and strings here, and the Python class is built from
+//! it. Adding a field is one `set_item` here and one attribute there (the test suite checks the
+//! two agree); a new analysis is one module here and one class there.
+
+pub mod dynamics;
+pub mod modes;
+pub mod statics;
+pub mod status;
+
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// The result object of `kind` (`"modes"`, `"static"`, `"dynamic"`, `"batch"`) from `raw`.
+pub fn build<'py>(
+    py: Python<'py>,
+    kind: &str,
+    raw: Bound<'py, PyDict>,
+) -> PyResult<Bound<'py, PyAny>> {
+    py.import("flexwing._results")?
+        .getattr("_build")?
+        .call1((kind, raw))
+}

@@ -1,0 +1,50 @@
+//! # flexwing-py
+//!
+//! The `flexwing` Python package: the Rust extension `flexwing._native` built by maturin (with
+//! the stable ABI, one wheel for Python ≥ 3.9), and the pure-Python part in `python/flexwing`
+//! (the exception tree, the result classes, the type stubs). See `docs/python.md`.
+//!
+//! | module | what |
+//! |---|---|
+//! | `case` | `Case`: a case file, TOML text or dict; its analyses |
+//! | `run` | running an analysis of a case detached from the interpreter; [`run::Analysis`] lists them |
+//! | `convert/` | library outcomes into result objects (dicts of NumPy arrays) |
+//! | `batch` | `solve_many`: many cases, each one's status and error as data |
+//! | `model` | `Beam`, `FullModel`, `ReducedModel` |
+//! | `equations` | `Equations` (rhs, Jacobian, energies at a state) and `Stepper` |
+//! | `arrays` | NumPy in (checked, converted, copied) and out |
+//! | `errors` | library errors into Python exceptions; panics caught at the boundary |
+//! | `kwargs`, `progress` | keyword arguments checked by name; the progress callback |
+//!
+//! A new analysis of the library (flutter, …) joins as one variant of [`run::Analysis`], one
+//! converter in `convert/` and one result class in `python/flexwing/_results.py`.
+
+use pyo3::prelude::*;
+
+mod arrays;
+mod batch;
+mod case;
+mod convert;
+mod equations;
+mod errors;
+mod kwargs;
+mod model;
+mod progress;
+mod run;
+
+/// What `__reduce__` returns: the callable that rebuilds the object, and its arguments.
+type Reduce<'py, A> = PyResult<(Bound<'py, PyAny>, A)>;
+
+/// The Rust half of the `flexwing` package; import `flexwing`, not this module.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<case::PyCase>()?;
+    m.add_class::<model::PyBeam>()?;
+    m.add_class::<model::PyFullModel>()?;
+    m.add_class::<model::PyReducedModel>()?;
+    m.add_class::<equations::PyEquations>()?;
+    m.add_class::<equations::PyStepper>()?;
+    m.add_function(wrap_pyfunction!(batch::solve_many, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,614 @@
+//! The model level: `Beam` (from numbers or arrays of section properties), `FullModel` and
+//! `ReducedModel` (matrices, shapes, modes), and the way into `Equations` and `Stepper`
+//! (`equations.rs`). A beam is read through the case crate's `[beam]` table, so the rules are
+//! the case file's, with errors named by the keyword argument (`EI`, `elements`).
+
+use flexwing::analysis::modes::{run as run_modes, ModesPlan};
+use flexwing::analysis::NoProgress;
+use flexwing::model::{FullModel, ReducedModel, StructuralModel};
+use flexwing::solve::Modes;
+use flexwing_case::BeamSpec;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::arrays::{self, out1, out_matrix};
+use crate::case::case_from_dict;
+use crate::errors;
+use crate::kwargs::Kwargs;
+
+/// The keyword arguments of `Beam`: the keys of `[beam]` and `[beam.section]`, and `x`.
+const BEAM_KEYS: &[&str] = &[
+    "length",
+    "elements",
+    "stations",
+    "calibration",
+    "x",
+    "EI",
+    "mass_per_length",
+    "GJ",
+    "polar_inertia",
+    "polar_inertia_about",
+    "d0",
+];
+const SECTION_KEYS: &[&str] = &["EI", "mass_per_length", "GJ", "polar_inertia", "d0"];
+
+/// The argument a case-file key of `[beam]` came from: `beam.section.EI` → `EI`.
+fn argument_of(key: &str) -> String {
+    key.strip_prefix("beam.section.")
+        .or_else(|| key.strip_prefix("beam."))
+        .unwrap_or(key)
+        .to_string()
+}
+
+/// The library beam of `spec` (a `[beam]` table), errors named by the keyword arguments.
+fn beam_of(py: Python<'_>, spec: &Bound<'_, PyDict>) -> PyResult<(BeamSpec, FullModel)> {
+    let case = PyDict::new(py);
+    case.set_item("beam", spec)?;
+    let rename = |e: PyErr| {
+        let value = e.value(py);
+        match value
+            .getattr("key")
+            .and_then(|k| k.extract::<Option<String>>())
+        {
+            Ok(Some(key)) => {
+                let reason: String = value
+                    .getattr("reason")
+                    .and_then(|r| r.extract())
+                    .unwrap_or_default();
+                errors::input(py, &argument_of(&key), &reason)
+            }
+            _ => e,
+        }
+    };
+    let case = case_from_dict(case.as_any()).map_err(rename)?;
+    let model =
+        errors::guard(py, || case.model().map_err(|e| errors::case(py, &e))).map_err(rename)?;
+    Ok((case.beam.clone(), model))
+}
+
+/// A cantilever cut into rigid elements, with its section properties over the span.
+///
+/// Keyword arguments (SI units): ``length`` (m); ``elements`` (number of equal elements) or
+/// ``stations`` (node positions, m, 0 … length); ``EI`` (N·m²) and ``mass_per_length`` (kg/m),
+/// and for torsion ``GJ`` (N·m²), ``polar_inertia`` (kg·m), ``polar_inertia_about``
+/// (``"mass-centre"`` or ``"elastic-axis"``) and ``d0`` (m, mass-centre offset); each property
+/// a number, or an array of values at the stations ``x`` (m, piecewise linear, covering the
+/// span); ``calibration`` (``"tip-load"``, the default, or ``"uniform"``).
+#[pyclass(module = "flexwing", name = "Beam", frozen)]
+pub struct PyBeam {
+    pub spec: BeamSpec,
+    pub model: FullModel,
+}
+
+#[pymethods]
+impl PyBeam {
+    #[new]
+    #[pyo3(signature = (**kwargs))]
+    fn new(py: Python<'_>, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let kw = Kwargs::new(py, kwargs, BEAM_KEYS, "Beam")?;
+        let beam = PyDict::new(py);
+        let section = PyDict::new(py);
+        let required = |name: &str| {
+            kw.get(name)?
+                .ok_or_else(|| errors::input(py, name, "missing: a required argument"))
+        };
+        beam.set_item("length", arrays::number(&required("length")?, "length")?)?;
+        if let Some(n) = kw.get("elements")? {
+            beam.set_item("elements", arrays::count(&n, "elements")?)?;
+        }
+        if let Some(s) = kw.get("stations")? {
+            beam.set_item("stations", arrays::vector(&s, "stations", None)?)?;
+        }
+        if let Some(c) = kw.get("calibration")? {
+            beam.set_item("calibration", arrays::text(&c, "calibration")?)?;
+        }
+        let x = kw
+            .get("x")?
+            .map(|x| arrays::vector(&x, "x", None))
+            .transpose()?;
+        for key in SECTION_KEYS {
+            let Some(v) = kw.get(key)? else {
+                if matches!(*key, "EI" | "mass_per_length") {
+                    return Err(errors::input(py, key, "missing: a required argument"));
+                }
+                continue;
+            };
+            let is_number = v.extract::<f64>().is_ok() && !v.hasattr("__len__")?;
+            if is_number {
+                section.set_item(key, arrays::number(&v, key)?)?;
+            } else {
+                let values = arrays::vector(&v, key, x.as_ref().map(Vec::len))?;
+                let x = x.as_ref().ok_or_else(|| {
+                    errors::input(
+                        py,
+                        "x",
+                        &format!("missing: {key} is an array of values at the stations x (m)"),
+                    )
+                })?;
+                let table = PyDict::new(py);
+                table.set_item("x", x.clone())?;
+                table.set_item("value", values)?;
+                section.set_item(key, table)?;
+            }
+        }
+        if let Some(a) = kw.get("polar_inertia_about")? {
+            section.set_item(
+                "polar_inertia_about",
+                arrays::text(&a, "polar_inertia_about")?,
+            )?;
+        }
+        beam.set_item("section", section)?;
+        let (spec, model) = beam_of(py, &beam)?;
+        Ok(Self { spec, model })
+    }
+
+    /// A beam from a ``[beam]`` table (a dict with the case file's keys).
+    #[staticmethod]
+    fn from_dict(py: Python<'_>, table: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let table = table
+            .cast::<PyDict>()
+            .map_err(|_| errors::argument_type(py, "table", "must be a dict"))?;
+        let (spec, model) = beam_of(py, table)?;
+        Ok(Self { spec, model })
+    }
+
+    /// The beam as a ``[beam]`` table (a dict with the case file's keys).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        pythonize::pythonize(py, &self.spec).map_err(|e| errors::internal(py, &e.to_string()))
+    }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> crate::Reduce<'py, (Bound<'py, PyAny>,)> {
+        let table = slf.get().to_dict(slf.py())?;
+        Ok((slf.get_type().getattr("from_dict")?, (table,)))
+    }
+
+    /// Span ``L`` (m).
+    #[getter]
+    fn length(&self) -> f64 {
+        self.model.beam().length()
+    }
+    /// Number of elements ``n``.
+    #[getter]
+    fn n_elements(&self) -> usize {
+        self.model.n_elements()
+    }
+    /// Whether the beam has torsion degrees of freedom.
+    #[getter]
+    fn has_torsion(&self) -> bool {
+        self.model.has_torsion()
+    }
+    /// Node stations ``x_0 = 0 … x_n = L`` (m), ``(n + 1,)``.
+    #[getter]
+    fn nodes<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray1<f64>> {
+        out1(py, self.model.beam().nodes().to_vec())
+    }
+    /// Element lengths (m), ``(n,)``.
+    #[getter]
+    fn lengths<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray1<f64>> {
+        out1(py, self.model.beam().lengths().to_vec())
+    }
+    /// Element masses (kg), ``(n,)``.
+    #[getter]
+    fn masses<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray1<f64>> {
+        out1(py, self.model.beam().masses().to_vec())
+    }
+    /// Element mass-centre offsets ``d0`` (m), ``(n,)``.
+    #[getter]
+    fn offsets<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray1<f64>> {
+        out1(py, self.model.beam().offsets().to_vec())
+    }
+    /// Element polar inertias about their mass centres (kg·m²), ``(n,)``.
+    #[getter]
+    fn inertias<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray1<f64>> {
+        out1(py, self.model.beam().inertias().to_vec())
+    }
+    /// Bending spring stiffnesses (N·m/rad), ``(n,)``, joint ``i`` at node ``i``.
+    #[getter]
+    fn bending_stiffness<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray1<f64>> {
+        out1(py, self.model.beam().bending_stiffness().to_vec())
+    }
+    /// Torsion spring stiffnesses (N·m/rad), ``(n,)``, or ``None`` without torsion.
+    #[getter]
+    fn torsion_stiffness<'py>(&self, py: Python<'py>) -> Option<Bound<'py, numpy::PyArray1<f64>>> {
+        self.model
+            .beam()
+            .torsion_stiffness()
+            .map(|k| out1(py, k.to_vec()))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Beam(length={}, n_elements={}, torsion={})",
+            self.model.beam().length(),
+            self.model.n_elements(),
+            self.model.has_torsion()
+        )
+    }
+}
+
+/// The full model of a beam: ``n`` bending coordinates (joint rotations, rad), and ``n``
+/// torsion coordinates with torsion.
+#[pyclass(module = "flexwing", name = "FullModel", frozen)]
+pub struct PyFullModel {
+    pub spec: Option<BeamSpec>,
+    pub model: FullModel,
+}
+
+impl PyFullModel {
+    /// The model of a case's beam.
+    pub fn new(model: FullModel) -> Self {
+        Self { spec: None, model }
+    }
+}
+
+/// The shape of `q` as a dict of node arrays.
+fn shape_dict<'py>(py: Python<'py>, model: &FullModel, q: &[f64]) -> PyResult<Bound<'py, PyDict>> {
+    let shape = model.shape(q);
+    let d = PyDict::new(py);
+    d.set_item("x", out1(py, shape.x))?;
+    d.set_item("y", out1(py, shape.y))?;
+    d.set_item("twist", out1(py, shape.twist))?;
+    Ok(d)
+}
+
+/// The 1-based modes of `modes` (an int `r`: the first `r`; or a list).
+fn mode_list(py: Python<'_>, modes: &Bound<'_, PyAny>, n_dofs: usize) -> PyResult<Vec<usize>> {
+    let list: Vec<usize> = if modes.is_instance_of::<PyList>() || modes.hasattr("__len__")? {
+        modes
+            .try_iter()?
+            .enumerate()
+            .map(|(i, m)| arrays::count(&m?, &format!("modes[{i}]")))
+            .collect::<PyResult<_>>()?
+    } else {
+        let r = arrays::count(modes, "modes")?;
+        (1..=r).collect()
+    };
+    if list.is_empty() {
+        return Err(errors::input(py, "modes", "needs at least one mode"));
+    }
+    for (i, &m) in list.iter().enumerate() {
+        if !(1..=n_dofs).contains(&m) {
+            return Err(errors::input(
+                py,
+                &format!("modes[{i}]"),
+                &format!("mode numbers run from 1 to {n_dofs} (the model's coordinates), got {m}"),
+            ));
+        }
+        if list[..i].contains(&m) {
+            return Err(errors::input(
+                py,
+                &format!("modes[{i}]"),
+                &format!("mode {m} is listed twice"),
+            ));
+        }
+    }
+    Ok(list)
+}
+
+#[pymethods]
+impl PyFullModel {
+    #[new]
+    fn py_new(beam: &Bound<'_, PyBeam>) -> Self {
+        let b = beam.get();
+        Self {
+            spec: Some(b.spec.clone()),
+            model: b.model.clone(),
+        }
+    }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> crate::Reduce<'py, (Bound<'py, PyAny>,)> {
+        let py = slf.py();
+        let beam = slf.get().beam(py)?;
+        Ok((slf.get_type().into_any(), (beam.into_any(),)))
+    }
+
+    /// The beam.
+    #[getter]
+    fn beam<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBeam>> {
+        let spec = match &self.spec {
+            Some(s) => s.clone(),
+            None => {
+                return Err(errors::input(
+                    py,
+                    "beam",
+                    "this model was built by a case: use case.to_dict()['beam']",
+                ))
+            }
+        };
+        Bound::new(
+            py,
+            PyBeam {
+                spec,
+                model: self.model.clone(),
+            },
+        )
+    }
+
+    /// Number of coordinates.
+    #[getter]
+    fn n_dofs(&self) -> usize {
+        self.model.n_dofs()
+    }
+    /// Number of elements.
+    #[getter]
+    fn n_elements(&self) -> usize {
+        self.model.n_elements()
+    }
+    /// Whether the model has torsion coordinates.
+    #[getter]
+    fn has_torsion(&self) -> bool {
+        self.model.has_torsion()
+    }
+
+    /// Stiffness matrix ``K`` (N·m/rad), ``(n_dofs, n_dofs)``.
+    fn stiffness_matrix<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+        let k = errors::guard(py, || Ok(self.model.stiffness_matrix()))?;
+        Ok(out_matrix(py, &k))
+    }
+
+    /// Mass matrix ``M(q)`` (kg·m²) at joint rotations ``q`` (rad), ``(n_dofs, n_dofs)``.
+    fn mass_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+        let q = arrays::vector(q, "q", Some(self.model.n_dofs()))?;
+        let m = errors::guard(py, || {
+            let n = self.model.n_dofs();
+            let mut m = nalgebra::DMatrix::zeros(n, n);
+            let mut ws = self.model.workspace();
+            self.model.mass_matrix_into(&q, &mut ws, &mut m);
+            Ok(m)
+        })?;
+        Ok(out_matrix(py, &m))
+    }
+
+    /// The deformed shape at joint rotations ``q`` (rad): a dict of node arrays ``x``, ``y``
+    /// (m) and ``twist`` (rad).
+    fn shape<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
+        let q = arrays::vector(q, "q", Some(self.model.n_dofs()))?;
+        errors::guard(py, || shape_dict(py, &self.model, &q))
+    }
+
+    /// The lowest ``count`` natural modes about the undeformed state (default
+    /// ``min(10, n_dofs)``), as a ``ModesResult``.
+    #[pyo3(signature = (count = None))]
+    fn modes<'py>(
+        &self,
+        py: Python<'py>,
+        count: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let count = count.map(|c| arrays::count(c, "count")).transpose()?;
+        let plan = ModesPlan::new(self.model.clone(), count, "count")
+            .map_err(|e| errors::library_input(py, &e))?;
+        let (outcome, rust_time_s) = errors::detached(py, || {
+            let start = std::time::Instant::now();
+            let outcome = run_modes(&plan, &mut NoProgress);
+            (outcome, start.elapsed().as_secs_f64())
+        })?;
+        let outcome = outcome.map_err(|e| errors::solve(py, &e))?;
+        let raw = crate::convert::modes::raw(py, &self.model, &outcome)?;
+        raw.set_item("rust_time_s", rust_time_s)?;
+        crate::convert::build(py, "modes", raw)
+    }
+
+    /// The reduced model on ``modes`` of the undeformed state: an int ``r`` (the first ``r``)
+    /// or a list of 1-based mode numbers.
+    fn reduced(&self, py: Python<'_>, modes: &Bound<'_, PyAny>) -> PyResult<PyReducedModel> {
+        PyReducedModel::build(py, self.spec.clone(), &self.model, modes)
+    }
+
+    /// The equations of motion under ``loads`` (see ``Equations``).
+    #[pyo3(signature = (loads = None, **kwargs))]
+    fn equations(
+        &self,
+        py: Python<'_>,
+        loads: Option<&Bound<'_, PyAny>>,
+        kwargs: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<crate::equations::PyEquations> {
+        crate::equations::PyEquations::build(
+            py,
+            crate::equations::AnyModel::Full(self.model.clone()),
+            loads,
+            kwargs,
+        )
+    }
+
+    /// A stepper of the equations of motion under ``loads`` (see ``Stepper``).
+    #[pyo3(signature = (loads = None, **kwargs))]
+    fn stepper(
+        &self,
+        py: Python<'_>,
+        loads: Option<&Bound<'_, PyAny>>,
+        kwargs: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<crate::equations::PyStepper> {
+        crate::equations::PyStepper::build(
+            py,
+            crate::equations::AnyModel::Full(self.model.clone()),
+            loads,
+            kwargs,
+        )
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "FullModel(n_elements={}, n_dofs={})",
+            self.model.n_elements(),
+            self.model.n_dofs()
+        )
+    }
+}
+
+/// The full model projected on some of its natural modes about the undeformed state: the
+/// coordinates are modal amplitudes ``η`` with ``q = Φ η``; geometry stays non-linear.
+#[pyclass(module = "flexwing", name = "ReducedModel", frozen)]
+pub struct PyReducedModel {
+    spec: Option<BeamSpec>,
+    pub model: ReducedModel,
+    modes: Vec<usize>,
+}
+
+impl PyReducedModel {
+    fn build(
+        py: Python<'_>,
+        spec: Option<BeamSpec>,
+        full: &FullModel,
+        modes: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
+        let modes = mode_list(py, modes, full.n_dofs())?;
+        let highest = modes.iter().copied().max().unwrap_or(1);
+        let indices: Vec<usize> = modes.iter().map(|m| m - 1).collect();
+        let model = errors::detached(py, || {
+            Modes::lowest(full, highest)
+                .map_err(flexwing::Error::from)
+                .and_then(|m| Ok(ReducedModel::new(full, m.shapes(), &indices)?))
+        })?
+        .map_err(|e| errors::library(py, &e))?;
+        Ok(Self { spec, model, modes })
+    }
+}
+
+#[pymethods]
+impl PyReducedModel {
+    #[new]
+    fn py_new(
+        py: Python<'_>,
+        full: &Bound<'_, PyFullModel>,
+        modes: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
+        let f = full.get();
+        Self::build(py, f.spec.clone(), &f.model, modes)
+    }
+
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> crate::Reduce<'py, (Bound<'py, PyAny>, Vec<usize>)> {
+        let py = slf.py();
+        let this = slf.get();
+        let full = Bound::new(
+            py,
+            PyFullModel {
+                spec: this.spec.clone(),
+                model: this.model.full_model().clone(),
+            },
+        )?;
+        Ok((
+            slf.get_type().into_any(),
+            (full.into_any(), this.modes.clone()),
+        ))
+    }
+
+    /// Number of coordinates (retained modes).
+    #[getter]
+    fn n_dofs(&self) -> usize {
+        self.model.n_dofs()
+    }
+    /// The retained modes, 1-based.
+    #[getter]
+    fn modes(&self) -> Vec<usize> {
+        self.modes.clone()
+    }
+    /// The full model underneath.
+    #[getter]
+    fn full_model(&self) -> PyFullModel {
+        PyFullModel {
+            spec: self.spec.clone(),
+            model: self.model.full_model().clone(),
+        }
+    }
+    /// The mass-normalized mode shapes ``Φ`` as columns, ``(full n_dofs, n_dofs)``.
+    #[getter]
+    fn basis<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray2<f64>> {
+        out_matrix(py, self.model.basis())
+    }
+
+    /// Joint rotations ``q = Φ η`` (rad) of modal amplitudes ``x``.
+    fn full_coordinates<'py>(
+        &self,
+        py: Python<'py>,
+        x: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
+        let x = arrays::vector(x, "x", Some(self.model.n_dofs()))?;
+        let q = errors::guard(py, || Ok(self.model.full_coordinates(&x)))?;
+        Ok(out1(py, q))
+    }
+
+    /// Modal amplitudes ``η = Φᵀ M(0) q`` of joint rotations ``q`` (rad).
+    fn reduce_coordinates<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
+        let q = arrays::vector(q, "q", Some(self.model.full_model().n_dofs()))?;
+        let x = errors::guard(py, || Ok(self.model.reduce_coordinates(&q)))?;
+        Ok(out1(py, x))
+    }
+
+    /// Reduced stiffness ``K_r = Φᵀ K Φ``, ``(n_dofs, n_dofs)``.
+    fn stiffness_matrix<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+        let k = errors::guard(py, || Ok(self.model.stiffness_matrix()))?;
+        Ok(out_matrix(py, &k))
+    }
+
+    /// Reduced mass matrix ``M_r(η) = Φᵀ M(Φ η) Φ`` at modal amplitudes ``x``.
+    fn mass_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        x: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+        let x = arrays::vector(x, "x", Some(self.model.n_dofs()))?;
+        let m = errors::guard(py, || {
+            let n = self.model.n_dofs();
+            let mut m = nalgebra::DMatrix::zeros(n, n);
+            let mut ws = self.model.workspace();
+            self.model.mass_matrix_into(&x, &mut ws, &mut m);
+            Ok(m)
+        })?;
+        Ok(out_matrix(py, &m))
+    }
+
+    /// The deformed shape at modal amplitudes ``x`` (see ``FullModel.shape``).
+    fn shape<'py>(&self, py: Python<'py>, x: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
+        let x = arrays::vector(x, "x", Some(self.model.n_dofs()))?;
+        errors::guard(py, || {
+            let q = self.model.full_coordinates(&x);
+            shape_dict(py, self.model.full_model(), &q)
+        })
+    }
+
+    /// The equations of motion under ``loads`` (see ``Equations``).
+    #[pyo3(signature = (loads = None, **kwargs))]
+    fn equations(
+        &self,
+        py: Python<'_>,
+        loads: Option<&Bound<'_, PyAny>>,
+        kwargs: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<crate::equations::PyEquations> {
+        crate::equations::PyEquations::build(
+            py,
+            crate::equations::AnyModel::Reduced(self.model.clone()),
+            loads,
+            kwargs,
+        )
+    }
+
+    /// A stepper of the equations of motion under ``loads`` (see ``Stepper``).
+    #[pyo3(signature = (loads = None, **kwargs))]
+    fn stepper(
+        &self,
+        py: Python<'_>,
+        loads: Option<&Bound<'_, PyAny>>,
+        kwargs: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<crate::equations::PyStepper> {
+        crate::equations::PyStepper::build(
+            py,
+            crate::equations::AnyModel::Reduced(self.model.clone()),
+            loads,
+            kwargs,
+        )
+    }
+
+    fn __repr__(&self) -> String {
+        format!("ReducedModel(modes={:?})", self.modes)
+    }
+}

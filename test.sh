@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# The project's tests, in one command: the Rust workspace (`cargo test --workspace --release`),
+# then the Python package — built with maturin from the same release build and installed into a
+# virtual environment (`.venv`, created if missing; `FLEXWING_VENV` picks another), where pytest
+# runs its suite (crates/flexwing-py/tests) against the `flexwing` binary of the same build.
+# Needs only Rust and Python ≥ 3.11 with its venv module (the pinned numpy needs 3.11; the
+# package itself runs on ≥ 3.9); maturin, numpy, pytest and
+# dask[distributed] come from PyPI (crates/flexwing-py/requirements-test.txt).
+#
+#   ./test.sh                 everything
+#   ./test.sh --python-only   the Python part alone (after a Rust build)
+#   ./test.sh -- -k stepper   extra arguments after -- go to pytest
+set -euo pipefail
+cd "$(dirname "$0")"
+
+rust=1
+pytest_args=()
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --python-only) rust=0 ;;
+        --) shift; pytest_args=("$@"); break ;;
+        *) echo "test.sh: unknown argument $1 (use --python-only, or -- PYTEST-ARGS)" >&2; exit 2 ;;
+    esac
+    shift
+done
+
+if [ "$rust" = 1 ]; then
+    cargo test --workspace --release
+fi
+
+venv="${FLEXWING_VENV:-.venv}"
+python="${PYTHON:-python3}"
+if [ ! -x "$venv/bin/python" ]; then
+    echo "test.sh: creating the virtual environment $venv" >&2
+    if ! "$python" -m venv "$venv"; then
+        echo "test.sh: '$python -m venv' failed; install Python's venv module (Debian and" \
+             "Ubuntu: apt-get install python3-venv) or set PYTHON to another Python 3" >&2
+        exit 1
+    fi
+fi
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
+    -r crates/flexwing-py/requirements-test.txt
+
+# The wheel is built from the release build above: only pyo3 and the binding itself compile.
+wheels=target/wheels
+rm -f "$wheels"/flexwing-*.whl
+"$venv/bin/maturin" build --release --quiet -m crates/flexwing-py/Cargo.toml -o "$wheels"
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check --force-reinstall \
+    --no-deps "$wheels"/flexwing-*.whl
+
+# The CLI whose --json output the bindings are compared with (built by cargo test above).
+export FLEXWING_CLI="${FLEXWING_CLI:-$PWD/target/release/flexwing}"
+if [ ! -x "$FLEXWING_CLI" ]; then
+    cargo build --release -p flexwing-cli
+fi
+status=0
+"$venv/bin/python" -m pytest crates/flexwing-py/tests "${pytest_args[@]}" || status=$?
+if [ "$status" = 5 ]; then
+    echo "test.sh: pytest collected no tests (exit status 5): the Python suite is missing" >&2
+    exit 1
+fi
+exit "$status"
