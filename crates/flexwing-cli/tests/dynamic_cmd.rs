@@ -339,10 +339,14 @@ fn paper_free_vibration_full_conserves_energy_and_simplified_runs_away() {
 }
 
 #[test]
-fn a_release_at_loose_tolerances_that_gains_energy_is_not_complete() {
+fn a_release_at_loose_tolerances_keeps_its_energy_or_is_not_complete() {
     // Regression (issue 9, found (b)): the full model released from the 150 N deflection,
     // n = 40, rtol = 1e-2, atol = 1e-3, max_step = 5e-4, 0.5 s, went from 34.6 J to 1948 J
-    // between 0.47 and 0.5 s with no load and no damping, reported `complete`, exit 0.
+    // between 0.47 and 0.5 s with no load and no damping, reported `complete`, exit 0. Since the
+    // O(n) Newton systems and the momentum tolerances of main, the same run keeps its energy
+    // (measured 34.59 → 34.57 J, audit error 5.7e-4): whatever its status, a `complete` run must
+    // hold the energy of this free, undamped beam (a law, not a model output) to 1 %, and pass
+    // its audit.
     let dir = TempDir::new("loose-release");
     let text = fs::read_to_string(example("paper_free_vibration.toml")).unwrap();
     let text = text
@@ -354,24 +358,67 @@ fn a_release_at_loose_tolerances_that_gains_energy_is_not_complete() {
         .replace("atol = 1e-6 ", "atol = 1e-3 ");
     assert!(text.contains("max_step = 5e-4") && text.contains("node = 40 "));
     let case = dir.write("case.toml", &text);
-    let (o, out) = run_dynamic(&dir, &case, &["--json"]);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let (o, _) = run_dynamic(&dir, &case, &["--json"]);
     let doc = json(&o);
-    assert_ne!(doc["status"], "complete");
     let full = model(&doc, "full");
-    assert_ne!(full["status"], "complete");
-    let audit = &full["energy_audit"];
-    // The limit at rtol 1e-2: 0.1 of the energy held (10⁴ rtol, at most 0.1). Measured: the
-    // run created 9 times its 34.6 J by t = 0.013 s and was stopped there as a runaway.
-    assert_eq!(audit["limit"], 0.1);
-    assert!(audit["max_error"].as_f64().unwrap() > 0.1, "{audit}");
-    let h0 = numbers(&full["energy"]["total_J"])[0];
+    let energy = numbers(&full["energy"]["total_J"]);
+    let h0 = energy[0];
     assert!((h0 - 34.6).abs() < 0.5, "initial energy {h0} J");
-    let status = fs::read_to_string(out.join("status.txt")).unwrap();
+    let drift = energy
+        .iter()
+        .map(|e| (e - h0).abs() / h0)
+        .fold(0.0, f64::max);
+    if full["status"] == "complete" {
+        assert_eq!(o.status.code(), Some(0));
+        assert!(
+            drift < 1e-2,
+            "complete, but the energy drifted by {drift:.2e}"
+        );
+        let audit = &full["energy_audit"];
+        assert!(audit["max_error"].as_f64().unwrap() <= audit["limit"].as_f64().unwrap());
+    } else {
+        assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    }
+}
+
+#[test]
+fn an_inaccurate_run_is_suspect_not_complete() {
+    // BDF of order 3 (not A-stable) at the default rtol 1e-3 on the small base case's step
+    // load: its energy reaches 2.1 J where the tight run (rtol 1e-6) never exceeds 0.33 J, and
+    // its tip is 7e-3 m off a 6.6e-2 m motion (measured). The energy audit marks it `suspect`
+    // (balance error 5.3 against the limit 0.1), exit status 1; the same case at rtol 1e-6 is
+    // `complete` (audit error 2.5e-4 against its limit 1e-2).
+    let dir = TempDir::new("suspect");
+    let run = |extra: &str| {
+        let case = dir.write(
+            "case.toml",
+            &format!("{CASE}integrator = \"bdf\"\nmax_order = 3\n{extra}"),
+        );
+        let (o, out) = run_dynamic(&dir, &case, &["--json"]);
+        let status = fs::read_to_string(out.join("status.txt")).unwrap();
+        let doc = json(&o);
+        (o, doc, status)
+    };
+    let (tight_o, tight, _) = run("rtol = 1e-6\natol = 1e-8\n");
+    assert_success(&tight_o);
+    let tight_max = numbers(&model(&tight, "full")["energy"]["total_J"])
+        .into_iter()
+        .fold(0.0, f64::max);
+    let (o, doc, status) = run("");
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(doc["status"], "suspect");
+    let full = model(&doc, "full");
+    assert_eq!(full["status"], "suspect");
+    let loose_max = numbers(&full["energy"]["total_J"])
+        .into_iter()
+        .fold(0.0, f64::max);
+    // Independent evidence that the run is wrong: energy the loads never gave.
     assert!(
-        status.starts_with("suspect: full: ") || status.starts_with("incomplete: full: "),
-        "{status}"
+        loose_max > 3.0 * tight_max,
+        "{loose_max} J vs {tight_max} J"
     );
+    assert!(status.starts_with("suspect: full: "), "{status}");
+    assert!(stderr(&o).contains("energy balance"), "{}", stderr(&o));
 }
 
 #[test]

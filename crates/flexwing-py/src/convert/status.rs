@@ -1,10 +1,11 @@
-//! How a run ended, as data: [`Status`] becomes `"complete"` or `"stopped"` with a `stop` dict
+//! How a run ended, as data: [`Status`] becomes `"complete"`, `"suspect"` (the energy audit's
+//! doubt, as a dict) or `"stopped"` with a `stop` dict
 //! (`reason`, `message` and the values the solver stopped at), [`SolveError`] a dict with its
 //! `kind`, `message` and values. Both enums are `#[non_exhaustive]`: a variant added in the
 //! library gets its name (from its `Debug` form) and message here until it gets an arm of its
 //! own, so a new status or stop reason never breaks the bindings.
 
-use flexwing::analysis::{Status, Stop};
+use flexwing::analysis::{Doubt, Status, Stop};
 use flexwing::text::short;
 use flexwing::{SolveError, StaticFailure};
 use pyo3::prelude::*;
@@ -161,15 +162,24 @@ pub fn stop_dict<'py>(
             d.set_item("reason_detail", &e.reason)?;
             e.to_string()
         }
-        Stop::EnergyLimit { time, ratio, limit } => {
+        Stop::EnergyRunaway { time, gain, limit } => {
             d.set_item("time", time)?;
-            d.set_item("ratio", ratio)?;
+            d.set_item("gain", gain)?;
             d.set_item("limit", limit)?;
             format!(
-                "stopped at t = {} s: the energy grew to {ratio:.3} times its initial value \
-                 (a blown-up run; limit {limit})",
-                short(*time)
+                "stopped at t = {} s: the run created energy that no load supplied, {} times the \
+                 energy it held or was given (limit energy_runaway = {}): a blown-up run",
+                short(*time),
+                short(*gain),
+                short(*limit)
             )
+        }
+        Stop::Interrupted { time } => {
+            d.set_item("time", time)?;
+            match time {
+                Some(t) => format!("interrupted at t = {} s", short(*t)),
+                None => "interrupted before it started".into(),
+            }
         }
         other => format!("{other:?}"),
     };
@@ -191,6 +201,29 @@ pub fn status_fields<'py>(
             let message: Option<String> =
                 d.get_item("message")?.map(|m| m.extract()).transpose()?;
             ("stopped".into(), Some(d), message)
+        }
+        Status::Suspect(Doubt::EnergyBalance {
+            time,
+            max_error,
+            max_error_time,
+            limit,
+        }) => {
+            let d = PyDict::new(py);
+            d.set_item("reason", "energy-balance")?;
+            d.set_item("time", time)?;
+            d.set_item("max_error", max_error)?;
+            d.set_item("max_error_time", max_error_time)?;
+            d.set_item("limit", limit)?;
+            let message = format!(
+                "suspect: the energy balance |H − H(0) − W + D| / E exceeded its limit {} at \
+                 t = {} s (largest {} at t = {} s)",
+                short(*limit),
+                short(*time),
+                short(*max_error),
+                short(*max_error_time)
+            );
+            d.set_item("message", &message)?;
+            ("suspect".into(), Some(d), Some(message))
         }
         other => {
             let name = variant_name(&format!("{other:?}"));

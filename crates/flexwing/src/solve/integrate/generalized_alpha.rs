@@ -397,7 +397,8 @@ impl Stepper {
             for i in 0..n {
                 self.delta[i] += self.corr[i];
             }
-            let mut converged = self.faccon * norm <= tol;
+            let mut converged =
+                self.faccon * norm <= tol && k + 1 >= super::min_newton_iterations(&self.scal);
             if k > 0 {
                 theta = norm / old_norm;
                 if theta >= 0.99 {

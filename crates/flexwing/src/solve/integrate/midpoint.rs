@@ -104,7 +104,8 @@ impl Stage {
             self.z.copy_from_slice(y0);
             let mut old: Option<f64> = None;
             let mut ok = false;
-            for _ in 0..10 {
+            let min_iterations = super::min_newton_iterations(scale);
+            for iteration in 1..=10 {
                 stats.newton_iterations += 1;
                 system.rhs(tm, &self.z, &mut self.f);
                 stats.rhs_evaluations += 1;
@@ -123,7 +124,7 @@ impl Stage {
                 if !norm.is_finite() {
                     break;
                 }
-                if norm <= tol {
+                if norm <= tol && iteration >= min_iterations {
                     ok = true;
                     break;
                 }
