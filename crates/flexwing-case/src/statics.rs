@@ -79,6 +79,11 @@ impl Case {
     }
 }
 
+/// Most points of a sweep given by `from`, `to` and `steps`: every point is an equilibrium
+/// (statics) or a speed with its eigen-analysis (flutter) written to the outputs; 1e5 points
+/// already take hours. (`steps = 2^62` aborted on allocation: issue 9.)
+pub const MAX_SWEEP_POINTS: usize = 100_000;
+
 /// `steps` values from `from` to `to`, both ends included; errors name `{prefix}.from`, ….
 pub(crate) fn evenly_spaced(
     prefix: &str,
@@ -98,6 +103,12 @@ pub(crate) fn evenly_spaced(
         return Err(InputError::new(
             format!("{prefix}.steps"),
             format!("must be at least 2 (both ends are points), got {steps}"),
+        ));
+    }
+    if steps > MAX_SWEEP_POINTS {
+        return Err(InputError::new(
+            format!("{prefix}.steps"),
+            format!("at most {MAX_SWEEP_POINTS} points, got {steps}"),
         ));
     }
     let last = (steps - 1) as f64;
@@ -125,6 +136,22 @@ mod tests {
     fn plan(extra: &str) -> Result<StaticPlan, String> {
         let case = Case::from_toml_str(&format!("{BEAM}{extra}")).map_err(|e| e.to_string())?;
         case.static_plan().map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn a_sweep_of_too_many_points_is_refused() {
+        // Regression (issue 9): steps = 2^62 aborted on allocation, 1e9 ran out of memory.
+        for steps in ["4611686018427387904", "1000000000", "100001"] {
+            let e = plan(&format!(
+                "[static.sweep]\nload = \"F1\"\nfrom = 0\nto = 1\nsteps = {steps}\n"
+            ))
+            .unwrap_err();
+            assert!(
+                e.contains("static.sweep.steps: at most 100000 points"),
+                "{e}"
+            );
+        }
+        assert!(plan("[static.sweep]\nload = \"F1\"\nfrom = 0\nto = 1\nsteps = 100000\n").is_ok());
     }
 
     #[test]
