@@ -1074,3 +1074,54 @@ fn the_output_folder_is_checked_first_and_belongs_to_one_run() {
         "complete\n"
     );
 }
+
+#[test]
+fn ctrl_c_and_kill_keep_what_was_computed_marked_interrupted() {
+    // Regression (issue 9): an interrupted run left the previous run's files and `status.txt:
+    // complete` in a reused folder. A run of 1000 s (hours at rtol 1e-8) gets SIGINT, then in a
+    // second run SIGTERM, after 2 s: each stops after its current step, writes the samples it
+    // has, and `status.txt` says `interrupted`, exit status 1.
+    let dir = TempDir::new("interrupt");
+    let case = dir.write(
+        "case.toml",
+        &CASE
+            .replace("elements = 4", "elements = 40")
+            .replace("node = 4\n", "node = 40\n")
+            .replace("end_time = 0.2", "end_time = 1000.0")
+            .replace(
+                "output_step = 0.01",
+                "output_step = 0.02\nrtol = 1e-8\natol = 1e-10",
+            ),
+    );
+    assert!(case.exists());
+    for signal in ["-INT", "-TERM"] {
+        let out = dir.path().join("out");
+        let child = std::process::Command::new(env!("CARGO_BIN_EXE_flexwing"))
+            .args([
+                "dynamic",
+                case.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ])
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("the flexwing binary runs");
+        std::thread::sleep(std::time::Duration::from_millis(2000));
+        let killed = std::process::Command::new("kill")
+            .args([signal, &child.id().to_string()])
+            .status()
+            .expect("kill runs");
+        assert!(killed.success());
+        let o = child.wait_with_output().unwrap();
+        assert_eq!(o.status.code(), Some(1), "{signal}: {}", stderr(&o));
+        let status = fs::read_to_string(out.join("status.txt")).unwrap();
+        assert!(
+            status.starts_with("interrupted: full: "),
+            "{signal}: {status}"
+        );
+        let (_, rows) = read_csv(&out.join("dynamic_tip.csv"));
+        assert!(rows.len() > 1, "{signal}: no samples kept");
+        assert!(rows.len() < 50_001, "{signal}: the run was not stopped");
+    }
+}
