@@ -60,18 +60,49 @@ pub use spec_aero::{
     SpeedSweepSpec,
 };
 
+/// Largest case file read (bytes): 16 MiB, a thousand times the largest example; tables of
+/// 100 000 stations fit.
+pub const MAX_CASE_FILE_BYTES: u64 = 16 << 20;
+
 impl Case {
-    /// Read and parse the case file at `path`; errors name the file as `path` displays.
+    /// Read and parse the case file at `path`; errors name the file as `path` displays. Only a
+    /// regular file of at most [`MAX_CASE_FILE_BYTES`] is read.
     ///
     /// # Errors
     /// `PATH: cannot read the case file: …`, or `PATH line L, column C: KEY: problem` for TOML
     /// and schema errors.
     pub fn load(path: &Path) -> Result<Self, CaseError> {
+        use std::io::Read as _;
         let name = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| CaseError {
+        let fail = |reason: String| CaseError {
             file: Some(name.clone()),
-            ..CaseError::new(format!("cannot read the case file: {e}"))
-        })?;
+            ..CaseError::new(reason)
+        };
+        // A device or a FIFO (`/dev/zero`, a pipe nobody writes to) would be read without end
+        // or block: only regular files, and at most MAX_CASE_FILE_BYTES of them.
+        let meta =
+            std::fs::metadata(path).map_err(|e| fail(format!("cannot read the case file: {e}")))?;
+        if !meta.is_file() {
+            return Err(fail(
+                "cannot read the case file: not a regular file (a directory, device or pipe)"
+                    .into(),
+            ));
+        }
+        if meta.len() > MAX_CASE_FILE_BYTES {
+            return Err(fail(format!(
+                "the case file has {} bytes; at most {MAX_CASE_FILE_BYTES} are read",
+                meta.len()
+            )));
+        }
+        let mut text = String::new();
+        std::fs::File::open(path)
+            .and_then(|f| f.take(MAX_CASE_FILE_BYTES + 1).read_to_string(&mut text))
+            .map_err(|e| fail(format!("cannot read the case file: {e}")))?;
+        if text.len() as u64 > MAX_CASE_FILE_BYTES {
+            return Err(fail(format!(
+                "the case file grew past {MAX_CASE_FILE_BYTES} bytes while read"
+            )));
+        }
         Self::parse(&text, Some(&name))
     }
 
