@@ -133,43 +133,12 @@ pub fn create_dir(dir: &Path) -> Result<()> {
         .with_context(|| format!("cannot create the output directory {}", dir.display()))
 }
 
-/// `v` with `digits` significant digits, without exponent for ordinary magnitudes.
-pub fn significant(v: f64, digits: usize) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let magnitude = v.abs().log10().floor() as i32;
-    if !(-4..=6).contains(&magnitude) {
-        return format!("{:.*e}", digits.saturating_sub(1), v);
-    }
-    let decimals = (digits as i32 - 1 - magnitude).max(0) as usize;
-    format!("{v:.decimals$}")
-}
-
-/// `v` with up to 6 significant digits and no trailing zeros: `150`, `0.0666667`, `1.5e-7`.
-pub fn short(v: f64) -> String {
-    let s = significant(v + 0.0, 6);
-    let (mantissa, exponent) = s.split_at(s.find('e').unwrap_or(s.len()));
-    if !mantissa.contains('.') {
-        return s;
-    }
-    format!(
-        "{}{exponent}",
-        mantissa.trim_end_matches('0').trim_end_matches('.')
-    )
-}
+/// Numbers in messages and tables: the library's one formatting (`flexwing::text`).
+pub use flexwing::text::{short, significant};
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn significant_digits() {
-        assert_eq!(significant(0.35221, 4), "0.3522");
-        assert_eq!(significant(55.596, 4), "55.60");
-        assert_eq!(significant(12345.6, 4), "12346");
-        assert_eq!(significant(1.5e-7, 3), "1.50e-7");
-    }
 
     #[test]
     fn non_finite_numbers_become_empty_cells() {
