@@ -144,6 +144,18 @@ pub fn overall_word(incomplete: &[Incomplete]) -> &'static str {
         .unwrap_or("complete")
 }
 
+/// `WHAT: MESSAGE` of everything listed, joined by `; `; `None` when nothing is: the `error` of
+/// a JSON document.
+pub fn error_text(incomplete: &[Incomplete]) -> Option<String> {
+    (!incomplete.is_empty()).then(|| {
+        incomplete
+            .iter()
+            .map(|i| format!("{}: {}", i.what, i.message))
+            .collect::<Vec<_>>()
+            .join("; ")
+    })
+}
+
 /// `complete`, or one line `WORD: WHAT: MESSAGE` per thing that did not complete or is suspect:
 /// the text of `status.txt`.
 pub fn status_text(incomplete: &[Incomplete]) -> String {

@@ -163,18 +163,8 @@ pub fn run(args: &DynamicArgs, case: &Case) -> Result<(), Failure> {
         args.plot,
     )
     .map_err(Failure::Run)?;
-    let status = if incomplete.is_empty() {
-        "complete"
-    } else {
-        "incomplete"
-    };
-    let error = (!incomplete.is_empty()).then(|| {
-        incomplete
-            .iter()
-            .map(|i| format!("{}: {}", i.what, i.message))
-            .collect::<Vec<_>>()
-            .join("; ")
-    });
+    let status = crate::commands::overall_word(&incomplete);
+    let error = crate::commands::error_text(&incomplete);
     let text = if args.json {
         let doc = JsonReport {
             case: &name,

@@ -106,13 +106,7 @@ impl Outcome {
 
     /// `LABEL: MESSAGE` of everything incomplete, joined by `; `; `None` when complete.
     pub fn error(&self) -> Option<String> {
-        (!self.incomplete.is_empty()).then(|| {
-            self.incomplete
-                .iter()
-                .map(|i| format!("{}: {}", i.what, i.message))
-                .collect::<Vec<_>>()
-                .join("; ")
-        })
+        super::error_text(&self.incomplete)
     }
 }
 
