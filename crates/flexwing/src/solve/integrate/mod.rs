@@ -328,6 +328,22 @@ mod tests {
         }
     }
 
+    /// `y' = −2 t y²`, `y(0) = 1`: `y = 1/(1 + t²)`. Non-linear and non-autonomous (shared by
+    /// the integrators' tests).
+    pub(super) struct Riccati;
+
+    impl OdeSystem for Riccati {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+            dy[0] = -2.0 * t * y[0] * y[0];
+        }
+        fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
+            jac[(0, 0)] = -4.0 * t * y[0];
+        }
+    }
+
     #[test]
     fn fixed_midpoint_steps_reach_the_end_of_windows_cut_by_rounding() {
         // [0.25, 0.255] is 20 steps of 2.5e-4 in exact arithmetic; summing them in floating point

@@ -6,22 +6,7 @@
 use nalgebra::{Complex, DMatrix};
 
 use super::*;
-use crate::solve::integrate::tests::Oscillator;
-
-/// `y' = −2 t y²`, `y(0) = 1`: `y = 1/(1 + t²)`. Non-linear and non-autonomous.
-struct Riccati;
-
-impl OdeSystem for Riccati {
-    fn dim(&self) -> usize {
-        1
-    }
-    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
-        dy[0] = -2.0 * t * y[0] * y[0];
-    }
-    fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
-        jac[(0, 0)] = -4.0 * t * y[0];
-    }
-}
+use crate::solve::integrate::tests::{Oscillator, Riccati};
 
 /// `y' = λ y` (real `λ`).
 struct Decay(f64);
