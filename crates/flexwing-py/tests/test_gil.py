@@ -55,7 +55,10 @@ def test_solve_many_threads_give_the_serial_results(static_case):
 
 
 def test_the_stepper_releases_the_interpreter():
-    beam = flexwing.Beam(length=1.0, elements=40, EI=50.0, mass_per_length=0.2)
+    # One call long enough (≈0.1 s at n = 200 over 4 s of motion) that the main thread, woken when
+    # the call releases the interpreter, is surely scheduled inside it; a 1 ms call (n = 40 over
+    # 0.05 s) could end before the OS ran the main thread at all, so it saw 0 ticks on a busy CI.
+    beam = flexwing.Beam(length=1.0, elements=200, EI=50.0, mass_per_length=0.2)
     stepper = flexwing.FullModel(beam).stepper(
         [{"type": "point-force", "span": 1.0, "direction": "dead", "fy": 10.0}], scales=[0.0]
     )
@@ -65,7 +68,7 @@ def test_the_stepper_releases_the_interpreter():
 
     def run():
         start = time.perf_counter()
-        stepper.step(0.05, [1.0])
+        stepper.step(4.0, [1.0])
         span.append((start, time.perf_counter()))
         done.set()
 
@@ -75,4 +78,5 @@ def test_the_stepper_releases_the_interpreter():
         ticks.append(time.perf_counter())
     t.join()
     s, e = span[0]
-    assert sum(s < x < e for x in ticks) >= 10
+    inside = sum(s < x < e for x in ticks)
+    assert inside >= 10, f"only {inside} ticks of the main thread inside a {e - s:.3f} s call"
