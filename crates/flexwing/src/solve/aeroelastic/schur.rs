@@ -128,14 +128,24 @@ impl<L> Slot<L> {
 
 /// `y += α A x` for a column-major `A`.
 fn gemv_add(a: &DMatrix<f64>, x: &[f64], y: &mut [f64], alpha: f64) {
-    for (col, &xj) in a.column_iter().zip(x) {
+    let rows = y.len();
+    for (col, &xj) in a.as_slice().chunks_exact(rows).zip(x) {
         let s = alpha * xj;
-        if s != 0.0 {
-            for (v, m) in y.iter_mut().zip(col.iter()) {
-                *v += m * s;
-            }
+        for (v, m) in y.iter_mut().zip(col) {
+            *v += m * s;
         }
     }
+}
+
+/// Column `j` of a column-major `A`.
+fn col(a: &DMatrix<f64>, j: usize) -> &[f64] {
+    let r = a.nrows();
+    &a.as_slice()[j * r..(j + 1) * r]
+}
+
+/// `Σ_k a_k b_k`.
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(a, b)| a * b).sum()
 }
 
 /// The Newton solver by elimination of the lag states and the momenta: the structured
@@ -295,16 +305,10 @@ impl LagSchur {
         // Lag states: u_i = D_i⁻¹ b_a,i, b_p += Σ g_i C̄ᵀ u_i, and − G τ W_v b_x.
         for (i, (lu, ui)) in sl.strips.iter().zip(ba.chunks_exact_mut(ns)).enumerate() {
             lu.solve_in_place(ui);
-            let cu: f64 = ui.iter().zip(self.lag.c.iter()).map(|(u, c)| u * c).sum();
-            let wb: f64 = self
-                .wvt
-                .column(i)
-                .iter()
-                .zip(bx.iter())
-                .map(|(w, b)| w * b)
-                .sum();
+            let cu = dot(ui, self.lag.c.as_slice());
+            let wb = dot(col(&self.wvt, i), bx);
             let s = cu - sl.tau_re[i] * wb;
-            for (v, g) in bp.iter_mut().zip(jac.g.column(i).iter()) {
+            for (v, g) in bp.iter_mut().zip(col(&jac.g, i)) {
                 *v += g * s;
             }
         }
@@ -329,13 +333,7 @@ impl LagSchur {
             .zip(sl.d_re.chunks_exact(ns))
             .enumerate()
         {
-            let ws: f64 = self
-                .wt
-                .column(i)
-                .iter()
-                .zip(bs.iter())
-                .map(|(w, s)| w * s)
-                .sum();
+            let ws = dot(col(&self.wt, i), bs);
             for (u, d) in ui.iter_mut().zip(di) {
                 *u += d * ws;
             }
@@ -363,13 +361,13 @@ impl LagSchur {
             let cr: f64 = ur.iter().zip(self.lag.c.iter()).map(|(u, c)| u * c).sum();
             let ci: f64 = ui.iter().zip(self.lag.c.iter()).map(|(u, c)| u * c).sum();
             let (mut wr, mut wi) = (0.0, 0.0);
-            for ((w, a), b) in self.wvt.column(i).iter().zip(xr.iter()).zip(xi.iter()) {
+            for ((w, a), b) in col(&self.wvt, i).iter().zip(xr.iter()).zip(xi.iter()) {
                 wr += w * a;
                 wi += w * b;
             }
             let tw = Complex::new(sl.tau_re[i], sl.tau_im[i]) * Complex::new(wr, wi);
             let (s_re, s_im) = (cr - tw.re, ci - tw.im);
-            for ((vr, vi), g) in pr.iter_mut().zip(pi.iter_mut()).zip(jac.g.column(i).iter()) {
+            for ((vr, vi), g) in pr.iter_mut().zip(pi.iter_mut()).zip(col(&jac.g, i)) {
                 *vr += g * s_re;
                 *vi += g * s_im;
             }
@@ -401,7 +399,7 @@ impl LagSchur {
         gemv_add(&jac.ma, xr, pr, -1.0);
         gemv_add(&jac.ma, xi, pi, -1.0);
         for i in 0..self.strips {
-            let w = self.wt.column(i);
+            let w = col(&self.wt, i);
             let (mut wr, mut wi) = (0.0, 0.0);
             for ((w, a), b) in w.iter().zip(sr.iter()).zip(si.iter()) {
                 wr += w * a;
