@@ -187,8 +187,8 @@ fn project(phi: &DMatrix<f64>, v: &[f64], out: &mut [f64]) {
 impl ReducedModel {
     fn expand(&self, eta: &[f64], q: &mut [f64]) {
         q.fill(0.0);
-        for (c, &e) in eta.iter().enumerate() {
-            for (qi, p) in q.iter_mut().zip(self.phi.column(c).iter()) {
+        for (col, &e) in self.phi.as_slice().chunks_exact(q.len()).zip(eta) {
+            for (qi, p) in q.iter_mut().zip(col) {
                 *qi += p * e;
             }
         }
@@ -235,25 +235,54 @@ impl ReducedModel {
                 v[1] += l * co * td;
             }
         }
+        // Slices rather than indexing: the bounds checks kept these O(n r²) loops from
+        // vectorizing (they were a quarter of a reduced aeroelastic right-hand side).
+        let fields = &ws.fields;
+        let fluid_fields = &ws.fluid_fields;
+        // Torsion rows of Φ_abs (empty without torsion).
+        let tors = |c: usize| {
+            if full.torsion {
+                &pa[c * nd + n..c * nd + 2 * n]
+            } else {
+                &pa[..0]
+            }
+        };
         for a in 0..r {
+            let (fa, pa_a) = (&fields[a * n..(a + 1) * n], tors(a));
             for b in a..r {
-                let mut m = 0.0;
-                for i in 0..n {
-                    let (ga, gb) = (ws.fields[a * n + i], ws.fields[b * n + i]);
-                    m += full.mass[i] * (ga[0] * gb[0] + ga[1] * gb[1] + ga[2] * gb[2]);
-                }
+                let (fb, pa_b) = (&fields[b * n..(b + 1) * n], tors(b));
+                let mut m: f64 = fa
+                    .iter()
+                    .zip(fb)
+                    .zip(&full.mass)
+                    .map(|((ga, gb), mi)| mi * (ga[0] * gb[0] + ga[1] * gb[1] + ga[2] * gb[2]))
+                    .sum();
                 if full.torsion {
-                    for i in 0..n {
-                        m += full.inertia[i] * pa[a * nd + n + i] * pa[b * nd + n + i];
-                    }
+                    m += pa_a
+                        .iter()
+                        .zip(pa_b)
+                        .zip(&full.inertia)
+                        .map(|((x, y), j)| j * x * y)
+                        .sum::<f64>();
                 }
                 if let Some(f) = &full.fluid {
-                    for i in 0..n {
-                        let (fa, fb) = (ws.fluid_fields[a * n + i], ws.fluid_fields[b * n + i]);
-                        m += f.mass[i] * fa[2] * fb[2];
-                        if full.torsion {
-                            m += f.inertia[i] * pa[a * nd + n + i] * pa[b * nd + n + i];
-                        }
+                    let (ua, ub) = (
+                        &fluid_fields[a * n..(a + 1) * n],
+                        &fluid_fields[b * n..(b + 1) * n],
+                    );
+                    m += ua
+                        .iter()
+                        .zip(ub)
+                        .zip(&f.mass)
+                        .map(|((x, y), mi)| mi * x[2] * y[2])
+                        .sum::<f64>();
+                    if full.torsion {
+                        m += pa_a
+                            .iter()
+                            .zip(pa_b)
+                            .zip(&f.inertia)
+                            .map(|((x, y), j)| j * x * y)
+                            .sum::<f64>();
                     }
                 }
                 ws.mass[(a, b)] = m;

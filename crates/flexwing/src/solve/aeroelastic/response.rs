@@ -11,7 +11,7 @@ use super::statics::SteadyAeroModel;
 use crate::error::{InputError, SolveError};
 use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic};
 use crate::model::{Load, StructuralModel};
-use crate::solve::integrate::{IntegratorStats, OdeSystem, Radau, RadauOptions, Tolerances};
+use crate::solve::integrate::{IntegratorStats, Radau, RadauOptions, Tolerances};
 use crate::solve::{continue_static, Damping, StaticOptions, TimeFunction};
 
 /// A time response, validated.
@@ -225,9 +225,7 @@ fn sample<M: AeroStructure>(
     let kin = full.kinematics(&q);
     let nodes = full.node_positions(&kin);
     let nel = full.n_elements();
-    let mut dy = vec![0.0; eqs.dim()];
-    eqs.rhs(t, y, &mut dy);
-    let lift = eqs.vertical_aerodynamic_force(t);
+    let lift = eqs.vertical_aerodynamic_force_at(t, y);
     ResponseSample {
         t,
         tip: [nodes[nel][0] - full.beam().length(), nodes[nel][1]],
