@@ -258,6 +258,27 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         }
     }
 
+    /// Tip displacement of the elastic axis from the undeformed tip `(dx, dy)` (m), tip twist
+    /// (rad) and full-model coordinates of the configuration of the last evaluation of the
+    /// loads (by the chain's trigonometry already computed there).
+    pub(crate) fn last_tip(&self) -> ([f64; 2], f64, &[f64]) {
+        let full = self.aero.full();
+        let q = self.eval.coordinates();
+        let motion = &self.eval.sc.motion;
+        let mut tip = [-full.beam().length(), 0.0];
+        for (l, m) in full.beam().lengths().iter().zip(motion) {
+            tip[0] += l * m.cos_theta;
+            tip[1] += l * m.sin_theta;
+        }
+        let n = full.n_elements();
+        let twist = if full.has_torsion() {
+            q[n..].iter().sum()
+        } else {
+            0.0
+        };
+        (tip, twist, q)
+    }
+
     /// Replace the flight history (same gravity loads: the gravitational acceleration of the
     /// history given at construction is kept, its root-angle factor follows the new history).
     pub(crate) fn set_flight(&mut self, flight: FlightHistory) {

@@ -82,6 +82,11 @@ impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
         self.aero.structure().n_dofs()
     }
 
+    /// Full-model coordinates of the last [`Self::evaluate`].
+    pub(crate) fn coordinates(&self) -> &[f64] {
+        &self.q
+    }
+
     /// Lag states per strip.
     pub(crate) fn states_per_strip(&self) -> usize {
         self.lag.as_ref().map_or(0, |l| l.n_states())

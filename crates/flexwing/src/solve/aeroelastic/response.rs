@@ -233,22 +233,13 @@ fn sample<M: AeroStructure>(
     t: f64,
     y: &[f64],
 ) -> ResponseSample {
-    let full = aero.full();
-    let n = aero.structure().n_dofs();
-    let q = aero.structure().full_coordinates(&y[..n]);
-    let kin = full.kinematics(&q);
-    let nodes = full.node_positions(&kin);
-    let nel = full.n_elements();
     let lift = eqs.vertical_aerodynamic_force_at(t, y);
+    let (tip, tip_twist, q) = eqs.last_tip();
     ResponseSample {
         t,
-        tip: [nodes[nel][0] - full.beam().length(), nodes[nel][1]],
-        tip_twist: if full.has_torsion() {
-            kin.psi[nel - 1]
-        } else {
-            0.0
-        },
-        root_bending_moment: full.stiffness()[0] * q[0],
+        tip,
+        tip_twist,
+        root_bending_moment: aero.full().stiffness()[0] * q[0],
         lift,
     }
 }
