@@ -26,6 +26,9 @@ pub struct ReducedModel {
     k_r: DMatrix<f64>,
     /// `Φ_abs = T Φ`: absolute angle rates per unit modal rate.
     phi_abs: DMatrix<f64>,
+    /// The configuration-independent part of the reduced mass matrix: the polar inertias of
+    /// the structure and the fluid, `Σ_i (J_i + J_f,i) ψ̇_a,i ψ̇_b,i` per unit modal rates.
+    mass_torsion: DMatrix<f64>,
 }
 
 impl ReducedModel {
@@ -85,12 +88,28 @@ impl ReducedModel {
                 }
             }
         }
+        let (n, r) = (full.n_elements(), indices.len());
+        let mut mass_torsion = DMatrix::zeros(r, r);
+        if full.torsion {
+            let fluid = full.fluid.as_ref().map(|f| f.inertia.as_slice());
+            for a in 0..r {
+                for b in 0..r {
+                    mass_torsion[(a, b)] = (0..n)
+                        .map(|i| {
+                            let j = full.inertia[i] + fluid.map_or(0.0, |f| f[i]);
+                            j * phi_abs[(n + i, a)] * phi_abs[(n + i, b)]
+                        })
+                        .sum();
+                }
+            }
+        }
         Ok(Self {
             full: full.clone(),
             phi,
             indices: indices.to_vec(),
             k_r,
             phi_abs,
+            mass_torsion,
         })
     }
 
@@ -236,35 +255,21 @@ impl ReducedModel {
             }
         }
         // Slices rather than indexing: the bounds checks kept these O(n r²) loops from
-        // vectorizing (they were a quarter of a reduced aeroelastic right-hand side).
+        // vectorizing (they were a quarter of a reduced aeroelastic right-hand side). The polar
+        // inertias' part does not depend on the configuration (`mass_torsion`).
         let fields = &ws.fields;
         let fluid_fields = &ws.fluid_fields;
-        // Torsion rows of Φ_abs (empty without torsion).
-        let tors = |c: usize| {
-            if full.torsion {
-                &pa[c * nd + n..c * nd + 2 * n]
-            } else {
-                &pa[..0]
-            }
-        };
         for a in 0..r {
-            let (fa, pa_a) = (&fields[a * n..(a + 1) * n], tors(a));
+            let fa = &fields[a * n..(a + 1) * n];
             for b in a..r {
-                let (fb, pa_b) = (&fields[b * n..(b + 1) * n], tors(b));
-                let mut m: f64 = fa
+                let fb = &fields[b * n..(b + 1) * n];
+                let mut m: f64 = self.mass_torsion[(a, b)];
+                m += fa
                     .iter()
                     .zip(fb)
                     .zip(&full.mass)
                     .map(|((ga, gb), mi)| mi * (ga[0] * gb[0] + ga[1] * gb[1] + ga[2] * gb[2]))
-                    .sum();
-                if full.torsion {
-                    m += pa_a
-                        .iter()
-                        .zip(pa_b)
-                        .zip(&full.inertia)
-                        .map(|((x, y), j)| j * x * y)
-                        .sum::<f64>();
-                }
+                    .sum::<f64>();
                 if let Some(f) = &full.fluid {
                     let (ua, ub) = (
                         &fluid_fields[a * n..(a + 1) * n],
@@ -276,14 +281,6 @@ impl ReducedModel {
                         .zip(&f.mass)
                         .map(|((x, y), mi)| mi * x[2] * y[2])
                         .sum::<f64>();
-                    if full.torsion {
-                        m += pa_a
-                            .iter()
-                            .zip(pa_b)
-                            .zip(&f.inertia)
-                            .map(|((x, y), j)| j * x * y)
-                            .sum::<f64>();
-                    }
                 }
                 ws.mass[(a, b)] = m;
                 ws.mass[(b, a)] = m;
