@@ -252,8 +252,9 @@ pub fn status_fields<'py>(
             d.set_item("max_error_time", max_error_time)?;
             d.set_item("limit", limit)?;
             let message = format!(
-                "suspect: the energy balance |H − H(0) − W + D| / E exceeded its limit {} at \
-                 t = {} s (largest {} at t = {} s)",
+                "the energy balance |H − H(0) − W + D| / E exceeded its limit {} at t = {} s \
+                 (largest {} at t = {} s): the integration error is larger than the tolerances \
+                 suggest; tighten rtol and atol (or max_step), or raise energy_tolerance",
                 short(*limit),
                 short(*time),
                 short(*max_error),
