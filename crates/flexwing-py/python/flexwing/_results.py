@@ -323,6 +323,11 @@ class DynamicResult(_Result):
                 return r
         raise KeyError(f"no model {label!r}; the runs are {[r.label for r in self.runs]}")
 
+    @property
+    def full(self) -> Optional[DynamicRun]:
+        """The full model's run, if it was simulated."""
+        return next((r for r in self.runs if r.kind == "full"), None)
+
     def __repr__(self) -> str:
         return f"DynamicResult(status={self.status!r}, runs={self.runs!r})"
 
