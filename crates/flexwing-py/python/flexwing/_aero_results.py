@@ -298,8 +298,8 @@ class AeroDynamicRun(_Result):
         lift: total aerodynamic force along the ground's vertical (N), ``(T,)``.
         speed: free-stream speed U(t) (m/s), ``(T,)``.
         kinetic: kinetic energy of the structure and the fluid's apparent mass (J); strain:
-            strain energy (J); total: their sum; each ``(T,)``. No energy audit: the
-            aerodynamic loads do work the library does not integrate yet.
+            strain energy (J); total: their sum; each ``(T,)``. No energy audit: the library's
+            aeroelastic response does not integrate the work of the aerodynamic loads yet.
         snapshots: as ``DynamicRun.snapshots``.
         max_tip_difference: largest tip distance from the first model's (m), or ``None``.
     """
