@@ -164,6 +164,23 @@ def test_every_field_is_declared_and_results_pickle(section):
         assert "rust_time_s" in result.to_dict()
 
 
+def test_quasi_steady_aerodynamics_give_no_flutter_speed_on_a_mid_chord_axis():
+    """With C(k) = 1 and the elastic axis at mid-chord the torsion branch's aerodynamic pitch
+    damping vanishes (docs/aeroelastic-model.md §5): the branch is unstable from the lowest
+    speed (the library's reference: Re s = 1.290e-5 1/s at 0.5 m/s, n = 8), so no flutter speed
+    is given — the run completes, `flutter_speed` is None and the branch is listed in
+    `unstable_at_start` (the CLI prints it as a note), never a number that reads as a flutter
+    speed."""
+    data = wing(8, aerodynamics={"model": "quasi-steady"}, sweep={"speeds": [0.5, 5.0, 10.0, 20.0]})
+    run = flexwing.Case(data).flutter().full
+    assert run.status == "complete" and run.flutter_speed is None
+    s = run.eigenvalues
+    assert s.flutter_speed is None and s.unstable_at_start
+    torsion = [b for b in s.unstable_at_start if 30.0 < s.wet_frequency[b] < 31.0]
+    assert len(torsion) == 1
+    assert s.real[torsion[0], 0] == pytest.approx(1.290e-5, abs=0.005e-5)
+
+
 def test_check_raises_with_the_partial_result():
     """A static sweep past the divergence speed (37.09 m/s at n = 8) stops at 40 m/s: with
     check=True a SolverError carries the stop as data and the partial result; with
