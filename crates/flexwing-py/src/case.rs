@@ -276,6 +276,13 @@ impl PyCase {
         self.case.title.clone()
     }
 
+    /// Whether the case has an ``[aero]`` table: its ``statics()`` and ``dynamics()`` are then
+    /// the aeroelastic analyses, and it can run ``flutter()``.
+    #[getter]
+    fn aeroelastic(&self) -> bool {
+        self.case.is_aeroelastic()
+    }
+
     /// The file the case was read from, if any.
     #[getter]
     fn file(&self) -> Option<String> {

@@ -111,6 +111,7 @@ def test_flutter_result_arrays_and_v_g_data(section):
     """The arrays have the documented shapes, and the V-g data agree with themselves: the
     damping ratio is −σ/|s|, the flutter point is the lowest onset, and the branch it is on is
     stable just below it and unstable just above it in the sweep."""
+    assert section.aeroelastic and not flexwing.Case.load(example("paper_sine.toml")).aeroelastic
     result = section.flutter()
     run = result.full
     s = run.eigenvalues

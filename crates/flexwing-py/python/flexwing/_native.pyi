@@ -58,6 +58,10 @@ class Case:
     def title(self) -> Optional[str]:
         """The case's title, if any."""
     @property
+    def aeroelastic(self) -> bool:
+        """Whether the case has an ``[aero]`` table (``statics``/``dynamics`` are then
+        aeroelastic, and ``flutter`` runs)."""
+    @property
     def file(self) -> Optional[str]:
         """The file the case was read from, if any."""
     def model(self) -> FullModel:
