@@ -77,7 +77,7 @@ class AeroStaticRun(_Result):
         lift: total aerodynamic force along the ground's vertical (N), ``(p,)``.
         root_bending_moment: the clamp spring's moment (N m), ``(p,)``.
         divergence_pressure: the dynamic pressure at which the equilibrium's frozen state
-            diverges (Pa), ``(p,)``; ``inf`` where no real mode diverges.
+            diverges (Pa), a list of ``p`` values, ``None`` where no real mode diverges.
         x, y: node positions (m), ``(p, n + 1)``; twist: nodal twist (rad), ``(p, n + 1)``.
         q: joint rotations of the full model (rad), ``(p, dofs of the full model)``.
         tip_difference: distance of the tip from the full model's at each speed (m), ``(p,)``;
@@ -102,7 +102,7 @@ class AeroStaticRun(_Result):
     tip_twist: np.ndarray
     lift: np.ndarray
     root_bending_moment: np.ndarray
-    divergence_pressure: np.ndarray
+    divergence_pressure: List[Optional[float]]
     x: np.ndarray
     y: np.ndarray
     twist: np.ndarray

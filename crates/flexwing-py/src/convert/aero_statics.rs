@@ -109,11 +109,12 @@ pub fn equilibria<'py>(
     d.set_item("tip_twist", column(&|p| p.tip().2))?;
     d.set_item("lift", column(&|p| p.lift))?;
     d.set_item("root_bending_moment", column(&|p| p.root_bending_moment))?;
-    // No real mode diverges: the frozen state's divergence pressure is infinite.
-    d.set_item(
-        "divergence_pressure",
-        column(&|p| p.divergence_pressure.unwrap_or(f64::INFINITY)),
-    )?;
+    // `None` where no real mode diverges (as the CLI's `null`): no infinity in an output.
+    let divergence: Vec<Option<f64>> = points
+        .iter()
+        .map(|p| p.divergence_pressure.filter(|v| v.is_finite()))
+        .collect();
+    d.set_item("divergence_pressure", divergence)?;
     let nodes = model.beam().nodes().len();
     let rows = |f: fn(&AeroPoint) -> &[f64], width: usize| {
         let r: Vec<&[f64]> = points.iter().map(f).collect();
