@@ -99,8 +99,13 @@ fn item<'py>(
                 match incomplete {
                     None => ("complete", Some(result), None, wall),
                     Some(i) => {
+                        let word = if i.word == "suspect" {
+                            "suspect"
+                        } else {
+                            "stopped"
+                        };
                         let e = incomplete_error(py, &result, i);
-                        ("stopped", Some(result), Some(e), wall)
+                        (word, Some(result), Some(e), wall)
                     }
                 }
             }
@@ -114,9 +119,11 @@ fn item<'py>(
     convert::build(py, "batch", d)
 }
 
-/// Solve ``analysis`` (``"static"``, ``"modes"`` or ``"dynamic"``) for every case of ``cases``
+/// Solve ``analysis`` (``"static"``, ``"modes"``, ``"dynamic"`` or ``"flutter"``; with
+/// ``[aero]``, ``"static"`` and ``"dynamic"`` are aeroelastic) for every case of ``cases``
 /// (``Case`` objects or dicts with the case file's keys) and return one ``BatchItem`` per case,
-/// in order: its ``status`` (``"complete"``, ``"stopped"``, ``"error"``), ``result``, ``error``
+/// in order: its ``status`` (``"complete"``, ``"suspect"`` (an energy balance beyond its limit),
+/// ``"stopped"``, ``"error"``), ``result``, ``error``
 /// (the exception the case would raise, as data) and wall time. No case's failure stops the
 /// others, and nothing is raised for them.
 ///

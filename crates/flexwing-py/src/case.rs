@@ -19,7 +19,8 @@ use crate::run::{run_case, Analysis};
 ///
 /// Build it with ``Case.from_toml(text)``, ``Case.load(path)``, ``Case.from_dict(d)`` or
 /// ``Case(d)`` / ``Case(beam={...}, loads=[...], dynamic={...})`` (``static`` is a Python
-/// keyword: pass it in the dict). Run it with ``modes()``, ``statics()``, ``dynamics()``.
+/// keyword: pass it in the dict). Run it with ``modes()``, ``statics()``, ``dynamics()`` and,
+/// with ``[aero]``, ``flutter()``.
 #[pyclass(module = "flexwing", name = "Case", frozen)]
 pub struct PyCase {
     pub case: Case,
@@ -275,6 +276,13 @@ impl PyCase {
         self.case.title.clone()
     }
 
+    /// Whether the case has an ``[aero]`` table: its ``statics()`` and ``dynamics()`` are then
+    /// the aeroelastic analyses, and it can run ``flutter()``.
+    #[getter]
+    fn aeroelastic(&self) -> bool {
+        self.case.is_aeroelastic()
+    }
+
     /// The file the case was read from, if any.
     #[getter]
     fn file(&self) -> Option<String> {
@@ -287,7 +295,9 @@ impl PyCase {
         Ok(PyFullModel::new(model))
     }
 
-    /// The natural modes of ``[beam]`` (``[modes] count``, default 10).
+    /// The natural modes of ``[beam]`` (``[modes] count``, default 10), in vacuo: an ``[aero]``
+    /// table is not used (as ``flexwing modes``); the wet modes (with the fluid's apparent
+    /// mass) start the branches of ``flutter()`` (``Stability.wet_frequency``).
     ///
     /// Keyword arguments: ``progress`` — ``callback(done, label)``, ``done`` the fraction of
     /// the analysis (0 to 1), ``label`` the model running.
@@ -301,7 +311,9 @@ impl PyCase {
     }
 
     /// The non-linear statics of ``[[loads]]`` and ``[static]`` (sweeps, reduced models,
-    /// loaded modes), as a ``StaticResult``.
+    /// loaded modes), as a ``StaticResult``; with ``[aero]``, the static aeroelastic equilibria
+    /// at ``aero.flight.speed`` or along ``[aero.sweep]`` and the divergence speed, as an
+    /// ``AeroStaticResult`` (as ``flexwing static``).
     ///
     /// Keyword arguments: ``progress`` (as ``modes``); ``check`` (default ``True``): raise
     /// ``SolverError`` (with the partial result) if a model stopped, else return the result
@@ -316,7 +328,10 @@ impl PyCase {
     }
 
     /// The non-linear dynamics of ``[[loads]]`` and ``[dynamic]`` (full, simplified and
-    /// reduced models), as a ``DynamicResult``. Keyword arguments as ``statics``.
+    /// reduced models), as a ``DynamicResult``; with ``[aero]``, the aeroelastic response to
+    /// the gust and the changes of ``[aero.flight]``, as an ``AeroDynamicResult`` (as
+    /// ``flexwing dynamic``). Keyword arguments as ``statics``; ``check`` also raises for a
+    /// run whose energy balance is suspect.
     #[pyo3(signature = (**kwargs))]
     fn dynamics<'py>(
         &self,
@@ -326,8 +341,23 @@ impl PyCase {
         self.analysis(py, Analysis::Dynamic, kwargs, "dynamics")
     }
 
-    /// Run the analysis ``"modes"``, ``"static"`` or ``"dynamic"`` (as the methods of the same
-    /// names).
+    /// Flutter and divergence along the speeds of ``[aero.sweep]`` (``[aero]``, ``[flutter]``)
+    /// for the full and reduced models, with the V-g/V-ω data, the static equilibria and the
+    /// p-k check, as a ``FlutterResult`` (as ``flexwing flutter``). Keyword arguments as
+    /// ``statics``: ``check`` raises if an eigen-analysis (or the p-k check) stopped before
+    /// the last speed; equilibria that stop past the divergence speed are expected and do not
+    /// raise.
+    #[pyo3(signature = (**kwargs))]
+    fn flutter<'py>(
+        &self,
+        py: Python<'py>,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.analysis(py, Analysis::Flutter, kwargs, "flutter")
+    }
+
+    /// Run the analysis ``"modes"``, ``"static"``, ``"dynamic"`` or ``"flutter"`` (as the
+    /// methods of the same names).
     #[pyo3(signature = (analysis, **kwargs))]
     fn run<'py>(
         &self,

@@ -7,7 +7,7 @@
 //! | module | what |
 //! |---|---|
 //! | `case` | `Case`: a case file, TOML text or dict; its analyses |
-//! | `run` | running an analysis of a case detached from the interpreter; [`run::Analysis`] lists them |
+//! | `run` | running an analysis of a case detached from the interpreter; [`run::Analysis`] lists them; `[aero]` picks the aeroelastic plans |
 //! | `convert/` | library outcomes into result objects (dicts of NumPy arrays) |
 //! | `batch` | `solve_many`: many cases, each one's status and error as data |
 //! | `model` | `Beam`, `FullModel`, `ReducedModel` |
@@ -16,8 +16,9 @@
 //! | `errors` | library errors into Python exceptions; panics caught at the boundary |
 //! | `kwargs`, `progress` | keyword arguments checked by name; the progress callback |
 //!
-//! A new analysis of the library (flutter, …) joins as one variant of [`run::Analysis`], one
-//! converter in `convert/` and one result class in `python/flexwing/_results.py`.
+//! A new analysis of the library joins as one variant of [`run::Analysis`], one converter in
+//! `convert/` and one result class in `python/flexwing/_results.py` (the aeroelastic ones —
+//! flutter, and statics and dynamics of a case with `[aero]` — are in `_aero_results.py`).
 
 use pyo3::prelude::*;
 

@@ -1,15 +1,20 @@
 //! Running an analysis of a case: the plan from the case crate, the run from
 //! `flexwing::analysis`, with the interpreter detached; then the outcome into its result object
 //! and, for `check=True`, the first stopped model into a `SolverError` carrying the partial
-//! result. [`Analysis`] is the one list of analyses: a new analysis (flutter, …) is one variant,
-//! one arm in [`execute`] and one converter in `convert/`.
+//! result. [`Analysis`] is the one list of analyses: a new analysis is one variant, one arm in
+//! [`execute`] and one converter in `convert/`. A case with `[aero]` runs the aeroelastic
+//! static and dynamic analyses (the plans `flexwing static` and `flexwing dynamic` build for
+//! it), never the structural ones with its `[aero]` table ignored.
 
 use std::time::Instant;
 
+use flexwing::analysis::aero::flutter::{FlutterOutcome, FlutterPlan};
+use flexwing::analysis::aero::response::{AeroDynamicOutcome, AeroDynamicPlan};
+use flexwing::analysis::aero::statics::{AeroStaticOutcome, AeroStaticPlan};
 use flexwing::analysis::dynamics::{DynamicOutcome, DynamicPlan};
 use flexwing::analysis::modes::{ModesOutcome, ModesPlan};
 use flexwing::analysis::statics::{StaticOutcome, StaticPlan};
-use flexwing::analysis::{self, Progress};
+use flexwing::analysis::{self, Progress, Status};
 use flexwing_case::{Case, CaseError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -22,18 +27,22 @@ use crate::errors;
 pub enum Analysis {
     /// Natural modes (`[modes]`).
     Modes,
-    /// Non-linear statics (`[[loads]]`, `[static]`).
+    /// Non-linear statics (`[[loads]]`, `[static]`); static aeroelastic equilibria with
+    /// `[aero]`.
     Static,
-    /// Non-linear dynamics (`[[loads]]`, `[dynamic]`).
+    /// Non-linear dynamics (`[[loads]]`, `[dynamic]`); the aeroelastic response with `[aero]`.
     Dynamic,
+    /// Flutter and divergence along `[aero.sweep]` (`[aero]`, `[flutter]`).
+    Flutter,
 }
 
 impl Analysis {
     /// Every analysis, by name.
-    pub const ALL: [(&'static str, Analysis); 3] = [
+    pub const ALL: [(&'static str, Analysis); 4] = [
         ("modes", Analysis::Modes),
         ("static", Analysis::Static),
         ("dynamic", Analysis::Dynamic),
+        ("flutter", Analysis::Flutter),
     ];
 
     /// The analysis called `name`, or an `InputError` naming `field`.
@@ -64,6 +73,12 @@ pub enum Outcome {
     Static(Box<StaticPlan>, StaticOutcome, Option<String>),
     /// Dynamics.
     Dynamic(Box<DynamicPlan>, DynamicOutcome),
+    /// Static aeroelastic equilibria.
+    AeroStatic(Box<AeroStaticPlan>, AeroStaticOutcome),
+    /// Aeroelastic response.
+    AeroDynamic(Box<AeroDynamicPlan>, AeroDynamicOutcome),
+    /// Flutter.
+    Flutter(Box<FlutterPlan>, FlutterOutcome),
 }
 
 /// Why an analysis produced no outcome.
@@ -101,6 +116,24 @@ pub fn execute(
                     .map_err(|e| Failure::Library(e.into()))?;
                 Outcome::Modes(Box::new(plan), outcome)
             }
+            Analysis::Static if case.is_aeroelastic() => {
+                let plan = case.aero_static_plan().map_err(Failure::Case)?;
+                let outcome =
+                    analysis::aero::statics::run(&plan, progress).map_err(Failure::Library)?;
+                Outcome::AeroStatic(Box::new(plan), outcome)
+            }
+            Analysis::Dynamic if case.is_aeroelastic() => {
+                let plan = case.aero_dynamic_plan().map_err(Failure::Case)?;
+                let outcome =
+                    analysis::aero::response::run(&plan, progress).map_err(Failure::Library)?;
+                Outcome::AeroDynamic(Box::new(plan), outcome)
+            }
+            Analysis::Flutter => {
+                let plan = case.flutter_plan().map_err(Failure::Case)?;
+                let outcome =
+                    analysis::aero::flutter::run(&plan, progress).map_err(Failure::Library)?;
+                Outcome::Flutter(Box::new(plan), outcome)
+            }
             Analysis::Static => {
                 let plan = case.static_plan().map_err(Failure::Case)?;
                 let outcome = analysis::statics::run(&plan, progress).map_err(Failure::Library)?;
@@ -121,8 +154,38 @@ pub fn execute(
     errors::catch(run).unwrap_or_else(|m| Err(Failure::Panic(m)))
 }
 
-/// The first thing that did not complete: `(model label, stop dict, message)`.
-type Incomplete<'py> = (Option<String>, Option<Bound<'py, PyDict>>, String);
+/// The first thing that did not complete: the first model that stopped, else the first whose
+/// result is suspect.
+pub struct Incomplete<'py> {
+    /// `"stopped"` or `"suspect"` (or the name of a status the bindings do not know yet).
+    pub word: String,
+    /// The model's label (`None`: not a model's run).
+    pub model: Option<String>,
+    /// Where and why, as data.
+    pub stop: Option<Bound<'py, PyDict>>,
+    /// `LABEL: MESSAGE`.
+    pub message: String,
+}
+
+/// The first model of `runs` (label, status) that stopped, else the first that is not complete.
+fn first_incomplete<'py>(
+    py: Python<'py>,
+    runs: &[(String, &Status)],
+    sweep: Option<&str>,
+) -> PyResult<Option<Incomplete<'py>>> {
+    let stopped = runs.iter().find(|(_, s)| s.stop().is_some());
+    let first = stopped.or_else(|| runs.iter().find(|(_, s)| !convert::status::is_complete(s)));
+    let Some((label, status)) = first else {
+        return Ok(None);
+    };
+    let (word, stop, message) = convert::status::status_fields(py, status, sweep)?;
+    Ok(Some(Incomplete {
+        word,
+        model: Some(label.clone()),
+        stop,
+        message: format!("{label}: {}", message.unwrap_or_default()),
+    }))
+}
 
 /// The result object of `outcome`, and what did not complete first (if anything);
 /// `rust_time_s` is the wall time of [`execute`] (the Rust side of the call, plan included).
@@ -131,46 +194,50 @@ pub fn to_python<'py>(
     outcome: &Outcome,
     rust_time_s: f64,
 ) -> PyResult<(Bound<'py, PyAny>, Option<Incomplete<'py>>)> {
-    let first_stop = |runs: Vec<(String, &flexwing::analysis::Status)>, sweep: Option<&str>| {
-        for (label, status) in runs {
-            if !convert::status::is_complete(status) {
-                let (_, stop, message) = convert::status::status_fields(py, status, sweep)?;
-                let message = format!("{label}: {}", message.unwrap_or_default());
-                return Ok::<_, PyErr>(Some((Some(label), stop, message)));
-            }
-        }
-        Ok(None)
-    };
-    Ok(match outcome {
-        Outcome::Modes(plan, o) => {
-            let raw = convert::modes::raw(py, &plan.model, o)?;
-            raw.set_item("rust_time_s", rust_time_s)?;
-            (convert::build(py, "modes", raw)?, None)
-        }
+    let (kind, raw, incomplete) = match outcome {
+        Outcome::Modes(plan, o) => ("modes", convert::modes::raw(py, &plan.model, o)?, None),
         Outcome::Static(plan, o, sweep) => {
             let raw = convert::statics::raw(py, plan, o, sweep.as_deref())?;
-            raw.set_item("rust_time_s", rust_time_s)?;
-            let runs = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
-            let mut incomplete = first_stop(runs, sweep.as_deref())?;
+            let runs: Vec<_> = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
+            let mut incomplete = first_incomplete(py, &runs, sweep.as_deref())?;
             if incomplete.is_none() {
                 if let Some(Err(e)) = &o.loaded_modes {
-                    let d = convert::status::solve_error_dict(py, e)?;
-                    incomplete = Some((
-                        Some("loaded modes".into()),
-                        Some(d),
-                        format!("loaded modes: {e}"),
-                    ));
+                    incomplete = Some(Incomplete {
+                        word: "stopped".into(),
+                        model: Some("loaded modes".into()),
+                        stop: Some(convert::status::solve_error_dict(py, e)?),
+                        message: format!("loaded modes: {e}"),
+                    });
                 }
             }
-            (convert::build(py, "static", raw)?, incomplete)
+            ("static", raw, incomplete)
         }
         Outcome::Dynamic(plan, o) => {
+            let runs: Vec<_> = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
             let raw = convert::dynamics::raw(py, plan, o)?;
-            raw.set_item("rust_time_s", rust_time_s)?;
-            let runs = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
-            (convert::build(py, "dynamic", raw)?, first_stop(runs, None)?)
+            ("dynamic", raw, first_incomplete(py, &runs, None)?)
         }
-    })
+        Outcome::AeroStatic(plan, o) => {
+            let runs: Vec<_> = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
+            let raw = convert::aero_statics::raw(py, plan, o)?;
+            ("aero-static", raw, first_incomplete(py, &runs, None)?)
+        }
+        Outcome::AeroDynamic(plan, o) => {
+            let runs: Vec<_> = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
+            let raw = convert::aero_dynamics::raw(py, plan, o)?;
+            ("aero-dynamic", raw, first_incomplete(py, &runs, None)?)
+        }
+        Outcome::Flutter(plan, o) => {
+            // The equilibria stopping past the divergence speed is expected (the eigen-analysis
+            // goes on): only the eigen-analysis and the p-k check make a run incomplete, as in
+            // `flexwing flutter`.
+            let runs: Vec<_> = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
+            let raw = convert::flutter::raw(py, plan, o)?;
+            ("flutter", raw, first_incomplete(py, &runs, None)?)
+        }
+    };
+    raw.set_item("rust_time_s", rust_time_s)?;
+    Ok((convert::build(py, kind, raw)?, incomplete))
 }
 
 /// The `SolverError` of an incomplete result.
@@ -179,12 +246,11 @@ pub fn incomplete_error(
     result: &Bound<'_, PyAny>,
     incomplete: Incomplete<'_>,
 ) -> PyErr {
-    let (model, stop, message) = incomplete;
     errors::solver(
         py,
-        &message,
-        model.as_deref(),
-        stop.map(|d| d.into_any().unbind()),
+        &incomplete.message,
+        incomplete.model.as_deref(),
+        incomplete.stop.map(|d| d.into_any().unbind()),
         Some(result.clone().unbind()),
     )
 }

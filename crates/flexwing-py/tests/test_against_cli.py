@@ -73,11 +73,38 @@ def test_statics_match_the_cli(cli, tmp_path, name):
         close(result.loaded_modes["frequency_hz"], [m["frequency_hz"] for m in modes])
 
 
-@pytest.mark.parametrize("name", ["paper_sine.toml", "paper_free_vibration.toml"])
+AUDIT_KEYS = [
+    ("balanced", "balanced"),
+    ("max_error", "max_error"),
+    ("max_error_time", "max_error_t_s"),
+    ("limit", "limit"),
+    ("exceeded_time", "exceeded_t_s"),
+    ("runaway_limit", "runaway_limit"),
+    ("runaway_time", "runaway_t_s"),
+    ("reference_energy", "reference_energy_J"),
+]
+
+
+def suspect_sine(tmp_path):
+    """Case (b) with an energy tolerance far below what rtol = 1e-6 keeps (measured balance
+    errors 2e-6 to 2e-5): every model runs to the end and is suspect."""
+    case = flexwing.Case.load(example("paper_sine.toml")).replace({"dynamic.energy_tolerance": 1e-10})
+    path = tmp_path / "suspect_sine.toml"
+    path.write_text(case.to_toml())
+    return path
+
+
+@pytest.mark.parametrize("name", ["paper_sine.toml", "paper_free_vibration.toml", "suspect"])
 def test_dynamics_match_the_cli(cli, tmp_path, name):
-    expected = run_cli(cli, "dynamic", example(name), tmp_path)
-    result = flexwing.Case.load(example(name)).dynamics(check=False)
-    assert result.status == ("complete" if expected["status"] == "complete" else "stopped")
+    """Also the energy audit (issue 9 §3): per output time the work, dissipated energy and
+    balance error, per model what the audit found; paper_free_vibration.toml's simplified model
+    is stopped as a runaway, the "suspect" case has every model suspect."""
+    path = suspect_sine(tmp_path) if name == "suspect" else example(name)
+    out = tmp_path / "out"
+    expected = run_cli(cli, "dynamic", path, out)
+    result = flexwing.Case.load(path).dynamics(check=False)
+    statuses = {"complete": "complete", "incomplete": "stopped", "suspect": "suspect"}
+    assert result.status == statuses[expected["status"]]
     assert result.end_time == expected["end_time_s"]
     assert [r.label for r in result.runs] == [m["label"] for m in expected["models"]]
     for run, model in zip(result.runs, expected["models"]):
@@ -92,6 +119,22 @@ def test_dynamics_match_the_cli(cli, tmp_path, name):
         close(run.kinetic, model["energy"]["kinetic_J"])
         close(run.strain, model["energy"]["strain_J"])
         close(run.total, model["energy"]["total_J"])
+        close(run.work, model["energy"]["work_J"])
+        close(run.dissipated, model["energy"]["dissipated_J"])
+        close(run.balance_error, model["energy"]["balance_error"])
+        assert run.status == statuses[model["status"]]
+        assert run.message == model["error"]
+        audit = model["energy_audit"]
+        assert (run.energy_audit is None) == (audit is None)
+        for ours, theirs in AUDIT_KEYS if audit is not None else []:
+            if audit[theirs] is None or isinstance(audit[theirs], bool):
+                assert run.energy_audit[ours] == audit[theirs], ours
+            else:
+                close(run.energy_audit[ours], audit[theirs])
+    if name == "suspect":
+        assert {r.status for r in result.runs} == {"suspect"}
+        assert all(r.stop["reason"] == "energy-balance" for r in result.runs)
+        assert all(r.energy_audit["exceeded_time"] is not None for r in result.runs)
         if model["max_tip_difference_m"] is not None:
             close(run.comparison["max_tip_difference"], model["max_tip_difference_m"])
 

@@ -114,7 +114,7 @@ BAD = [
     ("no loads for statics", lambda: flexwing.Case(beam=BEAM).statics(), CaseFileError, "loads"),
     ("no [dynamic] table", lambda: flexwing.Case(beam=BEAM, loads=[LOAD]).dynamics(), CaseFileError, "dynamic"),
     ("unknown keyword of statics", lambda: flexwing.Case(beam=BEAM, loads=[LOAD]).statics(chek=False), ArgumentTypeError, "chek"),
-    ("unknown analysis", lambda: flexwing.solve_many([], "flutter"), InputError, "analysis"),
+    ("unknown analysis", lambda: flexwing.solve_many([], "buckling"), InputError, "analysis"),
     ("zero threads", lambda: flexwing.solve_many([], "static", threads=0), InputError, "threads"),
     ("cases not iterable", lambda: flexwing.solve_many(3), ArgumentTypeError, "cases"),
     ("bad path in replace", lambda: flexwing.Case(beam=BEAM).replace({"beam..x": 1}), InputError, "beam..x"),

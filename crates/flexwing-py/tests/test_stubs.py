@@ -7,6 +7,7 @@ physical values. A binding added without its stub fails here."""
 from __future__ import annotations
 
 import ast
+import re
 import inspect
 import pathlib
 
@@ -82,3 +83,34 @@ def test_every_public_name_is_documented():
 def test_the_package_exports_what_the_stubs_and_results_declare():
     for name in flexwing.__all__:
         assert hasattr(flexwing, name), name
+
+
+def test_the_analysis_names_of_the_stub_are_the_extensions():
+    """`AnalysisName` in the stub lists exactly the analyses `Case.run` and `solve_many` take
+    (the extension's error for an unknown name lists them)."""
+    tree = ast.parse(STUB.read_text())
+    literal = next(
+        n.value for n in tree.body if isinstance(n, ast.Assign) and getattr(n.targets[0], "id", "") == "AnalysisName"
+    )
+    stub_names = {e.value for e in literal.slice.elts}
+    try:
+        flexwing.solve_many([], "no-such-analysis")
+    except flexwing.InputError as e:
+        names = set(re.findall(r'"([a-z-]+)"', e.reason)) - {"no-such-analysis"}
+    assert stub_names == names == {"modes", "static", "dynamic", "flutter"}
+
+
+def test_every_result_field_is_documented():
+    """Every field of every result class (structural and aeroelastic) is named in its class's
+    docstring, where its units and shape are given."""
+    import dataclasses
+
+    from flexwing import _aero_results, _results
+
+    for module in (_results, _aero_results):
+        for name in module.__all__:
+            cls = getattr(module, name)
+            doc = cls.__doc__ or ""
+            for f in dataclasses.fields(cls):
+                if f.name != "extra":
+                    assert re.search(rf"\b{f.name}\b", doc), f"{name}.{f.name} is not documented"

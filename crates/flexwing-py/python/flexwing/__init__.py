@@ -9,6 +9,16 @@ The case level (the case file's keys, as in ``docs/case-file.md``)::
     run = result.run("reduced-r2")
     run.t, run.tip_y                              # NumPy arrays (s, m)
 
+The aeroelastic analyses of a case with ``[aero]``::
+
+    case = flexwing.Case.load("examples/patil_flutter.toml")
+    f = case.flutter()                            # V-g/V-ω, flutter and divergence speeds
+    f.full.flutter_speed, f.full.divergence_speed
+    f.full.eigenvalues.damping_ratio              # (branches, speeds)
+
+and ``case.statics()`` / ``case.dynamics()`` on such a case give the static aeroelastic
+equilibria and the gust response.
+
 The batch level: ``flexwing.solve_many(cases, "static")`` returns each case's status, result
 and error as data (the unit of work of a Dask sweep, see ``examples/python/sweep_dask.py``).
 
@@ -39,6 +49,15 @@ from ._native import (
     __version__,
     solve_many,
 )
+from ._aero_results import (
+    AeroDynamicResult,
+    AeroDynamicRun,
+    AeroStaticResult,
+    AeroStaticRun,
+    FlutterResult,
+    FlutterRun,
+    Stability,
+)
 from ._results import (
     BatchItem,
     DynamicResult,
@@ -62,6 +81,13 @@ __all__ = [
     "StaticResult",
     "DynamicRun",
     "DynamicResult",
+    "AeroStaticRun",
+    "AeroStaticResult",
+    "FlutterRun",
+    "FlutterResult",
+    "Stability",
+    "AeroDynamicRun",
+    "AeroDynamicResult",
     "BatchItem",
     "FlexwingError",
     "InputError",

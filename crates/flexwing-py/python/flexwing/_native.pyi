@@ -15,6 +15,7 @@ from typing import Any, Callable, Dict, Iterable, List, Literal, Mapping, Option
 import numpy as np
 import numpy.typing as npt
 
+from ._aero_results import AeroDynamicResult, AeroStaticResult, FlutterResult
 from ._results import BatchItem, DynamicResult, ModesResult, StaticResult
 
 __version__: str
@@ -28,7 +29,7 @@ Load = Mapping[str, Any]
 #: ``callback(done, label)``: ``done`` the fraction of the analysis (0 to 1), ``label`` the model
 #: running (``"full"``, ``"reduced-r2"``, …).
 ProgressCallback = Callable[[float, str], Any]
-AnalysisName = Literal["modes", "static", "dynamic"]
+AnalysisName = Literal["modes", "static", "dynamic", "flutter"]
 
 class Case:
     """A flexwing case: the beam, the loads and the settings of its analyses, with the keys of
@@ -57,31 +58,47 @@ class Case:
     def title(self) -> Optional[str]:
         """The case's title, if any."""
     @property
+    def aeroelastic(self) -> bool:
+        """Whether the case has an ``[aero]`` table (``statics``/``dynamics`` are then
+        aeroelastic, and ``flutter`` runs)."""
+    @property
     def file(self) -> Optional[str]:
         """The file the case was read from, if any."""
     def model(self) -> FullModel:
         """The full model of ``[beam]``."""
     def modes(self, *, progress: Optional[ProgressCallback] = None) -> ModesResult:
         """The natural modes of ``[beam]`` (``[modes] count``, default 10), frequencies in rad/s
-        and Hz."""
+        and Hz; in vacuo (an ``[aero]`` table is not used, as ``flexwing modes``)."""
     def statics(
         self, *, progress: Optional[ProgressCallback] = None, check: bool = True
-    ) -> StaticResult:
+    ) -> Union[StaticResult, AeroStaticResult]:
         """The non-linear statics of ``[[loads]]`` and ``[static]`` (sweeps, reduced models,
-        loaded modes). With ``check`` (default), a model that stopped raises ``SolverError``
-        carrying the partial result; else each run's ``status`` says so."""
+        loaded modes); with ``[aero]``, the static aeroelastic equilibria at
+        ``aero.flight.speed`` or along ``[aero.sweep]`` and the divergence speed
+        (``AeroStaticResult``). With ``check`` (default), a model that stopped raises
+        ``SolverError`` carrying the partial result; else each run's ``status`` says so."""
     def dynamics(
         self, *, progress: Optional[ProgressCallback] = None, check: bool = True
-    ) -> DynamicResult:
+    ) -> Union[DynamicResult, AeroDynamicResult]:
         """The non-linear dynamics of ``[[loads]]`` and ``[dynamic]`` (full, simplified and
-        reduced models); ``check`` as ``statics``."""
+        reduced models); with ``[aero]``, the aeroelastic response (``AeroDynamicResult``);
+        ``check`` as ``statics`` (a suspect energy balance raises too)."""
+    def flutter(
+        self, *, progress: Optional[ProgressCallback] = None, check: bool = True
+    ) -> FlutterResult:
+        """Flutter and divergence along ``[aero.sweep]`` (``[aero]``, ``[flutter]``): V-g/V-ω
+        data (1/s, rad/s), flutter speeds (m/s) and frequencies (rad/s), divergence speeds,
+        equilibria and the p-k check, per model. ``check`` raises if an eigen-analysis stopped
+        before the last speed."""
     def run(
         self,
         analysis: AnalysisName,
         *,
         progress: Optional[ProgressCallback] = None,
         check: bool = True,
-    ) -> Union[ModesResult, StaticResult, DynamicResult]:
+    ) -> Union[
+        ModesResult, StaticResult, DynamicResult, AeroStaticResult, AeroDynamicResult, FlutterResult
+    ]:
         """Run the analysis named ``analysis`` (as the method of the same name)."""
     def __eq__(self, other: object) -> bool: ...
     def __reduce__(self) -> Tuple[Any, Tuple[str, Optional[str]]]: ...
@@ -326,6 +343,6 @@ def solve_many(
     progress: Optional[Callable[[int, int], Any]] = None,
 ) -> List[BatchItem]:
     """Solve ``analysis`` for every case and return one ``BatchItem`` per case, in order, with
-    its status (``"complete"``, ``"stopped"``, ``"error"``), result, error (as data) and wall
+    its status (``"complete"``, ``"suspect"``, ``"stopped"``, ``"error"``), result, error (as data) and wall
     time (s). No case's failure stops the others. ``threads``: threads of this process sharing
     the cases (the interpreter released); ``progress``: ``callback(done, total)``."""

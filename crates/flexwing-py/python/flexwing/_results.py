@@ -226,13 +226,31 @@ class DynamicRun(_Result):
         stats: integrator counters: ``steps``, ``rejected_steps``, ``rhs_evaluations``,
             ``jacobian_evaluations``, ``factorizations``, ``newton_iterations``.
         wall_time_s: wall time of the integration (s).
-        status: ``"complete"`` or ``"stopped"`` (more values may follow).
-        stop: where and why the run stopped (``None`` if complete): a dict with ``"reason"``,
-            ``"message"``, ``"time"`` (s) and the solver's values.
+        status: ``"complete"``, ``"suspect"`` (every output time reached, but the energy
+            balance error exceeded its limit: see ``energy_audit``) or ``"stopped"`` (more
+            values may follow).
+        stop: where and why the run stopped or is suspect (``None`` if complete): a dict with
+            ``"reason"`` (``"energy-balance"`` for a suspect run, with ``"time"``,
+            ``"max_error"``, ``"max_error_time"``, ``"limit"``), ``"message"``, ``"time"`` (s)
+            and the solver's values.
         message: the stop's one-line message, or ``None``.
         t: output times reached (s), ``(T,)``.
         tip_x, tip_y: tip position (m), ``(T,)``; tip_twist: tip twist (rad), ``(T,)``.
         kinetic, strain, total: energies (J), ``(T,)``.
+        work: work of the applied loads since t = 0 (J), ``(T,)``; dissipated: energy
+            dissipated by the structural damping since t = 0 (J), ``(T,)``.
+        balance_error: the energy balance ``(H − H(0) − W + D) / E`` at each output time,
+            relative to the largest energy held or given so far (positive: energy created),
+            ``(T,)``. For the simplified model (no balance by construction) it is the energy
+            its equations create.
+        energy_audit: what the energy audit found over the accepted steps (``None`` if the run
+            did not start): a dict of ``balanced`` (whether the model has an energy balance:
+            all but the simplified model), ``max_error`` (largest ``|H − H(0) − W + D| / E``)
+            and ``max_error_time`` (s), ``limit`` (the tolerance it is held to: ``[dynamic]
+            energy_tolerance`` or its default tied to ``rtol``; ``None`` for the simplified
+            model), ``exceeded_time`` (s, the first time the error passed ``limit``: the run is
+            then ``"suspect"``), ``runaway_limit`` and ``runaway_time`` (s, when the run was
+            stopped for creating energy), ``reference_energy`` (J, the E above).
         snapshots: deformed shapes at the chosen output times: a dict of ``index`` ``(S,)``,
             ``t`` ``(S,)``, and ``x``, ``y`` (m), ``twist`` (rad), each ``(S, n + 1)``.
         comparison: differences from the first model's tip history (not for the first model):
@@ -257,6 +275,10 @@ class DynamicRun(_Result):
     kinetic: np.ndarray
     strain: np.ndarray
     total: np.ndarray
+    work: np.ndarray
+    dissipated: np.ndarray
+    balance_error: np.ndarray
+    energy_audit: Optional[Dict[str, Any]]
     snapshots: Dict[str, np.ndarray]
     comparison: Optional[Dict[str, Optional[float]]]
     extra: Dict[str, Any] = field(default_factory=dict)
@@ -276,7 +298,9 @@ class DynamicResult(_Result):
 
     Attributes:
         runs: one :class:`DynamicRun` per model: full, simplified, then the reduced models.
-        status: ``"complete"`` if every model reached every output time, else ``"stopped"``.
+        status: ``"complete"`` if every model reached every output time with its energy
+            balance within its limit; else ``"stopped"`` if a model stopped, else
+            ``"suspect"``.
         end_time: the simulated time (s).
         rust_time_s: wall time of the analysis on the Rust side (s), plan, modes and every
             model included (see ``ModesResult.rust_time_s``).
@@ -299,6 +323,11 @@ class DynamicResult(_Result):
                 return r
         raise KeyError(f"no model {label!r}; the runs are {[r.label for r in self.runs]}")
 
+    @property
+    def full(self) -> Optional[DynamicRun]:
+        """The full model's run, if it was simulated."""
+        return next((r for r in self.runs if r.kind == "full"), None)
+
     def __repr__(self) -> str:
         return f"DynamicResult(status={self.status!r}, runs={self.runs!r})"
 
@@ -309,10 +338,11 @@ class BatchItem(_Result):
 
     Attributes:
         index: the case's position in the input.
-        status: ``"complete"``, ``"stopped"`` (a model stopped; ``result`` holds what it
-            reached) or ``"error"`` (bad input or a failed set-up; ``result`` is ``None``).
-        result: the analysis result (``ModesResult``, ``StaticResult``, ``DynamicResult``), or
-            ``None``.
+        status: ``"complete"``, ``"suspect"`` (every model ran to the end but one's energy
+            balance exceeded its limit), ``"stopped"`` (a model stopped; ``result`` holds what
+            it reached) or ``"error"`` (bad input or a failed set-up; ``result`` is ``None``).
+        result: the analysis result (``ModesResult``, ``StaticResult``, ``DynamicResult``,
+            ``AeroStaticResult``, ``AeroDynamicResult``, ``FlutterResult``), or ``None``.
         error: the exception the case would have raised (a :class:`flexwing.FlexwingError`),
             or ``None``; it pickles, so it travels back from workers.
         message: the error's one-line message, or ``None``.
@@ -353,6 +383,26 @@ def _build(kind: str, raw: Dict[str, Any]):
         raw = dict(raw)
         raw["runs"] = [_from_raw(DynamicRun, r) for r in raw["runs"]]
         return _from_raw(DynamicResult, raw)
+    if kind in ("aero-static", "aero-dynamic", "flutter"):
+        from . import _aero_results as aero
+
+        raw = dict(raw)
+        if kind == "aero-static":
+            raw["runs"] = [_from_raw(aero.AeroStaticRun, r) for r in raw["runs"]]
+            return _from_raw(aero.AeroStaticResult, raw)
+        if kind == "aero-dynamic":
+            raw["runs"] = [_from_raw(aero.AeroDynamicRun, r) for r in raw["runs"]]
+            return _from_raw(aero.AeroDynamicResult, raw)
+        runs = []
+        for r in raw["runs"]:
+            r = dict(r)
+            r["eigenvalues"] = _from_raw(aero.Stability, r["eigenvalues"])
+            if r["pk"] is not None:
+                r["pk"] = _from_raw(aero.Stability, r["pk"])
+            r["equilibria"] = _from_raw(aero.AeroStaticRun, r["equilibria"])
+            runs.append(_from_raw(aero.FlutterRun, r))
+        raw["runs"] = runs
+        return _from_raw(aero.FlutterResult, raw)
     if kind == "batch":
         return _from_raw(BatchItem, raw)
     raise ValueError(f"unknown result kind {kind!r}")

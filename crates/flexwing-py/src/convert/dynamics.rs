@@ -1,13 +1,13 @@
 //! [`DynamicOutcome`] into `DynamicResult` and its `DynamicRun`s.
 
-use flexwing::analysis::dynamics::{DynamicOutcome, DynamicPlan, ModelRun, Sample};
-use flexwing::solve::Gyroscopic;
+use flexwing::analysis::dynamics::{DynamicOutcome, DynamicPlan, ModelRun, Sample, Snapshot};
+use flexwing::solve::{EnergyBalance, Gyroscopic};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::statics::kind_name;
-use super::status::status_fields;
+use super::status::{overall, status_fields};
 use crate::arrays::{out1, out_rows};
 
 /// The case-file name of a way to get the gyroscopic term.
@@ -32,15 +32,48 @@ pub fn raw<'py>(
         .map(|r| run(py, plan, r))
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("runs", runs)?;
-    d.set_item(
-        "status",
-        if outcome.is_complete() {
-            "complete"
-        } else {
-            "stopped"
-        },
-    )?;
+    d.set_item("status", overall(outcome.runs.iter().map(|r| &r.status)))?;
     d.set_item("end_time", plan.end_time)?;
+    Ok(d)
+}
+
+/// What the energy audit found (the CLI's `energy_audit`, docs/validation.md "Energy audit"):
+/// `balanced` (whether the model has an energy balance: all but the simplified model),
+/// `max_error` and `max_error_time` (s), `limit` (`None` without a balance), `exceeded_time`
+/// (s, the first time the error passed `limit`), `runaway_limit`, `runaway_time` (s), and
+/// `reference_energy` (J, the largest energy held or given).
+fn audit<'py>(py: Python<'py>, e: &EnergyBalance) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("balanced", e.limits.balance.is_some())?;
+    d.set_item("max_error", e.max_error)?;
+    d.set_item("max_error_time", e.max_error_time)?;
+    d.set_item("limit", e.limits.balance)?;
+    d.set_item("exceeded_time", e.exceeded_at)?;
+    d.set_item("runaway_limit", e.limits.runaway)?;
+    d.set_item("runaway_time", e.runaway_at)?;
+    d.set_item("reference_energy", e.reference)?;
+    Ok(d)
+}
+
+/// The snapshots as a dict: `index` and `t` `(S,)`, `x`, `y`, `twist` `(S, nodes)`.
+pub fn snapshots<'py>(
+    py: Python<'py>,
+    shots: &[Snapshot],
+    nodes: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item(
+        "index",
+        PyArray1::from_vec(py, shots.iter().map(|s| s.index as i64).collect()),
+    )?;
+    d.set_item("t", out1(py, shots.iter().map(|s| s.t).collect()))?;
+    let rows = |f: fn(&Snapshot) -> &[f64]| {
+        let r: Vec<&[f64]> = shots.iter().map(f).collect();
+        out_rows(py, &r, nodes)
+    };
+    d.set_item("x", rows(|s| &s.shape.x))?;
+    d.set_item("y", rows(|s| &s.shape.y))?;
+    d.set_item("twist", rows(|s| &s.shape.twist))?;
     Ok(d)
 }
 
@@ -74,22 +107,15 @@ fn run<'py>(py: Python<'py>, plan: &DynamicPlan, r: &ModelRun) -> PyResult<Bound
     d.set_item("kinetic", column(|s| s.kinetic))?;
     d.set_item("strain", column(|s| s.strain))?;
     d.set_item("total", column(Sample::total))?;
-    let nodes = plan.model.beam().nodes().len();
-    let snapshots = PyDict::new(py);
-    let shots = &r.snapshots;
-    snapshots.set_item(
-        "index",
-        PyArray1::from_vec(py, shots.iter().map(|s| s.index as i64).collect()),
+    d.set_item("work", column(|s| s.work))?;
+    d.set_item("dissipated", column(|s| s.dissipated))?;
+    d.set_item("balance_error", column(|s| s.balance_error))?;
+    d.set_item(
+        "energy_audit",
+        r.energy.as_ref().map(|e| audit(py, e)).transpose()?,
     )?;
-    snapshots.set_item("t", out1(py, shots.iter().map(|s| s.t).collect()))?;
-    let rows = |f: fn(&flexwing::analysis::dynamics::Snapshot) -> &[f64]| {
-        let r: Vec<&[f64]> = shots.iter().map(f).collect();
-        out_rows(py, &r, nodes)
-    };
-    snapshots.set_item("x", rows(|s| &s.shape.x))?;
-    snapshots.set_item("y", rows(|s| &s.shape.y))?;
-    snapshots.set_item("twist", rows(|s| &s.shape.twist))?;
-    d.set_item("snapshots", snapshots)?;
+    let nodes = plan.model.beam().nodes().len();
+    d.set_item("snapshots", snapshots(py, &r.snapshots, nodes)?)?;
     let comparison = match &r.comparison {
         None => None,
         Some(c) => {

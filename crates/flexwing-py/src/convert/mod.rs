@@ -3,7 +3,10 @@
 //! it. Adding a field is one `set_item` here and one attribute there (the test suite checks the
 //! two agree); a new analysis is one module here and one class there.
 
+pub mod aero_dynamics;
+pub mod aero_statics;
 pub mod dynamics;
+pub mod flutter;
 pub mod modes;
 pub mod statics;
 pub mod status;
@@ -11,7 +14,8 @@ pub mod status;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// The result object of `kind` (`"modes"`, `"static"`, `"dynamic"`, `"batch"`) from `raw`.
+/// The result object of `kind` (`"modes"`, `"static"`, `"dynamic"`, `"aero-static"`,
+/// `"aero-dynamic"`, `"flutter"`, `"batch"`) from `raw`.
 pub fn build<'py>(
     py: Python<'py>,
     kind: &str,

@@ -2,6 +2,7 @@
 
 use flexwing::analysis::statics::{ModelRun, StaticOutcome, StaticPlan};
 use flexwing::analysis::ModelKind;
+use flexwing::solve::StaticStats;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -65,6 +66,27 @@ pub fn raw<'py>(
     Ok(d)
 }
 
+/// The solver counters of each point as a dict of arrays (the `stats` of a static run).
+pub fn stats_dict<'py>(py: Python<'py>, stats: &[&StaticStats]) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let counter = |f: fn(&StaticStats) -> usize| {
+        PyArray1::from_vec(py, stats.iter().map(|s| f(s) as i64).collect())
+    };
+    d.set_item("load_steps", counter(|s| s.load_steps))?;
+    d.set_item("rejected_steps", counter(|s| s.rejected_steps))?;
+    d.set_item("limited_steps", counter(|s| s.limited_steps))?;
+    d.set_item("unstable_steps", counter(|s| s.unstable_steps))?;
+    d.set_item("iterations", counter(|s| s.iterations))?;
+    d.set_item("residual_evaluations", counter(|s| s.residual_evaluations))?;
+    d.set_item("factorizations", counter(|s| s.factorizations))?;
+    d.set_item("stability_checks", counter(|s| s.stability_checks))?;
+    d.set_item(
+        "residual_norm",
+        out1(py, stats.iter().map(|s| s.residual_norm).collect()),
+    )?;
+    Ok(d)
+}
+
 fn run<'py>(
     py: Python<'py>,
     plan: &StaticPlan,
@@ -108,19 +130,8 @@ fn run<'py>(
             .filter(|_| r.kind.modes().is_some())
             .map(|v| out1(py, v)),
     )?;
-    let stats = PyDict::new(py);
-    let counter = |f: fn(&flexwing::solve::StaticStats) -> usize| {
-        PyArray1::from_vec(py, points.iter().map(|p| f(&p.stats) as i64).collect())
-    };
-    stats.set_item("load_steps", counter(|s| s.load_steps))?;
-    stats.set_item("rejected_steps", counter(|s| s.rejected_steps))?;
-    stats.set_item("limited_steps", counter(|s| s.limited_steps))?;
-    stats.set_item("unstable_steps", counter(|s| s.unstable_steps))?;
-    stats.set_item("iterations", counter(|s| s.iterations))?;
-    stats.set_item("residual_evaluations", counter(|s| s.residual_evaluations))?;
-    stats.set_item("factorizations", counter(|s| s.factorizations))?;
-    stats.set_item("stability_checks", counter(|s| s.stability_checks))?;
-    stats.set_item("residual_norm", column(&|p| p.stats.residual_norm))?;
+    let stats: Vec<&StaticStats> = points.iter().map(|p| &p.stats).collect();
+    let stats = stats_dict(py, &stats)?;
     d.set_item("stats", stats)?;
     Ok(d)
 }

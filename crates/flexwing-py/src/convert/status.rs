@@ -6,6 +6,7 @@
 //! own, so a new status or stop reason never breaks the bindings.
 
 use flexwing::analysis::{Doubt, Status, Stop};
+use flexwing::solve::aeroelastic::FlutterStop;
 use flexwing::text::short;
 use flexwing::{SolveError, StaticFailure};
 use pyo3::prelude::*;
@@ -181,6 +182,42 @@ pub fn stop_dict<'py>(
                 None => "interrupted before it started".into(),
             }
         }
+        Stop::SpeedPoint {
+            point,
+            points,
+            speed,
+            error,
+        } => {
+            d.set_item("point", point)?;
+            d.set_item("points", points)?;
+            d.set_item("speed", speed)?;
+            d.set_item("error", solve_error_dict(py, error)?)?;
+            format!(
+                "stopped at speed {} of {points} (U = {} m/s): {error}",
+                point + 1,
+                short(*speed)
+            )
+        }
+        Stop::Flutter(FlutterStop::Equilibrium { speed, error }) => {
+            d.set_item("reason", "flutter-equilibrium")?;
+            d.set_item("speed", speed)?;
+            d.set_item("error", solve_error_dict(py, error)?)?;
+            format!(
+                "no static equilibrium at U = {} m/s: {error}",
+                short(*speed)
+            )
+        }
+        Stop::Flutter(FlutterStop::BranchLost { branch, speed }) => {
+            d.set_item("reason", "flutter-branch-lost")?;
+            d.set_item("branch", branch)?;
+            d.set_item("speed", speed)?;
+            format!(
+                "branch {} lost at U = {} m/s (Newton's method failed even at the smallest speed \
+                 step; refine the sweep)",
+                branch + 1,
+                short(*speed)
+            )
+        }
         other => format!("{other:?}"),
     };
     d.set_item("message", &message)?;
@@ -215,8 +252,9 @@ pub fn status_fields<'py>(
             d.set_item("max_error_time", max_error_time)?;
             d.set_item("limit", limit)?;
             let message = format!(
-                "suspect: the energy balance |H − H(0) − W + D| / E exceeded its limit {} at \
-                 t = {} s (largest {} at t = {} s)",
+                "the energy balance |H − H(0) − W + D| / E exceeded its limit {} at t = {} s \
+                 (largest {} at t = {} s): the integration error is larger than the tolerances \
+                 suggest; tighten rtol and atol (or max_step), or raise energy_tolerance",
                 short(*limit),
                 short(*time),
                 short(*max_error),
@@ -233,6 +271,23 @@ pub fn status_fields<'py>(
             (name, Some(d), Some(format!("{other:?}")))
         }
     })
+}
+
+/// `"complete"` if every status is, else `"stopped"` if one stopped, else `"suspect"`.
+pub fn overall<'a>(statuses: impl IntoIterator<Item = &'a Status>) -> &'static str {
+    let mut word = "complete";
+    for s in statuses {
+        match s {
+            Status::Complete => {}
+            Status::Suspect(_) => {
+                if word == "complete" {
+                    word = "suspect";
+                }
+            }
+            _ => return "stopped",
+        }
+    }
+    word
 }
 
 /// Whether a status counts as complete for `check=True` (anything but `"complete"` raises).

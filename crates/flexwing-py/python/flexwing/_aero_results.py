@@ -1,0 +1,365 @@
+"""The results of the aeroelastic analyses (docs/aeroelastic-model.md): static aeroelastic
+equilibria and divergence (``Case.statics()`` on a case with ``[aero]``), flutter
+(``Case.flutter()``) and the aeroelastic response (``Case.dynamics()`` with ``[aero]``). Plain
+objects of NumPy arrays, as those of ``_results.py``: they pickle, print and convert to dicts.
+
+The numbers are those ``flexwing static``, ``flexwing flutter`` and ``flexwing dynamic`` print
+and write for the same case file (the same plans and runs of ``flexwing::analysis::aero``).
+Units are SI: m/s for speeds, rad/s for frequencies, 1/s for eigenvalues, Pa for dynamic
+pressures, N for lift, N m for moments.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional
+
+import numpy as np
+
+from ._results import _Result, _summary
+
+__all__ = [
+    "AeroStaticRun",
+    "AeroStaticResult",
+    "Stability",
+    "FlutterRun",
+    "FlutterResult",
+    "AeroDynamicRun",
+    "AeroDynamicResult",
+]
+
+
+class _Runs:
+    """What the results with one run per model share (``runs`` and ``status`` fields)."""
+
+    @property
+    def complete(self) -> bool:
+        """Whether every model completed."""
+        return self.status == "complete"
+
+    def run(self, label: str):
+        """The run of the model ``label`` (``"full"``, ``"reduced-r4"``, …)."""
+        for r in self.runs:
+            if r.label == label:
+                return r
+        raise KeyError(f"no model {label!r}; the runs are {[r.label for r in self.runs]}")
+
+    @property
+    def full(self):
+        """The full model's run, if it was analysed."""
+        return next((r for r in self.runs if r.kind == "full"), None)
+
+
+@dataclass(eq=False, repr=False)
+class AeroStaticRun(_Result):
+    """The static aeroelastic equilibria of one model (steady strip theory) at the speeds of the
+    analysis, up to where the sweep stopped, and the divergence speed where it found one.
+
+    Attributes:
+        label: ``"full"``, ``"reduced-r4"`` (first 4 wet modes), ``"reduced-modes-1-2-4"``.
+        kind: ``"full"`` or ``"reduced"``.
+        modes: the retained wet modes of a reduced model (1-based), or ``None``.
+        dofs: number of coordinates of the model.
+        wall_time_s: wall time of the sweep (s); ``None`` for the equilibria of a flutter run
+            (timed with the run, ``FlutterRun.wall_time_s``).
+        status: ``"complete"`` or ``"stopped"`` (past the divergence speed no stable
+            equilibrium exists: the sweep stops there).
+        stop: where and why it stopped (``None`` if complete): a dict with ``"reason"``
+            (``"speed-point"``), ``"message"``, ``"point"``, ``"speed"`` (m/s), ``"error"``.
+        message: the stop's one-line message, or ``None``.
+        divergence_speed: the divergence speed (m/s) where the sweep brackets it (or, for
+            equilibria that do not move the divergence pressure, from the frozen state), else
+            ``None``.
+        divergence_dynamic_pressure: its dynamic pressure (Pa), or ``None``.
+        speed: free-stream speed at each equilibrium (m/s), ``(p,)``.
+        dynamic_pressure: ``½ρU²`` (Pa), ``(p,)``.
+        tip_x, tip_y: tip position (m), ``(p,)``; tip_twist: tip twist (rad, nose-up), ``(p,)``.
+        lift: total aerodynamic force along the ground's vertical (N), ``(p,)``.
+        root_bending_moment: the clamp spring's moment (N m), ``(p,)``.
+        divergence_pressure: the dynamic pressure at which the equilibrium's frozen state
+            diverges (Pa), a list of ``p`` values, ``None`` where no real mode diverges.
+        x, y: node positions (m), ``(p, n + 1)``; twist: nodal twist (rad), ``(p, n + 1)``.
+        q: joint rotations of the full model (rad), ``(p, dofs of the full model)``.
+        tip_difference: distance of the tip from the full model's at each speed (m), ``(p,)``;
+            reduced models run with the full model only, else ``None``.
+        stats: the static solver's counters per point, each ``(p,)`` (as ``StaticRun.stats``).
+    """
+
+    label: str
+    kind: str
+    modes: Optional[List[int]]
+    dofs: int
+    wall_time_s: Optional[float]
+    status: str
+    stop: Optional[Dict[str, Any]]
+    message: Optional[str]
+    divergence_speed: Optional[float]
+    divergence_dynamic_pressure: Optional[float]
+    speed: np.ndarray
+    dynamic_pressure: np.ndarray
+    tip_x: np.ndarray
+    tip_y: np.ndarray
+    tip_twist: np.ndarray
+    lift: np.ndarray
+    root_bending_moment: np.ndarray
+    divergence_pressure: List[Optional[float]]
+    x: np.ndarray
+    y: np.ndarray
+    twist: np.ndarray
+    q: np.ndarray
+    tip_difference: Optional[np.ndarray]
+    stats: Dict[str, np.ndarray]
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def complete(self) -> bool:
+        """Whether every speed was reached."""
+        return self.status == "complete"
+
+    def __repr__(self) -> str:
+        return _summary(self, ["label", "status", "divergence_speed"]) + f" [{len(self.speed)} speeds]"
+
+
+@dataclass(eq=False, repr=False)
+class AeroStaticResult(_Runs, _Result):
+    """What a static aeroelastic analysis found (``Case.statics()`` on a case with ``[aero]``).
+
+    Attributes:
+        runs: one :class:`AeroStaticRun` per model, full model first.
+        speeds: the speeds asked for (m/s): ``aero.flight.speed`` or ``[aero.sweep]``.
+        root_angle: root angle of attack (rad); gravity: ``aero.flight.gravity`` (m/s²) or
+            ``None``.
+        aerodynamics: ``{"model": "steady" | "quasi-steady" | "wagner" | "peters", "states":
+            Peters' states per strip or None, "density": kg/m³}`` (the equilibria use steady
+            strip theory whatever the model: a static equilibrium has no motion to lag).
+        status: ``"complete"`` if every model reached every speed, else ``"stopped"``.
+        rust_time_s: wall time of the analysis on the Rust side (s).
+    """
+
+    runs: List[AeroStaticRun]
+    speeds: np.ndarray
+    root_angle: float
+    gravity: Optional[float]
+    aerodynamics: Dict[str, Any]
+    status: str
+    rust_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        return f"AeroStaticResult(status={self.status!r}, runs={self.runs!r})"
+
+
+@dataclass(eq=False, repr=False)
+class Stability(_Result):
+    """The eigen-analysis of one model along the speeds (the model's own aerodynamic lag), or
+    the p-k check with Theodorsen's function: the tracked branches (V-g and V-ω data) and
+    their crossings of the imaginary axis.
+
+    Attributes:
+        speeds: the speeds reached (m/s), ``(S,)``.
+        mode: the wet mode each branch starts from at U = 0 (1-based by frequency), ``(B,)``.
+        wet_frequency: its wet natural frequency at U = 0 (rad/s), ``(B,)``.
+        real: ``σ = Re s`` per branch and speed (1/s; positive is unstable), ``(B, S)``.
+        imag: ``ω = Im s`` (rad/s; 0 for a real, divergence-type root), ``(B, S)``.
+        damping_ratio: ``ζ = −σ/|s|`` (V-g data), ``(B, S)``.
+        uncertain: whether some step of a branch's tracking was accepted without passing the
+            shape check (a coalescence), ``(B,)`` bool.
+        flutter_speed, flutter_frequency: the lowest onset (m/s, rad/s; frequency 0 for
+            dynamic divergence), or ``None`` when no branch becomes unstable in the sweep or
+            one is unstable from its first speed (see ``unstable_at_start``).
+        flutter_branch: the branch of that onset (index into the branch arrays), or ``None``.
+        crossings: every crossing after the first speed, refined, by speed: a dict of
+            ``kind`` (list of ``"onset"``/``"offset"``), ``speed`` (m/s), ``frequency``
+            (rad/s), ``branch`` and ``mode`` (int), each of length C.
+        unstable_at_start: branches (indices) already unstable at the first speed: no flutter
+            speed exists within the sweep.
+        stats: counters: ``linearizations``, ``newton_iterations``, ``halvings``,
+            ``static_solves``.
+        wall_time_s: wall time of this eigen-analysis (s).
+    """
+
+    speeds: np.ndarray
+    mode: np.ndarray
+    wet_frequency: np.ndarray
+    real: np.ndarray
+    imag: np.ndarray
+    damping_ratio: np.ndarray
+    uncertain: np.ndarray
+    flutter_speed: Optional[float]
+    flutter_frequency: Optional[float]
+    flutter_branch: Optional[int]
+    crossings: Dict[str, Any]
+    unstable_at_start: List[int]
+    stats: Dict[str, int]
+    wall_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        return (
+            f"Stability({len(self.mode)} branches, {len(self.speeds)} speeds, "
+            f"flutter_speed={self.flutter_speed!r})"
+        )
+
+
+@dataclass(eq=False, repr=False)
+class FlutterRun(_Result):
+    """The flutter analysis of one model: its static equilibria along the speeds, its
+    eigen-analysis and, if asked (``[flutter] pk``), the p-k check.
+
+    Attributes:
+        label, kind, modes, dofs: as :class:`AeroStaticRun`.
+        wall_time_s: wall time of the whole analysis of this model (s).
+        status: ``"complete"`` if the eigen-analysis (and the p-k check) reached the last
+            speed, else ``"stopped"``; the equilibria stopping past the divergence speed is
+            expected and shows in ``equilibria.status`` only.
+        stop, message: where and why it stopped (``None`` if complete); ``stop["reason"]`` is
+            ``"flutter-equilibrium"`` or ``"flutter-branch-lost"``.
+        other_stops: the p-k check's stop when the eigen-analysis stopped too (dicts).
+        divergence_speed, divergence_dynamic_pressure: the static divergence speed (m/s) and
+            pressure (Pa) found along the equilibria, or ``None``.
+        flutter_speed, flutter_frequency: ``eigenvalues.flutter_speed`` (m/s) and
+            ``eigenvalues.flutter_frequency`` (rad/s).
+        eigenvalues: the model's own eigen-analysis, a :class:`Stability`.
+        pk: the p-k check with Theodorsen's C(k), a :class:`Stability`, or ``None``.
+        equilibria: the static equilibria along the speeds, an :class:`AeroStaticRun`.
+    """
+
+    label: str
+    kind: str
+    modes: Optional[List[int]]
+    dofs: int
+    wall_time_s: float
+    status: str
+    stop: Optional[Dict[str, Any]]
+    message: Optional[str]
+    other_stops: List[Dict[str, Any]]
+    divergence_speed: Optional[float]
+    divergence_dynamic_pressure: Optional[float]
+    flutter_speed: Optional[float]
+    flutter_frequency: Optional[float]
+    eigenvalues: Stability
+    pk: Optional[Stability]
+    equilibria: AeroStaticRun
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def complete(self) -> bool:
+        """Whether the eigen-analysis (and the p-k check) reached the last speed."""
+        return self.status == "complete"
+
+    def __repr__(self) -> str:
+        return _summary(self, ["label", "status", "flutter_speed", "divergence_speed"])
+
+
+@dataclass(eq=False, repr=False)
+class FlutterResult(_Runs, _Result):
+    """What a flutter analysis found (``Case.flutter()``).
+
+    Attributes:
+        runs: one :class:`FlutterRun` per model, full model first.
+        speeds: the speeds of ``[aero.sweep]`` (m/s).
+        root_angle: root angle of attack (rad); gravity: m/s² or ``None``.
+        aerodynamics: as ``AeroStaticResult.aerodynamics``.
+        tolerance: relative tolerance of the flutter and divergence speeds.
+        status: ``"complete"`` if every model's eigen-analysis reached the last speed, else
+            ``"stopped"``.
+        rust_time_s: wall time of the analysis on the Rust side (s).
+    """
+
+    runs: List[FlutterRun]
+    speeds: np.ndarray
+    root_angle: float
+    gravity: Optional[float]
+    aerodynamics: Dict[str, Any]
+    tolerance: float
+    status: str
+    rust_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        return f"FlutterResult(status={self.status!r}, runs={self.runs!r})"
+
+
+@dataclass(eq=False, repr=False)
+class AeroDynamicRun(_Result):
+    """The aeroelastic response of one model, up to where it stopped.
+
+    Attributes:
+        label, kind, modes, dofs: as :class:`AeroStaticRun`.
+        aero_states: number of aerodynamic (lag) states.
+        integrator: the integrator's case-file name.
+        stats: integrator counters (as ``DynamicRun.stats``).
+        wall_time_s: wall time of the integration (s); ratio_to_first: over the first model's.
+        status, stop, message: as ``DynamicRun`` (``stop["reason"]`` ``"initial-state"`` when
+            the initial equilibrium was not found).
+        t: output times reached (s), ``(T,)``.
+        tip_x, tip_y: tip position (m); tip_twist: tip twist (rad, nose-up); each ``(T,)``.
+        root_bending_moment: the clamp spring's moment (N m), ``(T,)``.
+        lift: total aerodynamic force along the ground's vertical (N), ``(T,)``.
+        speed: free-stream speed U(t) (m/s), ``(T,)``.
+        kinetic: kinetic energy of the structure and the fluid's apparent mass (J); strain:
+            strain energy (J); total: their sum; each ``(T,)``. No energy audit: the library's
+            aeroelastic response does not integrate the work of the aerodynamic loads yet.
+        snapshots: as ``DynamicRun.snapshots``.
+        max_tip_difference: largest tip distance from the first model's (m), or ``None``.
+    """
+
+    label: str
+    kind: str
+    modes: Optional[List[int]]
+    dofs: int
+    aero_states: int
+    integrator: str
+    stats: Dict[str, int]
+    wall_time_s: float
+    ratio_to_first: Optional[float]
+    status: str
+    stop: Optional[Dict[str, Any]]
+    message: Optional[str]
+    t: np.ndarray
+    tip_x: np.ndarray
+    tip_y: np.ndarray
+    tip_twist: np.ndarray
+    root_bending_moment: np.ndarray
+    lift: np.ndarray
+    speed: np.ndarray
+    kinetic: np.ndarray
+    strain: np.ndarray
+    total: np.ndarray
+    snapshots: Dict[str, np.ndarray]
+    max_tip_difference: Optional[float]
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def complete(self) -> bool:
+        """Whether every output time was reached."""
+        return self.status == "complete"
+
+    def __repr__(self) -> str:
+        return _summary(self, ["label", "status"]) + f" [{len(self.t)} output times]"
+
+
+@dataclass(eq=False, repr=False)
+class AeroDynamicResult(_Runs, _Result):
+    """What an aeroelastic response produced (``Case.dynamics()`` on a case with ``[aero]``).
+
+    Attributes:
+        runs: one :class:`AeroDynamicRun` per model: full, then the reduced models.
+        status: ``"complete"`` if every model reached every output time, else ``"stopped"``.
+        end_time: the simulated time (s).
+        aerodynamics: as ``AeroStaticResult.aerodynamics``.
+        start: ``"equilibrium"`` (the static aeroelastic equilibrium of the initial flight) or
+            ``"rest"`` (undeformed).
+        rust_time_s: wall time of the analysis on the Rust side (s).
+    """
+
+    runs: List[AeroDynamicRun]
+    status: str
+    end_time: float
+    aerodynamics: Dict[str, Any]
+    start: str
+    rust_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        return f"AeroDynamicResult(status={self.status!r}, runs={self.runs!r})"
