@@ -139,7 +139,7 @@ def test_goland_wing_against_the_independent_chain_reference():
 
 @pytest.fixture(scope="module")
 def section():
-    """examples/section_flutter.toml: flutter near 110 m/s (Wagner), fast (4 dofs)."""
+    """examples/section_flutter.toml: the typical section, flutter near 100 m/s (Wagner), fast (2 dofs)."""
     return flexwing.Case.load(example("section_flutter.toml"))
 
 
@@ -152,7 +152,7 @@ def test_flutter_result_arrays_and_v_g_data(section):
     run = result.full
     s = run.eigenvalues
     b, n = len(s.mode), len(s.speeds)
-    assert s.real.shape == s.imag.shape == s.damping_ratio.shape == (b, n) == (4, 30)
+    assert s.real.shape == s.imag.shape == s.damping_ratio.shape == (b, n) == (2, 30)
     np.testing.assert_allclose(s.damping_ratio, -s.real / np.hypot(s.real, s.imag), rtol=1e-15)
     onsets = [v for k, v in zip(s.crossings["kind"], s.crossings["speed"]) if k == "onset"]
     assert run.flutter_speed == min(onsets) == s.flutter_speed
