@@ -267,8 +267,8 @@ def test_solve_many_gives_statuses_as_data(section):
 
 def test_progress_reaches_every_model(section):
     calls = []
-    result = section.replace({"flutter.reduced": [4]}).flutter(progress=lambda d, label: calls.append((d, label)))
-    assert {label for _, label in calls} == {r.label for r in result.runs} == {"full", "reduced-r4"}
+    result = section.replace({"flutter.reduced": [2]}).flutter(progress=lambda d, label: calls.append((d, label)))
+    assert {label for _, label in calls} == {r.label for r in result.runs} == {"full", "reduced-r2"}
     fractions = [d for d, _ in calls]
     assert fractions == sorted(fractions) and fractions[-1] == 1.0
 
