@@ -111,6 +111,9 @@ impl StaticPlan {
                     format!("must be finite, got {}", short(sweep.scales[i])),
                 ));
             }
+            for (i, &v) in sweep.scales.iter().enumerate() {
+                crate::magnitude::check(&field(&format!("sweep.scales[{i}]")), "", v)?;
+            }
         }
         self.options.validate(prefix)
     }

@@ -107,7 +107,10 @@ impl FlutterPlan {
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
             return Err(InputError::new(
                 fields.analysis("tolerance"),
-                format!("must be in (0, 1), got {}", self.tolerance),
+                format!(
+                    "must be in (0, 1), got {}",
+                    crate::text::short(self.tolerance)
+                ),
             ));
         }
         if self.pk && !self.aero.aerodynamics.is_unsteady() {
