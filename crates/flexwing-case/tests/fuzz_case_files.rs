@@ -9,74 +9,9 @@
 use flexwing_case::Case;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-/// Replacements for a value.
-const VALUES: &[&str] = &[
-    "0",
-    "-1",
-    "1e300",
-    "-1e300",
-    "1e-300",
-    "nan",
-    "inf",
-    "-inf",
-    "4611686018427387904",
-    "1e9",
-    "\"x\"",
-    "true",
-    "[]",
-    "{}",
-    "[1e308, -1e308]",
-    "0.5",
-    // The edges of the accepted range of magnitudes (flexwing::magnitude) and just past them.
-    "1e30",
-    "-1e-30",
-    "2e30",
-    "5e-31",
-];
+mod mutate;
 
-/// A fixed-seed linear congruential generator (Knuth's MMIX constants).
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self, n: usize) -> usize {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 33) % n as u64) as usize
-    }
-}
-
-fn mutate(text: &str, rng: &mut Lcg) -> String {
-    let lines: Vec<&str> = text.lines().collect();
-    let candidates: Vec<usize> = (0..lines.len())
-        .filter(|&i| {
-            let l = lines[i].trim_start();
-            !l.starts_with('#') && l.contains(" = ")
-        })
-        .collect();
-    if candidates.is_empty() {
-        return text.to_string();
-    }
-    let i = candidates[rng.next(candidates.len())];
-    let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
-    match rng.next(10) {
-        0 => {
-            out.remove(i);
-        }
-        1 => {
-            let l = out[i].clone();
-            out.insert(i, l);
-        }
-        _ => {
-            let line = &out[i];
-            let eq = line.find(" = ").unwrap();
-            let key = &line[..eq];
-            out[i] = format!("{key} = {}", VALUES[rng.next(VALUES.len())]);
-        }
-    }
-    out.join("\n")
-}
+use mutate::{mutate, Lcg};
 
 #[test]
 fn mutated_example_case_files_give_plans_or_one_line_errors() {
@@ -93,9 +28,9 @@ fn mutated_example_case_files_give_plans_or_one_line_errors() {
     for path in &files {
         let text = std::fs::read_to_string(path).unwrap();
         for _ in 0..400 {
-            let mut mutated = mutate(&text, &mut rng);
+            let (mut mutated, _) = mutate(&text, &mut rng);
             if rng.next(3) == 0 {
-                mutated = mutate(&mutated, &mut rng);
+                mutated = mutate(&mutated, &mut rng).0;
             }
             let outcome = catch_unwind(AssertUnwindSafe(|| {
                 let case = match Case::from_toml_str(&mutated) {
