@@ -9,9 +9,8 @@
 //! 1. Every dimensional input value is zero (where zero is allowed) or between [`SMALLEST`] and
 //!    [`LARGEST`] in magnitude, in whatever consistent units the user works in. Sixty decades
 //!    hold any physical quantity in SI or nondimensional units (a 1e-6 m MEMS beam has
-//!    `EI ≈ 1e-14`, `m ≈ 1e-9`, a polar inertia per length `≈ 1e-21`), and a product of five such
-//!    values — the most the model forms before it divides — stays within 1e±150, whose square
-//!    is still a finite double.
+//!    `EI ≈ 1e-14`, `m ≈ 1e-9`, a polar inertia per length `≈ 1e-21`), and the products the model
+//!    forms from them (`m L³`, `m d0² ℓ`, `F L`, `q̇ᵀ M q̇`) stay finite doubles.
 //! 2. The beam's element frequencies squared, `K/(inertia)` of each joint spring against its own
 //!    element ([`Beam`](crate::beam::Beam) checks them), lie within [`FREQUENCY_SQUARED`]: the
 //!    stiffness and mass matrices are then within 120 decades of each other, so the modal and
