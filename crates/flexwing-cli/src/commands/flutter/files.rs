@@ -115,11 +115,7 @@ pub fn write_files(dir: &Path, outcome: &Outcome, with_plot: bool) -> anyhow::Re
                 pk_flutter_speed_m_s: pk.and_then(|c| finite(c.speed)),
                 pk_flutter_frequency_rad_s: pk.and_then(|c| finite(c.frequency)),
                 wall_time_s: finite(r.wall_time_s),
-                status: if r.status.is_complete() {
-                    "complete"
-                } else {
-                    "incomplete"
-                },
+                status: crate::commands::run_word(&r.status),
             }
         }),
     )?;

@@ -155,7 +155,7 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
         let _ = writeln!(s, "status: complete");
     }
     for i in &outcome.incomplete {
-        let _ = writeln!(s, "status: incomplete: {}: {}", i.what, i.message);
+        let _ = writeln!(s, "status: {}: {}: {}", i.word, i.what, i.message);
     }
     for f in files {
         let _ = writeln!(s, "wrote {}", f.display());
@@ -309,11 +309,7 @@ fn json_model<'a>(outcome: &'a Outcome, r: &FlutterRun) -> JsonModel<'a> {
             })
             .collect(),
         equilibria_complete: r.equilibria_status.is_complete(),
-        status: if r.status.is_complete() {
-            "complete"
-        } else {
-            "incomplete"
-        },
+        status: crate::commands::run_word(&r.status),
         error: outcome.message_of(r),
     }
 }

@@ -66,7 +66,10 @@ impl ResponsePlan {
             } else {
                 Err(InputError::new(
                     format!("{field}.{name}"),
-                    format!("must be a finite positive number, got {v}"),
+                    format!(
+                        "must be a finite positive number, got {}",
+                        crate::text::short(v)
+                    ),
                 ))
             }
         };
@@ -76,7 +79,10 @@ impl ResponsePlan {
         if !(self.max_step > 0.0) {
             return Err(InputError::new(
                 format!("{field}.max_step"),
-                format!("must be positive, got {}", self.max_step),
+                format!(
+                    "must be positive, got {}",
+                    crate::text::short(self.max_step)
+                ),
             ));
         }
         if self.time_functions.len() != self.loads.len() {

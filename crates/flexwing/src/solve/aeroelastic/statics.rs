@@ -52,7 +52,10 @@ impl StaticAeroPlan {
             if !(u.is_finite() && u >= 0.0) || (i > 0 && u <= self.speeds[i - 1]) {
                 return Err(InputError::new(
                     format!("{field}.speeds[{i}]"),
-                    format!("speeds must be finite, non-negative and strictly increasing, got {u}"),
+                    format!(
+                        "speeds must be finite, non-negative and strictly increasing, got {}",
+                        crate::text::short(u)
+                    ),
                 ));
             }
         }
@@ -65,7 +68,10 @@ impl StaticAeroPlan {
         if !(self.divergence_tolerance > 0.0 && self.divergence_tolerance < 1.0) {
             return Err(InputError::new(
                 format!("{field}.divergence_tolerance"),
-                format!("must be in (0, 1), got {}", self.divergence_tolerance),
+                format!(
+                    "must be in (0, 1), got {}",
+                    crate::text::short(self.divergence_tolerance)
+                ),
             ));
         }
         self.options.validate(&format!("{field}.options"))
