@@ -261,8 +261,8 @@ fn scaling(quick: bool) {
          0.2/n rad per joint. Tip difference: against the dense path at the same setting (n ≤ \
          160), and against the chain path with steps ≤ 3 ms and rtol 1e-3 (n ≤ 3000)\n"
     );
-    println!("| n | Newton systems | steps (rejected) | RHS | linearizations | factorizations | Newton its | tip vs dense (m) | tip vs halved (m) | wall time | per step | slope |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| n | Newton systems | steps (rejected) | of which Newton failed | RHS | linearizations | factorizations | Newton its | tip vs dense (m) | tip vs halved (m) | wall time | per step | slope |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let sizes: &[usize] = if quick {
         &[10, 20, 40, 80, 160, 320, 1000, 3000, 10000]
     } else {
@@ -291,9 +291,10 @@ fn scaling(quick: bool) {
         let row = |label: &str, r: &FullRun, vs_dense: String, vs_half: String, sl: String| {
             let attempts = (r.stats.steps + r.stats.rejected_steps) as f64;
             println!(
-                "| {n} | {label} | {} ({}) | {} | {} | {} | {} | {vs_dense} | {vs_half} | {} | {} | {sl} |{}",
+                "| {n} | {label} | {} ({}) | {} | {} | {} | {} | {} | {vs_dense} | {vs_half} | {} | {} | {sl} |{}",
                 r.stats.steps,
                 r.stats.rejected_steps,
+                r.stats.newton_failures,
                 r.stats.rhs_evaluations,
                 r.stats.jacobian_evaluations,
                 r.stats.factorizations,
