@@ -621,6 +621,13 @@ impl<T: Field> ChainFactor<T> {
     pub(crate) fn negative_pivots(&self) -> Option<usize> {
         self.symmetric.then_some(self.negative)
     }
+
+    /// The count of [`ChainFactor::negative_pivots`] for a caller that has established by
+    /// other means that the operator is symmetric (a linearization flagged unsymmetric only by
+    /// a follower force scaled to zero).
+    pub(crate) fn negative_pivots_assuming_symmetry(&self) -> usize {
+        self.negative
+    }
 }
 
 impl ChainFactor<f64> {
