@@ -910,6 +910,72 @@ mod tests {
         }
     }
 
+    /// With follower forces (at the tip node, where the chain form of their rates is exact) the
+    /// static tangent is not symmetric and the pivot count has no meaning of its own, but its
+    /// parity is the sign of `det K_T`: each real 2 × 2 pivot adds 1 exactly when its determinant
+    /// is negative (0 or 2 otherwise), the sweep is a block elimination, and `T` (joint to
+    /// absolute angles) has determinant 1. Checked against the sign of the dense LU's
+    /// determinant on compressed, bent states, two with `det K_T < 0` (divergence); the
+    /// determinants here are 1e20–1e53 in size, far from a sign change. Groundwork for the
+    /// stability of follower-loaded equilibria above `FOLLOWER_STABILITY_MAX_DOFS` (not wired into
+    /// statics yet).
+    #[test]
+    fn pivot_parity_is_the_determinant_sign_under_follower_loads() {
+        for torsion in [false, true] {
+            let model = model(torsion, 12);
+            let nd = model.n_dofs();
+            let mut negative_seen = 0;
+            // (follower tangential, follower normal, dead fx, amplitude of the bent state)
+            for (ft, fnorm, fx, q_amp) in [
+                (-1.0, 0.5, -1.0, 0.0),
+                (-5.0, 3.0, -40.0, 0.0),
+                (-5.0, 5.0, -400.0, 0.02),
+                (2.0, 1.0, -3000.0, 0.05),
+                (-20.0, 20.0, -9000.0, 0.1),
+                (-150.0, 0.0, -150.0, 0.3),
+                (10.0, 3.0, -100.0, 0.01),
+                (-30.0, 3.0, -30.0, 0.01),
+                (-300.0, 3.0, 0.0, 0.01),
+            ] {
+                let l = model
+                    .apply(
+                        &[
+                            Load::PointForce {
+                                span: 2.0,
+                                force: Force::Follower {
+                                    tangential: ft,
+                                    normal: fnorm,
+                                },
+                            },
+                            Load::PointForce {
+                                span: 2.0,
+                                force: Force::Dead { fx, fy: 0.5 },
+                            },
+                            Load::Gravity { g: 9.81 },
+                        ],
+                        "loads",
+                    )
+                    .unwrap();
+                let q: Vec<f64> = state(nd).iter().map(|v| v * q_amp).collect();
+                let [_, k, g] = dense(&model, &q, &l);
+                let det = (&k + &g).lu().determinant();
+                let mut lin = ChainLinearization::new(&model);
+                lin.update(&model, &q, None, Some((&l, &[1.0, 1.0, 1.0])));
+                assert!(!lin.is_symmetric());
+                let mut f = ChainFactor::<f64>::new(model.n_elements());
+                assert!(f.factor(&model, &lin, Shift::statics()));
+                assert_eq!(f.negative_pivots(), None, "unsymmetric: no inertia");
+                assert_eq!(
+                    f.negative % 2 == 1,
+                    det < 0.0,
+                    "torsion {torsion}, follower {ft}/{fnorm}, dead {fx}: det {det:e}"
+                );
+                negative_seen += usize::from(det < 0.0);
+            }
+            assert!(negative_seen > 0, "the test needs a negative determinant");
+        }
+    }
+
     /// The operator about a moving state, `c_v c_p M + c_p B − g c_v Bᵀ − g G_x + K` (`B =
     /// ∂(M q̇)/∂q`, `G_x = ∂γ/∂q|_q̇`; module documentation), against the dense matrices of
     /// `model::kinetic` (dual numbers, checked against finite differences there), for the
