@@ -5,7 +5,8 @@
 //! right-hand side and one Jacobian against n.
 //!
 //! Run: `cargo bench -p flexwing --bench dynamics` (add `-- --quick` for a short run, `--
-//! --scaling` for the tables against n only).
+//! --scaling` for the tables against n only, `-- --mass-diagonal` for the diagonal of `M⁻¹`
+//! against n only).
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -261,8 +262,8 @@ fn scaling(quick: bool) {
          0.2/n rad per joint. Tip difference: against the dense path at the same setting (n ≤ \
          160), and against the chain path with steps ≤ 3 ms and rtol 1e-3 (n ≤ 3000)\n"
     );
-    println!("| n | Newton systems | steps (rejected) | RHS | linearizations | factorizations | Newton its | tip vs dense (m) | tip vs halved (m) | wall time | per step | slope |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| n | Newton systems | steps (rejected) | of which Newton failed | RHS | linearizations | factorizations | Newton its | tip vs dense (m) | tip vs halved (m) | wall time | per step | slope |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let sizes: &[usize] = if quick {
         &[10, 20, 40, 80, 160, 320, 1000, 3000, 10000]
     } else {
@@ -291,9 +292,10 @@ fn scaling(quick: bool) {
         let row = |label: &str, r: &FullRun, vs_dense: String, vs_half: String, sl: String| {
             let attempts = (r.stats.steps + r.stats.rejected_steps) as f64;
             println!(
-                "| {n} | {label} | {} ({}) | {} | {} | {} | {} | {vs_dense} | {vs_half} | {} | {} | {sl} |{}",
+                "| {n} | {label} | {} ({}) | {} | {} | {} | {} | {} | {vs_dense} | {vs_half} | {} | {} | {sl} |{}",
                 r.stats.steps,
                 r.stats.rejected_steps,
+                r.stats.newton_failures,
                 r.stats.rhs_evaluations,
                 r.stats.jacobian_evaluations,
                 r.stats.factorizations,
@@ -321,6 +323,60 @@ fn scaling(quick: bool) {
     }
 }
 
+/// The diagonal of `M(0)⁻¹` that gives the momenta their tolerances (once per run,
+/// `EquationsOfMotion::state_atol`): the O(n) covariance sweep against n unit solves (the O(n²)
+/// method it replaced, up to n = 3000), with the largest relative difference between the two.
+fn inverse_mass_diagonal_table(quick: bool) {
+    println!(
+        "\nDiagonal of M(0)⁻¹ against n (Table 4 beam): `FullModel::inverse_mass_diagonal` (O(n) \
+         sweep) against n O(n) unit solves; median of batches, slope against the previous row\n"
+    );
+    println!("| n | sweep | spread | slope | unit solves | slope | largest relative difference |");
+    println!("|---|---|---|---|---|---|---|");
+    let budget = Duration::from_millis(if quick { 50 } else { 300 });
+    let (mut prev_s, mut prev_u) = (None, None);
+    for n in [20, 80, 320, 1000, 3000, 10000] {
+        let full = table4(n);
+        let nd = full.n_dofs();
+        let q = vec![0.0; nd];
+        let mut ws = full.workspace();
+        let mut diag = Vec::new();
+        let (t_s, spread) = measure(budget, 3, || {
+            diag = full
+                .inverse_mass_diagonal(black_box(&q), &mut ws)
+                .expect("positive definite");
+        });
+        let unit_cols = if n <= 3000 {
+            let (mut unit, mut col) = (vec![0.0; nd], vec![0.0; nd]);
+            let mut worst = 0.0f64;
+            let start = std::time::Instant::now();
+            for k in 0..nd {
+                unit[k] = 1.0;
+                assert!(full.solve_mass_into(&q, &unit, &mut ws, &mut col));
+                unit[k] = 0.0;
+                worst = worst.max((diag[k] - col[k]).abs() / col[k].abs());
+            }
+            let t_u = start.elapsed().as_secs_f64();
+            let cols = format!(
+                "{} | {} | {worst:.1e}",
+                fmt_time(t_u),
+                slope(prev_u, n, t_u)
+            );
+            prev_u = Some((n, t_u));
+            cols
+        } else {
+            "– | – | –".into()
+        };
+        println!(
+            "| {n} | {} | {:.0} % | {} | {unit_cols} |",
+            fmt_time(t_s),
+            100.0 * spread,
+            slope(prev_s, n, t_s)
+        );
+        prev_s = Some((n, t_s));
+    }
+}
+
 fn max_diff(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
     a.iter()
         .zip(b)
@@ -330,7 +386,12 @@ fn max_diff(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
 
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
+    if std::env::args().any(|a| a == "--mass-diagonal") {
+        inverse_mass_diagonal_table(quick);
+        return;
+    }
     if std::env::args().any(|a| a == "--scaling") {
+        inverse_mass_diagonal_table(quick);
         // Only the tables against n up to 10 000 (a few minutes).
         scaling(quick);
         return;

@@ -156,9 +156,11 @@ fn radau_on_case_b_gives_the_dense_paths_trajectory() {
 fn coupled_torsion_beam_gives_the_dense_paths_trajectory() {
     // The Table 1 beam (bending–torsion coupling through d0 = 0.267 m), n = 24 (48 coordinates),
     // tip force 100 sin(2 t) N and tip torque 50 sin(3 t) N·m, 2 s, Radau at rtol 1e-8 with both
-    // Newton systems, and the dense path at rtol 1e-10 as reference. Measured: dense 3.5e-5 m and
-    // chain 5.1e-5 m from the reference (the integration error at rtol 1e-8, on a 16 m span),
-    // 1.6e-5 m apart. Bounds: 1e-4 m from the reference, 5e-5 m apart.
+    // Newton systems, and the dense path at rtol 1e-10 as reference. Measured (since the momenta's
+    // tolerances follow the diagonal of M(0)⁻¹): dense 6.5e-5 m and chain 1.00e-4 m from the
+    // reference (the integration error at rtol 1e-8, on a 16 m span; the chain's sits at 1.00e-4
+    // to within round-off of the tolerances), 3.5e-5 m apart. Bounds: 2e-4 m from the reference
+    // (twice the larger), 5e-5 m apart.
     let model = model(16.0, &table1_section(), 24, Calibration::TipLoad);
     let loads = vec![
         Load::PointForce {
@@ -192,7 +194,7 @@ fn coupled_torsion_beam_gives_the_dense_paths_trajectory() {
         tip_difference(&model, &chain, &reference),
     );
     eprintln!("Table 1 beam, n = 24: chain − dense {d:.2e} m, errors dense {ed:.2e} chain {ec:.2e}, {stats:?}");
-    assert!(ed < 1e-4 && ec < 1e-4, "{ed:.2e} {ec:.2e}");
+    assert!(ed < 2e-4 && ec < 2e-4, "{ed:.2e} {ec:.2e}");
     assert!(d < 5e-5, "{d:.2e}");
 }
 

@@ -162,6 +162,8 @@ pub(crate) struct ChainLinearization {
     local: Vec<[f64; 3]>,
     rate: Vec<[f64; 2]>,
     symmetric: bool,
+    /// Whether the load stiffness's chain form is exact (`Resultants::chain_exact`).
+    exact: bool,
     /// Velocities of the linearization point (zeros at rest).
     qdot: Vec<f64>,
     duals: Duals,
@@ -192,6 +194,7 @@ impl ChainLinearization {
             local: vec![[0.0; 3]; n],
             rate: vec![[0.0; 2]; n],
             symmetric: true,
+            exact: true,
             qdot: vec![0.0; nd],
             duals: Duals {
                 scratch: KineticScratch::new(n),
@@ -237,8 +240,10 @@ impl ChainLinearization {
                     &mut self.local,
                     &mut self.rate,
                 );
+                self.exact = self.resultants.chain_exact(&model.ell);
             }
             None => {
+                self.exact = true;
                 self.local.fill([0.0; 3]);
                 self.rate.fill([0.0; 2]);
             }
@@ -309,6 +314,13 @@ impl ChainLinearization {
             outboard[0] += m * gd[0];
             outboard[1] += m * gd[1];
         }
+    }
+
+    /// Whether the static tangent of this linearization is exact: every follower force at a
+    /// node or an element midpoint (otherwise the sweep solves a nearby operator, and Newton
+    /// iterations with it are simplified ones).
+    pub(crate) fn is_exact(&self) -> bool {
+        self.exact
     }
 
     /// Whether every real operator of this linearization is symmetric: at rest, and no
@@ -621,6 +633,22 @@ impl<T: Field> ChainFactor<T> {
     pub(crate) fn negative_pivots(&self) -> Option<usize> {
         self.symmetric.then_some(self.negative)
     }
+
+    /// The count of [`ChainFactor::negative_pivots`] for a caller that has established by
+    /// other means that the operator is symmetric (a linearization flagged unsymmetric only by
+    /// a follower force scaled to zero).
+    pub(crate) fn negative_pivots_assuming_symmetry(&self) -> usize {
+        self.negative
+    }
+
+    /// Whether the determinant of the factored real operator is negative, symmetric or not:
+    /// each 2 × 2 pivot adds 1 to the count exactly when its determinant is negative (0 or 2
+    /// otherwise), the sweep is a block elimination, and the map from joint to absolute angles
+    /// has determinant 1, so the count's parity is the sign of the product of the pivots'
+    /// determinants (test `pivot_parity_is_the_determinant_sign_under_follower_loads`).
+    pub(crate) fn determinant_negative(&self) -> bool {
+        self.negative % 2 == 1
+    }
 }
 
 impl ChainFactor<f64> {
@@ -785,6 +813,8 @@ mod tests {
                     None,
                     Some((&loads, &vec![1.0; loads.n_loads()])),
                 );
+                // Follower forces at a node and distributed ones: the chain form is exact.
+                assert!(lin.is_exact());
                 assert_eq!(lin.is_symmetric(), !follower);
                 let b: Vec<f64> = (0..nd).map(|i| 1.0 + (0.7 * i as f64).sin()).collect();
                 let want = (&k + &g)
@@ -827,6 +857,7 @@ mod tests {
                 None,
                 Some((&loads, &vec![1.0; loads.n_loads()])),
             );
+            assert!(!lin.is_exact(), "the linearization knows it is approximate");
             let mut f = ChainFactor::<f64>::new(model.n_elements());
             assert!(f.factor(&model, &lin, Shift::statics()));
             let b = DVector::from_fn(nd, |i, _| 1.0 + (0.7 * i as f64).sin());
@@ -900,6 +931,72 @@ mod tests {
                     assert!(want > 0, "the test needs an indefinite case");
                 }
             }
+        }
+    }
+
+    /// With follower forces (at the tip node, where the chain form of their rates is exact) the
+    /// static tangent is not symmetric and the pivot count has no meaning of its own, but its
+    /// parity is the sign of `det K_T`: each real 2 × 2 pivot adds 1 exactly when its determinant
+    /// is negative (0 or 2 otherwise), the sweep is a block elimination, and `T` (joint to
+    /// absolute angles) has determinant 1. Checked against the sign of the dense LU's
+    /// determinant on compressed, bent states, two with `det K_T < 0` (divergence); the
+    /// determinants here are 1e20–1e53 in size, far from a sign change. What the stability of
+    /// follower-loaded equilibria (`solve/statics.rs`) rests on.
+    #[test]
+    fn pivot_parity_is_the_determinant_sign_under_follower_loads() {
+        for torsion in [false, true] {
+            let model = model(torsion, 12);
+            let nd = model.n_dofs();
+            let mut negative_seen = 0;
+            // (follower tangential, follower normal, dead fx, amplitude of the bent state)
+            for (ft, fnorm, fx, q_amp) in [
+                (-1.0, 0.5, -1.0, 0.0),
+                (-5.0, 3.0, -40.0, 0.0),
+                (-5.0, 5.0, -400.0, 0.02),
+                (2.0, 1.0, -3000.0, 0.05),
+                (-20.0, 20.0, -9000.0, 0.1),
+                (-150.0, 0.0, -150.0, 0.3),
+                (10.0, 3.0, -100.0, 0.01),
+                (-30.0, 3.0, -30.0, 0.01),
+                (-300.0, 3.0, 0.0, 0.01),
+            ] {
+                let l = model
+                    .apply(
+                        &[
+                            Load::PointForce {
+                                span: 2.0,
+                                force: Force::Follower {
+                                    tangential: ft,
+                                    normal: fnorm,
+                                },
+                            },
+                            Load::PointForce {
+                                span: 2.0,
+                                force: Force::Dead { fx, fy: 0.5 },
+                            },
+                            Load::Gravity { g: 9.81 },
+                        ],
+                        "loads",
+                    )
+                    .unwrap();
+                let q: Vec<f64> = state(nd).iter().map(|v| v * q_amp).collect();
+                let [_, k, g] = dense(&model, &q, &l);
+                let det = (&k + &g).lu().determinant();
+                let mut lin = ChainLinearization::new(&model);
+                lin.update(&model, &q, None, Some((&l, &[1.0, 1.0, 1.0])));
+                assert!(!lin.is_symmetric());
+                assert!(lin.is_exact(), "a follower force at a node");
+                let mut f = ChainFactor::<f64>::new(model.n_elements());
+                assert!(f.factor(&model, &lin, Shift::statics()));
+                assert_eq!(f.negative_pivots(), None, "unsymmetric: no inertia");
+                assert_eq!(
+                    f.determinant_negative(),
+                    det < 0.0,
+                    "torsion {torsion}, follower {ft}/{fnorm}, dead {fx}: det {det:e}"
+                );
+                negative_seen += usize::from(det < 0.0);
+            }
+            assert!(negative_seen > 0, "the test needs a negative determinant");
         }
     }
 

@@ -51,6 +51,27 @@
 //! about 80 flops per element and allocates nothing; it is generic over the scalar so that its
 //! derivatives come from dual numbers.
 //!
+//! # The diagonal of `M⁻¹` in O(n)
+//!
+//! The backward sweep is also a factorization of the Gaussian density `∝ exp(−½ uᵀ M_abs u)`,
+//! whose covariance is `M_abs⁻¹`: integrating out `u_n, u_{n−1}, …` from the tip (the same Schur
+//! complements as the minimization) leaves `u_i | u_{<i} ~ N(−K_i V_{i−1}, H_i⁻¹)`, so `u` is
+//! generated forward by `u_i = −K_i V_{i−1} + ε_i`, `V_i = F_i V_{i−1} + A_i ε_i` with
+//! `F_i = I − A_i K_i`, `ε_i ~ N(0, H_i⁻¹)` independent, `V_0 = 0`. One forward sweep of the
+//! node-velocity covariance `Σ_i = Cov(V_i)` then gives every block needed, 2 × 2 each:
+//!
+//! ```text
+//! Σ_i = F_i Σ_{i−1} F_iᵀ + A_i H_i⁻¹ A_iᵀ                 (Σ_0 = 0, a sum of PSD terms)
+//! S_ii = Cov(u_i) = K_i Σ_{i−1} K_iᵀ + H_i⁻¹
+//! C_i = Cov(V_i, u_i) = −F_i Σ_{i−1} K_iᵀ + A_i H_i⁻¹
+//! Cov(u_{i+1}, u_i) = −K_{i+1} C_i
+//! ```
+//!
+//! and with `q̇_i = u_i − u_{i−1}` (per component θ, ψ), `(M⁻¹)_ii = Var(q̇_i) = S_ii + S_{i−1,i−1}
+//! − 2 Cov(u_i, u_{i−1})`. This is the chain case of the O(n) diagonal of a tree's inverse mass
+//! matrix (the "inverse inertia" sweeps of the articulated-body literature; here in the language
+//! of the Rauch–Tung–Striebel smoother's covariances, Anderson & Moore, *Optimal Filtering*, §7.2).
+//!
 //! # References
 //! Featherstone, *Rigid Body Dynamics Algorithms*, Springer 2008, ch. 7 (the articulated-body
 //! algorithm, the same backward/forward structure for the inverse of a chain's mass matrix);
@@ -255,6 +276,85 @@ impl FullModel {
             let l = self.ell[i];
             v[0] -= sc.sin_theta[i] * u_th * l;
             v[1] += sc.cos_theta[i] * u_th * l;
+        }
+    }
+
+    /// Diagonal of `M(q)⁻¹` in joint coordinates into `out`, in O(n), with the factorization of
+    /// [`Self::factor_mass_configured`]: one forward sweep of the node-velocity covariance
+    /// (module documentation, "The diagonal of `M⁻¹` in O(n)"). A bending-only model fills the
+    /// first `n` entries.
+    pub(crate) fn inverse_diagonal_factored(
+        &self,
+        sc: &KineticScratch<f64>,
+        chain: &ChainScratch<f64>,
+        out: &mut [f64],
+    ) {
+        type M2 = [[f64; 2]; 2];
+        let mul = |a: &M2, b: &M2| -> M2 {
+            let mut c = [[0.0; 2]; 2];
+            for r in 0..2 {
+                for k in 0..2 {
+                    c[r][k] = a[r][0] * b[0][k] + a[r][1] * b[1][k];
+                }
+            }
+            c
+        };
+        let tr = |a: &M2| -> M2 { [[a[0][0], a[1][0]], [a[0][1], a[1][1]]] };
+        let n = self.n;
+        // Σ_{i−1}, Cov(V_{i−1}, u_{i−1}) and Var(u_{i−1}) carried from the previous element.
+        let mut sigma: M2 = [[0.0; 2]; 2];
+        let mut c_prev: M2 = [[0.0; 2]; 2];
+        let mut s_prev: M2 = [[0.0; 2]; 2];
+        for i in 0..n {
+            let g = chain.gain[i];
+            let k: M2 = [[g[0], g[1]], [g[2], g[3]]];
+            // H⁻¹ column by column.
+            let h0 = solve2(chain.pivot[i], [1.0, 0.0]);
+            let h1 = solve2(chain.pivot[i], [0.0, 1.0]);
+            let hinv: M2 = [[h0[0], h1[0]], [h0[1], h1[1]]];
+            // A = [ℓ n, 0]: A X has rows ℓ n_r X[0][·].
+            let l = self.ell[i];
+            let a_col = [-sc.sin_theta[i] * l, sc.cos_theta[i] * l];
+            let a_mul = |x: &M2| -> M2 {
+                [
+                    [a_col[0] * x[0][0], a_col[0] * x[0][1]],
+                    [a_col[1] * x[0][0], a_col[1] * x[0][1]],
+                ]
+            };
+            let ak = a_mul(&k);
+            let f: M2 = [[1.0 - ak[0][0], -ak[0][1]], [-ak[1][0], 1.0 - ak[1][1]]];
+            let sigma_kt = mul(&sigma, &tr(&k));
+            let ks = mul(&k, &sigma_kt);
+            let s_ii: M2 = [
+                [ks[0][0] + hinv[0][0], ks[0][1] + hinv[0][1]],
+                [ks[1][0] + hinv[1][0], ks[1][1] + hinv[1][1]],
+            ];
+            // Cov(u_i, u_{i−1}) = −K_i C_{i−1}.
+            let cross = mul(&k, &c_prev);
+            out[i] = s_ii[0][0] + s_prev[0][0] + 2.0 * cross[0][0];
+            if self.torsion {
+                out[n + i] = s_ii[1][1] + s_prev[1][1] + 2.0 * cross[1][1];
+            }
+            // C_i = −F Σ Kᵀ + A H⁻¹, Σ_i = F Σ Fᵀ + A H⁻¹ Aᵀ.
+            let fsk = mul(&f, &sigma_kt);
+            let ah = a_mul(&hinv);
+            c_prev = [
+                [ah[0][0] - fsk[0][0], ah[0][1] - fsk[0][1]],
+                [ah[1][0] - fsk[1][0], ah[1][1] - fsk[1][1]],
+            ];
+            let fsf = mul(&f, &mul(&sigma, &tr(&f)));
+            let q = hinv[0][0];
+            sigma = [
+                [
+                    fsf[0][0] + a_col[0] * a_col[0] * q,
+                    fsf[0][1] + a_col[0] * a_col[1] * q,
+                ],
+                [
+                    fsf[1][0] + a_col[1] * a_col[0] * q,
+                    fsf[1][1] + a_col[1] * a_col[1] * q,
+                ],
+            ];
+            s_prev = s_ii;
         }
     }
 }

@@ -250,9 +250,9 @@ impl FullModel {
     }
 
     /// Diagonal of `M(q)⁻¹`, or `None` if `M(q)` is not positive definite: one chain
-    /// factorization and `n_dofs` unit solves, O(n²) time and O(n) memory (the dense inverse
-    /// would take O(n²) memory). Used once per run to give momentum tolerances their meaning
-    /// (`EquationsOfMotion::state_atol`).
+    /// factorization and one forward sweep of covariances, O(n) time and memory
+    /// (`model/chain_solve.rs`, "The diagonal of `M⁻¹` in O(n)"). Used once per run to give
+    /// momentum tolerances their meaning (`EquationsOfMotion::state_atol`).
     pub fn inverse_mass_diagonal(&self, q: &[f64], ws: &mut Workspace) -> Option<Vec<f64>> {
         let nd = self.n_dofs();
         assert_eq!(q.len(), nd, "q must have n_dofs entries");
@@ -260,14 +260,8 @@ impl FullModel {
         if !self.factor_mass_configured(&ws.kinetic, &mut ws.chain) {
             return None;
         }
-        let (mut unit, mut col) = (vec![0.0; nd], vec![0.0; nd]);
         let mut diagonal = vec![0.0; nd];
-        for k in 0..nd {
-            unit[k] = 1.0;
-            self.solve_factored(&ws.kinetic, &mut ws.chain, &unit, &mut col);
-            unit[k] = 0.0;
-            diagonal[k] = col[k];
-        }
+        self.inverse_diagonal_factored(&ws.kinetic, &ws.chain, &mut diagonal);
         Some(diagonal)
     }
 

@@ -596,6 +596,26 @@ pub(super) struct Resultants {
 }
 
 impl Resultants {
+    /// Whether the chain form of the load stiffness (`FullModel::chain_load_stiffness`) is
+    /// exact for elements of lengths `ell`. It carries a follower force's rate with the
+    /// neighbouring angles through the levers of whole elements, which is exact when the force
+    /// turning with `θ_{k−1}` has no arm on its element `k` (it sits at the element's inboard
+    /// node) and the one turning with `θ_{k+1}` has the arm `ℓ_k` (the outboard node); forces
+    /// turning with their own element's angle only (midpoints) are exact anyway. The terms left
+    /// out otherwise are next to the diagonal.
+    pub(super) fn chain_exact(&self, ell: &[f64]) -> bool {
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (a.abs() + b.abs());
+        self.arm_rate
+            .iter()
+            .zip(&self.force_rate)
+            .zip(ell)
+            .all(|((arm, rate), &l)| {
+                arm[0] == [0.0, 0.0]
+                    && close(arm[2][0], l * rate[2][0])
+                    && close(arm[2][1], l * rate[2][1])
+            })
+    }
+
     pub(super) fn zeros(n: usize) -> Self {
         Self {
             force: vec![[0.0; 2]; n],

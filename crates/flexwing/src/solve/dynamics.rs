@@ -521,14 +521,13 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     ///   the coordinate's tolerance in `x_k` alone carries as strain energy `½ K_kk δx_k²` (for
     ///   a reduced model on mass-normalized modes, the modal frequency times the amplitude's
     ///   tolerance; for a coordinate without stiffness, `1 / (M(0)⁻¹)_kk` per second). For the
-    ///   full model `1 / (M(0)⁻¹)_kk` is replaced by the diagonal `M_kk(0)` (the inertia of the
-    ///   chain outboard of joint k with the other joints locked), which keeps this O(n).
+    ///   full model `(M(0)⁻¹)_kk` comes from [`crate::model::FullModel::inverse_mass_diagonal`] in O(n).
     pub fn state_atol(&mut self, atol: f64) -> Vec<f64> {
         let r = self.n;
         let x0 = vec![0.0; r];
         if let Some(full) = self.model.as_full_model() {
             // q = x: every coordinate gets `atol`; (M(0)⁻¹)_kk by one chain factorization and
-            // n unit solves, O(n²) once per run (about 1 s at n = 10 000) in O(n) memory.
+            // one forward covariance sweep, O(n).
             let k = full.stiffness();
             let mut v = vec![atol; r];
             match full.inverse_mass_diagonal(&x0, &mut full.workspace()) {

@@ -99,7 +99,7 @@ impl Pencil for ModalPencil<'_> {
             .kinetic_terms_configured(x, &mut self.kinetic, Some(out), None);
     }
     fn apply_a(&mut self, bx: &[f64], out: &mut [f64]) {
-        self.tangent.solve(bx, out);
+        self.tangent.solve(self.model, bx, out);
     }
 }
 

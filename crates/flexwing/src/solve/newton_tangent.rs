@@ -143,6 +143,17 @@ impl Tangent {
         }
     }
 
+    /// Whether the determinant of the last factored tangent is negative, from the chain sweep's
+    /// pivots at no extra cost, symmetric or not (`ChainFactor::determinant_negative`); `None`
+    /// for the dense path, and where the sweep's load stiffness is not exact (a follower force
+    /// strictly inside an element: `ChainLinearization::is_exact`).
+    pub(crate) fn determinant_negative(&self) -> Option<bool> {
+        match self {
+            Tangent::Chain { lin, factor } => lin.is_exact().then(|| factor.determinant_negative()),
+            Tangent::Dense { .. } => None,
+        }
+    }
+
     /// Whether the last factored tangent is positive definite (the equilibrium is stable):
     /// `Some` for a symmetric tangent (conservative loads), `None` when it is not symmetric
     /// (follower forces). From the pivots' signs for the chain sweep (no extra cost), by a

@@ -142,9 +142,11 @@ pub struct StaticSolution {
     ///   (a saddle or a neutral state); under follower loads its determinant is negative (static
     ///   divergence, unstable whatever the mass and damping);
     /// * `None`: follower (non-conservative) loads with a positive determinant: statics cannot
-    ///   tell (the point may still flutter); not assessed. Also `None` under follower loads for
-    ///   models above [`FOLLOWER_STABILITY_MAX_DOFS`] coordinates, where the determinant's dense
-    ///   LU (O(n³)) would cost more than the solve.
+    ///   tell (the point may still flutter); not assessed. Also `None` under follower loads
+    ///   strictly inside an element for models above [`FOLLOWER_STABILITY_MAX_DOFS`]
+    ///   coordinates, where the determinant's dense LU (O(n³)) would cost more than the solve
+    ///   (followers at nodes and element midpoints get the determinant's sign from the O(n)
+    ///   chain factorization at any size).
     ///
     /// Load control ([`solve_static`], [`continue_static`], [`sweep_static`]) never returns a
     /// point with `Some(false)`: it stops with [`SolveError::StaticUnstable`] instead. Arc-length
@@ -154,11 +156,13 @@ pub struct StaticSolution {
     pub stats: StaticStats,
 }
 
-/// Above this many coordinates the stability of an equilibrium under follower loads is not
-/// assessed ([`StaticSolution::stable`] is `None`): its test, the sign of the tangent's
-/// determinant, takes a dense LU, O(n³) — about 0.05 s at 600 coordinates, an hour at 20 000
-/// (measured 12 min for the two n = 10 000 solves of tests/statics_elastica.rs). The O(n) chain
-/// sweep gives the inertia of symmetric tangents only.
+/// Above this many coordinates the stability of an equilibrium under follower loads strictly
+/// inside an element is not assessed ([`StaticSolution::stable`] is `None`): its test, the sign
+/// of the tangent's determinant, takes a dense LU there, O(n³) — about 0.05 s at 600
+/// coordinates, an hour at 20 000 (measured 12 min for the two n = 10 000 solves of
+/// tests/statics_elastica.rs). Followers at nodes and element midpoints (a tip follower force,
+/// distributed followers) take the sign from the pivots of the O(n) chain factorization of the
+/// full model, exact for them, at any size.
 pub const FOLLOWER_STABILITY_MAX_DOFS: usize = 600;
 
 /// Solve `K x = Q(x; scales)` for the loads `loads` scaled by `scales`, starting at rest
@@ -465,13 +469,25 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
     /// Stability of the equilibrium `x` (see [`StaticSolution::stable`]): for conservative loads
     /// from the pivots of the O(n) chain factorization of the tangent (Sylvester's law of
     /// inertia) where the model has one, else by a dense Cholesky attempt; for follower loads
-    /// from the sign of the dense tangent's determinant.
+    /// from the sign of the tangent's determinant, by the chain factorization's pivots where its
+    /// tangent is exact (followers at nodes and element midpoints), else from a dense LU up to
+    /// [`FOLLOWER_STABILITY_MAX_DOFS`] coordinates.
     pub(super) fn stability(
         &mut self,
         x: &DVector<f64>,
         scales: &[f64],
         conservative: bool,
     ) -> Option<bool> {
+        if !conservative
+            && self
+                .tangent
+                .factor(self.model, &mut self.ws, x.as_slice(), self.loads, scales)
+        {
+            if let Some(negative) = self.tangent.determinant_negative() {
+                self.stats.stability_checks += 1;
+                return negative.then_some(false);
+            }
+        }
         if !conservative && self.model.n_dofs() > FOLLOWER_STABILITY_MAX_DOFS {
             return None;
         }
@@ -733,6 +749,88 @@ mod tests {
         );
         assert_eq!(tangent_stability(m(&[1.0, 5.0, -5.0, 1.0]), false), None);
         assert_eq!(tangent_stability(m(&[-1.0, 0.0, 0.0, -1.0]), false), None);
+    }
+
+    /// The stability of follower-loaded states from the chain factorization's pivots (the sign of
+    /// `det K_T`) against the dense LU's determinant sign, below and above
+    /// `FOLLOWER_STABILITY_MAX_DOFS`: Table 4 beam, dead tip compression `P` between the first two
+    /// buckling loads (123 N and 1110 N: one negative eigenvalue, divergence) or below the first,
+    /// plus a tip follower force, straight and bent (tip angle ≈ 0.08 rad) states. Signs: exact
+    /// agreement required.
+    /// With the follower strictly inside an element the chain's tangent is not exact, and above
+    /// the limit stability is not assessed (`None`), as before.
+    #[test]
+    fn follower_stability_from_the_chain_pivots_at_any_size() {
+        use crate::model::{Force, Load};
+        for n in [40, 700] {
+            let model = crate::paper::table4_beam(n).unwrap();
+            for (p, bend, expect_divergence) in [
+                (200.0, 0.0, true),
+                (200.0, 0.08, true),
+                (60.0, 0.0, false),
+                (60.0, 0.08, false),
+            ] {
+                let loads = model
+                    .apply(
+                        &[
+                            Load::PointForce {
+                                span: 1.0,
+                                force: Force::Dead { fx: -p, fy: 0.0 },
+                            },
+                            Load::PointForce {
+                                span: 1.0,
+                                force: Force::Follower {
+                                    tangential: -5.0,
+                                    normal: 3.0,
+                                },
+                            },
+                        ],
+                        "loads",
+                    )
+                    .unwrap();
+                // Joint rotations `bend/n (1 + sin)`: a tip angle of about `bend`.
+                let x =
+                    DVector::from_fn(n, |i, _| bend / n as f64 * (1.0 + (0.3 * i as f64).sin()));
+                let mut newton = Newton::new(&model, &loads, StaticOptions::default());
+                let chain = newton.stability(&x, &[1.0, 1.0], false);
+                assert_eq!(newton.stats.stability_checks, 1);
+                let dense = tangent_stability(newton.tangent(&x, &[1.0, 1.0]), false);
+                assert_eq!(dense, expect_divergence.then_some(false), "n {n}, P {p}");
+                assert_eq!(chain, dense, "n {n}, P {p}, bend {bend}");
+            }
+            // A follower force strictly inside an element (at 0.3 of element n/2, between its
+            // inboard node and midpoint: it turns with two elements' angles).
+            let span = ((n / 2) as f64 + 0.3) / n as f64;
+            let loads = model
+                .apply(
+                    &[
+                        Load::PointForce {
+                            span: 1.0,
+                            force: Force::Dead {
+                                fx: -200.0,
+                                fy: 0.0,
+                            },
+                        },
+                        Load::PointForce {
+                            span,
+                            force: Force::Follower {
+                                tangential: -5.0,
+                                normal: 3.0,
+                            },
+                        },
+                    ],
+                    "loads",
+                )
+                .unwrap();
+            let x = DVector::from_fn(n, |i, _| 0.08 / n as f64 * (1.0 + (0.3 * i as f64).sin()));
+            let mut newton = Newton::new(&model, &loads, StaticOptions::default());
+            let got = newton.stability(&x, &[1.0, 1.0], false);
+            if n > FOLLOWER_STABILITY_MAX_DOFS {
+                assert_eq!(got, None, "inexact chain tangent above the dense limit");
+            } else {
+                assert_eq!(got, Some(false), "the dense determinant below it");
+            }
+        }
     }
 
     #[test]

@@ -478,6 +478,7 @@ impl Bdf {
                 };
                 if !converged {
                     stats.rejected_steps += 1;
+                    stats.newton_failures += 1;
                     st.h_abs *= 0.5;
                     st.change_step(0.5);
                     continue;

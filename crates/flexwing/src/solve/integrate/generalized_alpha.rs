@@ -631,6 +631,7 @@ impl GeneralizedAlpha {
                     // A stale Jacobian first, then a smaller step.
                     last_failure_non_finite = non_finite;
                     stats.rejected_steps += 1;
+                    stats.newton_failures += 1;
                     after_rejection = true;
                     if jac_current {
                         h *= 0.5;

@@ -261,6 +261,7 @@ impl ImplicitMidpoint {
                         break;
                     }
                     stats.rejected_steps += 1;
+                    stats.newton_failures += 1;
                     stage.lu_h = None;
                     parts *= 2;
                     if parts > 1024 {
@@ -294,6 +295,7 @@ impl ImplicitMidpoint {
                     );
                 if !ok {
                     stats.rejected_steps += 1;
+                    stats.newton_failures += 1;
                     h = 0.25 * h_try;
                     stage.lu_h = None;
                     continue;

@@ -114,6 +114,9 @@ pub struct IntegratorStats {
     pub steps: usize,
     /// Rejected steps (error too large or Newton failure).
     pub rejected_steps: usize,
+    /// Of the rejected steps, those whose Newton iteration failed (diverged, converged too
+    /// slowly or met a singular matrix) rather than the error test (implicit methods).
+    pub newton_failures: usize,
     /// Right-hand-side evaluations.
     pub rhs_evaluations: usize,
     /// Jacobian evaluations.
@@ -129,6 +132,7 @@ impl std::ops::AddAssign for IntegratorStats {
     fn add_assign(&mut self, b: Self) {
         self.steps += b.steps;
         self.rejected_steps += b.rejected_steps;
+        self.newton_failures += b.newton_failures;
         self.rhs_evaluations += b.rhs_evaluations;
         self.jacobian_evaluations += b.jacobian_evaluations;
         self.factorizations += b.factorizations;

@@ -304,6 +304,7 @@ impl Radau {
                     return fail(traj, stats, e);
                 }
                 stats.rejected_steps += 1;
+                stats.newton_failures += 1;
                 st.h *= 0.5;
                 st.reject = true;
                 st.last = false;
@@ -322,6 +323,7 @@ impl Radau {
                         _ => 0.5,
                     };
                     stats.rejected_steps += 1;
+                    stats.newton_failures += 1;
                     st.reject = true;
                     st.last = false;
                     st.need_jac = !st.jac_current;
