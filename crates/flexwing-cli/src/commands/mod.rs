@@ -93,10 +93,11 @@ pub fn model_line(model: &FullModel) -> String {
     } else {
         "bending and torsion, uncoupled (d0 = 0)"
     };
+    let (n, dofs) = (model.n_elements(), model.n_dofs());
     format!(
-        "model: {} elements, {} dofs, {} calibration, {kind}",
-        model.n_elements(),
-        model.n_dofs(),
+        "model: {n} element{}, {dofs} dof{}, {} calibration, {kind}",
+        if n == 1 { "" } else { "s" },
+        if dofs == 1 { "" } else { "s" },
         calibration_name(beam.calibration()),
     )
 }
