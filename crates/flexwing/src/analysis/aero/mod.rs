@@ -20,6 +20,8 @@
 pub mod flutter;
 pub mod response;
 pub mod statics;
+#[cfg(test)]
+mod audit_tests;
 
 use crate::error::{Error, InputError};
 use crate::model::aero::{AeroSection, Aerodynamics, Aeroelastic};
