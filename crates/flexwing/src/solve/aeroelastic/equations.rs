@@ -446,7 +446,11 @@ impl<M: AeroStructure> OdeSystem for AeroelasticEquations<'_, M> {
         }
         let x = &xp[..n];
         let (dx, dp) = dxp.split_at_mut(n);
-        let structural_power = if self.audit.is_some() { dot(dx, dp) } else { 0.0 };
+        let structural_power = if self.audit.is_some() {
+            dot(dx, dp)
+        } else {
+            0.0
+        };
         if let Some(g) = &self.gravity {
             let s = self.gravity_scale(t);
             self.aero
