@@ -195,7 +195,7 @@ mod tests {
     use super::*;
     use crate::beam::Profile;
     use crate::model::aero::{Aerodynamics, FlightCondition};
-    use crate::model::{AppliedLoads, Force, Load};
+    use crate::model::{Force, Load};
     use crate::solve::integrate::{OdeSystem, Radau, RadauOptions, Tolerances};
     use crate::solve::{Damping, TimeFunction};
 
