@@ -251,7 +251,7 @@ fn tables(
         .max(10);
     let _ = writeln!(
         s,
-        "{:<w$}  {:>5}  {:>11}  {:>17}  {:>6}  {:>8}  {:>5}  {:>14}  {:>13}  {:>12}  {:>12}  {:>12}  {}",
+        "{:<w$}  {:>5}  {:>11}  {:>17}  {:>6}  {:>8}  {:>5}  {:>14}  {:>13}  {:>12}  {:>12}  {:>12}  status",
         "model",
         "dofs",
         "aero states",
@@ -264,7 +264,6 @@ fn tables(
         "max Δtip (m)",
         "energy error",
         "energy limit",
-        "status"
     );
     for r in &result.runs {
         let ratio = result
