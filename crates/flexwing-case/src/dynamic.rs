@@ -202,7 +202,7 @@ fn output_times(d: &DynamicSpec) -> Result<Vec<f64>, InputError> {
                     field,
                     format!(
                         "gives {} output times; at most {MAX_OUTPUT_TIMES} are allowed",
-                        intervals + 1.0
+                        short(intervals + 1.0)
                     ),
                 ));
             }

@@ -47,7 +47,13 @@ impl CaseError {
     /// message, turns the span into a 1-based line and column (in characters), and keeps the
     /// dotted path of the offending key when toml knows it.
     pub(crate) fn toml(e: &toml::de::Error, source: &str, file: Option<&str>) -> Self {
-        let message = one_line(e.message());
+        let mut message = crate::words::in_user_terms(&one_line(e.message()));
+        // toml says only "duplicate key"; its span is the key as written.
+        if message == "duplicate key" {
+            if let Some(k) = e.span().and_then(|s| source.get(s)) {
+                message = format!("the key {} is given twice", one_line(k));
+            }
+        }
         let key = error_keys(e).map(|k| match e.span() {
             Some(span) => with_table_index(&k, source, span.start),
             None => k,
@@ -172,6 +178,15 @@ mod tests {
             e.to_string(),
             "line 3, column 10: beam.length: must be positive"
         );
+    }
+
+    #[test]
+    fn a_duplicate_key_is_named() {
+        let src = "[beam]\nlength = 1.0\nlength = 2.0\n";
+        let e = toml::from_str::<toml::Table>(src).unwrap_err();
+        let e = CaseError::toml(&e, src, None);
+        assert_eq!(e.reason, "the key length is given twice");
+        assert_eq!((e.line, e.column), (Some(3), Some(1)));
     }
 
     #[test]

@@ -42,6 +42,7 @@ mod property;
 mod spec;
 mod spec_aero;
 mod statics;
+mod words;
 
 use std::path::Path;
 
@@ -59,6 +60,7 @@ pub use spec_aero::{
     AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustShapeSpec, GustSpec,
     SpeedSweepSpec,
 };
+pub use words::{in_user_terms, JARGON};
 
 /// Largest case file read (bytes): 16 MiB, a thousand times the largest example; tables of
 /// 100 000 stations fit.
@@ -130,7 +132,8 @@ impl Case {
     /// # Errors
     /// The format's error, as the reason.
     pub fn from_deserializer<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Self, CaseError> {
-        Case::deserialize(d).map_err(|e| CaseError::new(one_line(&e.to_string())))
+        Case::deserialize(d)
+            .map_err(|e| CaseError::new(words::in_user_terms(&one_line(&e.to_string()))))
     }
 
     /// The case as TOML text (the file it was read from, if any, is not part of it).
@@ -172,20 +175,22 @@ mod tests {
             "message spans several lines: {msg:?}"
         );
         assert!(
-            msg.starts_with("x.toml line 8, column 1: beam.section: unknown field `foo`"),
+            msg.starts_with("x.toml line 8, column 1: beam.section: unknown key `foo`"),
             "{msg}"
         );
-        assert!(msg.contains("expected one of"), "{msg}");
+        assert!(msg.contains("the keys here are `EI`"), "{msg}");
     }
 
     #[test]
     fn type_error_names_the_key() {
         let msg = error_of(&BEAM.replace("EI = 50", "EI = \"50\""));
         assert!(
-            msg.starts_with("x.toml line 6, column 6: beam.section.EI: invalid type: string"),
+            msg.starts_with(
+                "x.toml line 6, column 6: beam.section.EI: must be a number, or a table \
+                 { x = [...], value = [...] }, got the text \"50\""
+            ),
             "{msg}"
         );
-        assert!(msg.contains("a number, or a table"), "{msg}");
     }
 
     #[test]
@@ -217,11 +222,14 @@ mod tests {
             load.replace("gravity", "gravitas")
         ));
         assert!(
-            msg.starts_with("x.toml line 16, column 8: loads[2].type: unknown variant"),
+            msg.starts_with(
+                "x.toml line 16, column 8: loads[2].type: must be one of \"point-force\", \
+                 \"moment\", \"torque\", \"distributed\", \"gravity\", got the text \"gravitas\""
+            ),
             "{msg}"
         );
         let msg = error_of(&format!("{BEAM}{load}bogus = 1\n"));
-        assert!(msg.contains(": loads[0]: unknown field `bogus`"), "{msg}");
+        assert!(msg.contains(": loads[0]: unknown key `bogus`"), "{msg}");
     }
 
     #[test]
@@ -230,7 +238,7 @@ mod tests {
         assert_eq!(e.file.as_deref(), Some("x.toml"));
         assert_eq!((e.line, e.column), (Some(6), Some(6)));
         assert_eq!(e.key.as_deref(), Some("beam.section.EI"));
-        assert!(e.reason.starts_with("invalid type: string"), "{}", e.reason);
+        assert!(e.reason.starts_with("must be a number"), "{}", e.reason);
         let e = Case::from_toml_str(&BEAM.replace("length = 1.0", "length = -1.0"))
             .unwrap()
             .modes_plan()
@@ -261,7 +269,7 @@ mod tests {
         let mut bad = case_json;
         bad["beam"]["sections"] = serde_json::json!(1);
         let e = Case::from_deserializer(bad).unwrap_err();
-        assert!(e.reason.starts_with("unknown field `sections`"), "{e}");
+        assert!(e.reason.starts_with("unknown key `sections`"), "{e}");
         let examples = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
         let mut count = 0;
         for entry in std::fs::read_dir(examples).unwrap() {

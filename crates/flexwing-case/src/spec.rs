@@ -8,6 +8,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::property::Property;
 use super::spec_aero::{AeroSpec, FlutterSpec};
+use super::words::word_enum;
 
 /// The whole case file.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -61,7 +62,7 @@ pub struct BeamSpec {
 }
 
 /// `beam.calibration`.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum CalibrationSpec {
     /// The paper's tip-load-matched springs.
@@ -70,6 +71,8 @@ pub enum CalibrationSpec {
     /// `EI/ℓ` at every joint.
     Uniform,
 }
+
+word_enum!(CalibrationSpec { TipLoad = "tip-load", Uniform = "uniform" });
 
 /// `[beam.section]`: section properties, each a number or a table over the span.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -95,7 +98,7 @@ pub struct SectionSpec {
 }
 
 /// `beam.section.polar_inertia_about`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum InertiaAxisSpec {
     /// About the section's mass centre (`I_cg`).
@@ -103,6 +106,8 @@ pub enum InertiaAxisSpec {
     /// About the elastic axis (`I_ea = I_cg + m d0²`).
     ElasticAxis,
 }
+
+word_enum!(InertiaAxisSpec { MassCentre = "mass-centre", ElasticAxis = "elastic-axis" });
 
 /// `[modes]`.
 #[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
@@ -161,7 +166,7 @@ pub struct LoadSpec {
 }
 
 /// `loads[].type`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum LoadKindSpec {
     /// A point force.
@@ -176,8 +181,10 @@ pub enum LoadKindSpec {
     Gravity,
 }
 
+word_enum!(LoadKindSpec { PointForce = "point-force", Moment = "moment", Torque = "torque", Distributed = "distributed", Gravity = "gravity" });
+
 /// `loads[].direction`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum DirectionSpec {
     /// Fixed global components `fx`, `fy`.
@@ -185,6 +192,8 @@ pub enum DirectionSpec {
     /// Components `tangential`, `normal` in the frame of the loaded element.
     Follower,
 }
+
+word_enum!(DirectionSpec { Dead = "dead", Follower = "follower" });
 
 /// `[static]`: which models to solve, solver options, loaded modes and the sweep.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -291,7 +300,7 @@ pub struct TimeSpec {
 }
 
 /// `loads[].time.type`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum TimeKindSpec {
     /// `f = 1`.
@@ -305,6 +314,8 @@ pub enum TimeKindSpec {
     /// Piecewise linear through `(t, value)`.
     Table,
 }
+
+word_enum!(TimeKindSpec { Constant = "constant", Sine = "sine", Step = "step", Ramp = "ramp", Table = "table" });
 
 /// `[dynamic]`: time span, output times, models, integrator, damping and `[dynamic.initial]`.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -375,7 +386,7 @@ pub struct DynamicSpec {
 }
 
 /// `dynamic.gyroscopic`.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum GyroscopicSpec {
     /// Exact.
@@ -386,6 +397,8 @@ pub enum GyroscopicSpec {
     /// Neglected.
     Neglected,
 }
+
+word_enum!(GyroscopicSpec { Exact = "exact", FiniteDifference = "finite-difference", Neglected = "neglected" });
 
 /// `dynamic.integrator`: `"auto"` (the library's default method, [`Method::default`]) or the
 /// name of a [`Method`] (`"radau"`, `"bdf"`, `"dopri5"`, `"midpoint"`), read through the
@@ -450,7 +463,7 @@ pub struct DampingSpec {
 }
 
 /// `dynamic.damping.type`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum DampingKindSpec {
     /// No damping.
@@ -460,6 +473,8 @@ pub enum DampingKindSpec {
     /// Damping ratios of the modes about the undeformed state.
     Modal,
 }
+
+word_enum!(DampingKindSpec { None = "none", Rayleigh = "rayleigh", Modal = "modal" });
 
 /// `[dynamic.initial]`: the state at `t = 0`.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -480,7 +495,7 @@ pub struct InitialSpec {
 }
 
 /// `dynamic.initial.type`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum InitialKindSpec {
     /// Undeformed, at rest.
@@ -490,3 +505,5 @@ pub enum InitialKindSpec {
     /// Given joint rotations and rates.
     Given,
 }
+
+word_enum!(InitialKindSpec { Rest = "rest", Static = "static", Given = "given" });

@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use super::property::Property;
 use super::spec::TimeSpec;
+use super::words::word_enum;
 
 /// `[aero]`: strip aerodynamics on every element.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -55,7 +56,7 @@ pub struct AerodynamicsSpec {
 }
 
 /// `aero.aerodynamics.model`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum AeroModelSpec {
     /// Steady strip theory.
@@ -67,6 +68,8 @@ pub enum AeroModelSpec {
     /// Peters' finite-state inflow with `states` states per strip.
     Peters,
 }
+
+word_enum!(AeroModelSpec { Steady = "steady", QuasiSteady = "quasi-steady", Wagner = "wagner", Peters = "peters" });
 
 /// `[aero.flight]`: the flight condition and its changes in time.
 #[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
@@ -119,7 +122,7 @@ pub struct GustSpec {
 }
 
 /// `aero.flight.gust.shape`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum GustShapeSpec {
     /// Full amplitude from `start` on.
@@ -127,6 +130,8 @@ pub enum GustShapeSpec {
     /// `½ (1 − cos(2π U t / length))` over one gust length.
     OneMinusCosine,
 }
+
+word_enum!(GustShapeSpec { SharpEdged = "sharp-edged", OneMinusCosine = "one-minus-cosine" });
 
 /// `[aero.sweep]`: speeds, listed or evenly spaced.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]

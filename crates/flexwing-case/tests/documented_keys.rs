@@ -1,6 +1,6 @@
 //! docs/case-file.md lists exactly the keys the schema accepts, table by table, with the defaults
-//! the code uses. The schema's keys come from the schema itself (serde's "unknown field …,
-//! expected one of …" for a bogus key in each table); the defaults from the plans a case without
+//! the code uses. The schema's keys come from the schema itself (the error "unknown key …; the
+//! keys here are …" for a bogus key in each table); the defaults from the plans a case without
 //! the key produces.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -165,8 +165,7 @@ fn schema_keys(table: &str) -> BTreeSet<String> {
     let e = Case::from_toml_str(&text).expect_err("a bogus key");
     let expected = e
         .reason
-        .split_once("expected one of ")
-        .or_else(|| e.reason.split_once("expected "))
+        .split_once("the keys here are ")
         .unwrap_or_else(|| panic!("{table}: {e}"))
         .1;
     expected

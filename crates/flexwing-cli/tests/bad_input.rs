@@ -155,7 +155,7 @@ fn unknown_key() {
     assert_rejected(
         &format!("{BENDING}foo = 1\n"),
         2,
-        &["unknown field `foo`", "line 9, column 1"],
+        &["unknown key `foo`", "line 9, column 1"],
     );
 }
 
@@ -272,5 +272,106 @@ fn json_is_always_one_document_with_status_and_error() {
         assert!(!error.is_empty() && !error.contains('\n'), "{error}");
         assert_eq!(doc["exit_status"], status);
         assert_eq!(stderr(&o).lines().count(), 1, "{args:?}: {}", stderr(&o));
+    }
+}
+
+/// Issue 9, "found": `length = 1e300` or `d0 = 1e160` made `modes` loop (later: fail with a
+/// misleading modal error), `static` with `length = 1e308` too. Each command now refuses the
+/// magnitude at input, naming the field and the range, within the 10 s bound of
+/// `magnitude_run` (a hang would fail it). Regression test against the rule of
+/// docs/model-choices.md ("Magnitudes accepted").
+#[test]
+fn magnitudes_outside_the_physical_range_are_refused_at_input() {
+    let cases: &[(&str, &str, &str, &str, &str)] = &[
+        // command, example, text to replace, replacement, field named
+        (
+            "modes",
+            "table4.toml",
+            "length = 1.0 ",
+            "length = 1e300 ",
+            "beam.length",
+        ),
+        (
+            "modes",
+            "gravity_wing.toml",
+            "d0 = 0.2 ",
+            "d0 = 1e160 ",
+            "beam.section.d0",
+        ),
+        (
+            "static",
+            "paper_tip_force.toml",
+            "length = 1.0 ",
+            "length = 1e308 ",
+            "beam.length",
+        ),
+        (
+            "static",
+            "gravity_wing.toml",
+            "d0 = 0.2 ",
+            "d0 = 1e160 ",
+            "beam.section.d0",
+        ),
+        (
+            "dynamic",
+            "paper_sine.toml",
+            "length = 1.0 ",
+            "length = 1e300 ",
+            "beam.length",
+        ),
+        (
+            "flutter",
+            "goland_flutter.toml",
+            "d0 = -0.18288 ",
+            "d0 = 1e160 ",
+            "beam.section.d0",
+        ),
+        (
+            "flutter",
+            "goland_flutter.toml",
+            "length = 6.096 ",
+            "length = 1e300 ",
+            "beam.length",
+        ),
+        // A length inside the per-value range, but 1e-30 m with EI = 50, m = 0.2: element
+        // frequencies of 1e128 s⁻², refused by the second rule.
+        (
+            "modes",
+            "table4.toml",
+            "length = 1.0 ",
+            "length = 1e-30 ",
+            "beam.section.EI",
+        ),
+    ];
+    for &(command, name, from, to, field) in cases {
+        let text = std::fs::read_to_string(example(name)).unwrap();
+        let case = edit(&text, from, to);
+        let dir = TempDir::new("magnitude");
+        let path = dir.write("case.toml", &case);
+        let out = dir.path().join("out");
+        let start = std::time::Instant::now();
+        let o = flexwing_in(
+            dir.path(),
+            &[
+                command,
+                path.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ],
+        );
+        // Refused at input: a hang or a computation would take far longer than this bound
+        // (measured: 5 ms per refusal).
+        assert!(
+            start.elapsed().as_secs_f64() < 10.0,
+            "{command} {name} {to}: took {:?}",
+            start.elapsed()
+        );
+        check_failure(&o, 2, &[field]);
+        let err = stderr(&o);
+        assert!(
+            err.contains("1e-30") && err.contains("1e30") || err.contains("1e60"),
+            "{command} {name} {to}: the range is not said: {err}"
+        );
+        assert!(!out.exists(), "output written for a refused case");
     }
 }

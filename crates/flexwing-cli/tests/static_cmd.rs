@@ -436,7 +436,7 @@ fn unknown_load_type() {
         &edit("\"point-force\"", "\"point-farce\""),
         &[
             "loads[0].type",
-            "unknown variant `point-farce`",
+            "got the text \"point-farce\"",
             "line 12, column 8",
         ],
     );
@@ -558,7 +558,7 @@ fn no_loads() {
 fn unknown_static_key() {
     assert_rejected(
         &format!("{CASE}\n[static]\ntolerence = 1e-8\n"),
-        &["static", "unknown field `tolerence`"],
+        &["static", "unknown key `tolerence`"],
     );
 }
 

@@ -80,9 +80,12 @@ def test_flutter_matches_the_cli(cli, tmp_path, name):
         assert run.message == model["error"]
         if model["divergence"] is None:
             assert run.divergence_speed is None
+            assert run.divergence_basis is None and run.divergence_within_sweep is None
         else:
             close(run.divergence_speed, model["divergence"]["speed_m_s"])
             close(run.divergence_dynamic_pressure, model["divergence"]["dynamic_pressure_pa"])
+            assert run.divergence_basis == model["divergence"]["basis"]
+            assert run.divergence_within_sweep == model["divergence"]["within_sweep"]
         same_stability(run.eigenvalues, model["eigenvalues"])
         assert run.flutter_speed == run.eigenvalues.flutter_speed
         if model["pk"] is None:
@@ -123,6 +126,7 @@ def test_aero_statics_match_the_cli(cli, tmp_path, name):
         assert run.dofs == summary["dofs"]
         assert run.status == word(summary["status"])
         assert run.message == summary["error"]
+        assert run.divergence_within_sweep == summary["divergence_within_sweep"]
         if summary["divergence_speed_m_s"] is None:
             assert run.divergence_speed is None
         else:

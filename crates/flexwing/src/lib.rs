@@ -35,6 +35,7 @@
 pub mod analysis;
 pub mod beam;
 mod error;
+pub mod magnitude;
 pub mod model;
 pub mod paper;
 pub mod solve;

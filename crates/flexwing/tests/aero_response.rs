@@ -176,3 +176,69 @@ fn regression_gust_response_with_eliminated_lag_states_matches_dense_newton() {
     assert!(peak > 0.01, "the gust moves the wing: {peak}");
     assert!(tip < 1e-9 && twist < 1e-9, "{tip:.1e} {twist:.1e}");
 }
+
+/// The 1−cos gust of the benchmark (`benches/aero.rs`: Patil's wing, n = 32, Peters' 6 states,
+/// 1 m/s over 10 m at 25 m/s, 2 s; full model and the reduced one of the first 6 wet modes) at
+/// the tolerances the benchmark times, each model against itself at rtol 1e-9 (integration
+/// error only; its own error ~1e-9). The absolute tolerance means `rtol` rad on a joint rotation
+/// (`EquationsOfMotion::state_atol`). Measured, tip deflection error / peak change (0.34 m) and
+/// tip twist error: full 8.2e-5 / 4.0e-5 rad at rtol 1e-3, 3.5e-5 / 2.1e-5 rad at 1e-4; reduced
+/// 1.1e-3 / 1.7e-3 rad and 3.2e-4 / 3.9e-4 rad. The reduced model meets its tolerance less
+/// tightly: its error norm weighs each modal momentum by the mode's energy, while the full
+/// model's weighs each joint's momentum by that joint's local energy, which over-weights the
+/// smooth momentum errors of the low modes (docs/performance.md, gust response). Bounds: full
+/// `rtol` (of the peak, and rad); reduced `5 rtol`.
+#[test]
+fn gust_response_errors_follow_the_tolerance_against_a_tight_reference() {
+    let wing = common::patil_wing(32, Aerodynamics::Peters { states: 6 });
+    let rom = wing.reduced(&(0..6).collect::<Vec<_>>()).unwrap();
+    let plan = |rtol: f64| {
+        let flight = FlightHistory {
+            initial: FlightCondition::at_speed(25.0),
+            speed_change: None,
+            root_angle_change: None,
+            gust: Some(Gust {
+                shape: GustShape::OneMinusCosine { length: 10.0 },
+                amplitude: 1.0,
+                start: 0.05,
+                spanwise: Profile::Uniform(1.0),
+            }),
+        };
+        let mut p = ResponsePlan::new(flight, 2.0, 0.02);
+        p.rtol = rtol;
+        p
+    };
+    let errors = |run: &dyn Fn(f64) -> flexwing::solve::aeroelastic::ResponseOutcome| {
+        let reference = run(1e-9);
+        let peak = reference
+            .samples
+            .iter()
+            .map(|s| (s.tip[1] - reference.samples[0].tip[1]).abs())
+            .fold(0.0, f64::max);
+        assert!(peak > 0.3, "the gust moves the tip: {peak}");
+        [1e-3, 1e-4].map(|rtol| {
+            let out = run(rtol);
+            assert!(out.stopped.is_none());
+            let (mut tip, mut twist): (f64, f64) = (0.0, 0.0);
+            for (a, b) in out.samples.iter().zip(&reference.samples) {
+                tip = tip.max((a.tip[1] - b.tip[1]).abs());
+                twist = twist.max((a.tip_twist - b.tip_twist).abs());
+            }
+            (rtol, peak, tip, twist, out.stats.steps)
+        })
+    };
+    let full = errors(&|rtol| response(&wing, &plan(rtol), "response", &mut |_| {}).unwrap());
+    let reduced = errors(&|rtol| response(&rom, &plan(rtol), "response", &mut |_| {}).unwrap());
+    for (name, rows, factor) in [("full", full, 1.0), ("reduced r = 6", reduced, 5.0)] {
+        for (rtol, peak, tip, twist, steps) in rows {
+            println!(
+                "{name}, rtol {rtol:.0e}: {steps} steps, tip error {tip:.1e} m (peak change {peak:.3} m), twist error {twist:.1e} rad"
+            );
+            let bound = factor * rtol;
+            assert!(
+                tip < bound * peak && twist < bound,
+                "{name} {rtol}: {tip:.1e} {twist:.1e}"
+            );
+        }
+    }
+}

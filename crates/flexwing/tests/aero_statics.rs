@@ -4,7 +4,7 @@
 mod common;
 
 use flexwing::model::aero::Aerodynamics;
-use flexwing::solve::aeroelastic::{static_sweep, StaticAeroPlan};
+use flexwing::solve::aeroelastic::{static_sweep, DivergenceBasis, StaticAeroPlan};
 use flexwing::solve::StaticOptions;
 
 fn plan(speeds: Vec<f64>, root_angle: f64) -> StaticAeroPlan {
@@ -48,6 +48,33 @@ fn divergence_of_a_uniform_wing_converges_to_the_closed_form() {
         assert!(w[0] / w[1] > 3.5, "{errors:?}");
     }
     assert!(errors[3] < 1e-3, "{errors:?}");
+}
+
+/// Regression test (examples/section_flutter.toml printed a divergence speed beyond its sweep as
+/// found): the undeformed wing's divergence speed is its linear one wherever it lies, and says
+/// whether the sweep reached it; a deformed wing whose `μ(x*(q)) − q` does not change sign
+/// within the sweep has none. Patil's wing, n = 16: U_D = 37.1 m/s (test above).
+#[test]
+fn a_divergence_speed_beyond_the_sweep_is_flagged_and_a_deformed_one_is_not_extrapolated() {
+    let wing = common::patil_wing(16, Aerodynamics::Steady);
+    let sweep = |speeds: Vec<f64>, root_angle: f64, stops: bool| {
+        let out = static_sweep(&wing, &plan(speeds, root_angle), "static", &mut |_| {}).unwrap();
+        assert_eq!(out.stopped.is_some(), stops);
+        out.divergence
+    };
+    let below = sweep(vec![10.0, 20.0], 0.0, false).expect("the undeformed wing's divergence");
+    // Past the divergence speed the static solver stops (at 40 m/s): the sweep attempted it.
+    let across = sweep(vec![10.0, 20.0, 30.0, 40.0, 50.0], 0.0, true).expect("reached");
+    println!("sweep to 20 m/s: {below:?}\nsweep to 50 m/s, stopped at 40: {across:?}");
+    assert_eq!(below.basis, DivergenceBasis::Undeformed);
+    assert!(below.speed > 20.0 && !below.within_sweep);
+    assert_eq!(across.basis, DivergenceBasis::Undeformed);
+    assert!(across.within_sweep);
+    // The same number either way (one linear eigenproblem about x = 0): bound 1e-12 relative.
+    assert!((below.speed - across.speed).abs() < 1e-12 * across.speed);
+    // With a root angle the equilibria deform and μ moves with them: no crossing within 10 to
+    // 30 m/s, so none reported (the crossing near 37 m/s is not extrapolated).
+    assert_eq!(sweep(vec![10.0, 20.0, 30.0], 1e-3, false), None);
 }
 
 /// The equilibrium at a small root angle against the linear torsion solution of the uniform wing,

@@ -16,7 +16,8 @@ use flexwing::beam::{
 use flexwing::model::aero::{theodorsen, AeroSection, Aerodynamics, Aeroelastic};
 use flexwing::model::FullModel;
 use flexwing::solve::aeroelastic::{flutter, FlutterMethod, FlutterPlan};
-use nalgebra::Complex;
+
+use common::typical_section::TypicalSection;
 
 const B: f64 = 1.0;
 const RHO: f64 = 1.225;
@@ -62,53 +63,25 @@ fn chain(aerodynamics: Aerodynamics) -> Aeroelastic {
     Aeroelastic::new(&full, &aero, RHO, aerodynamics, "aero").unwrap()
 }
 
-/// The flutter determinant of the typical section with Theodorsen's loads (h down, α nose-up),
-/// at speed `u` and real frequency `w`.
-fn determinant(u: f64, w: f64) -> Complex<f64> {
-    let pi = std::f64::consts::PI;
+/// The Hodges & Pierce section in the shared reference's terms (`common::typical_section`).
+fn section() -> TypicalSection {
     let m = mass();
-    let (k_h, i_a) = (m * W_H * W_H, R2 * m * B * B);
-    let k_a = i_a * W_A * W_A;
-    let s_a = m * X_ALPHA * B;
-    let c = theodorsen(w * B / u);
-    let iw = Complex::new(0.0, w);
-    let w2 = w * w;
-    let q = 2.0 * pi * RHO * u * B * c; // 2πρUbC
-    let nc = pi * RHO * B * B;
-    // Upwash at ¾ chord per unit h̄, ᾱ: iω h̄ + (U + b(½−a) iω) ᾱ.
-    let (wh, wa) = (iw, Complex::new(u, 0.0) + iw * (B * (0.5 - A)));
-    // Lift (up) and nose-up moment per unit h̄, ᾱ.
-    let l_h = -nc * w2 + q * wh;
-    let l_a = nc * (iw * u + B * A * w2) + q * wa;
-    let m_h = -nc * B * A * w2 + q * B * (A + 0.5) * wh;
-    let m_a =
-        nc * (-iw * (u * B * (0.5 - A)) + B * B * (0.125 + A * A) * w2) + q * B * (A + 0.5) * wa;
-    // m ḧ + S_α α̈ + k_h h = −L,   S_α ḧ + I_α α̈ + k_α α = M.
-    let a11 = -w2 * m + k_h + l_h;
-    let a12 = -w2 * s_a + l_a;
-    let a21 = -w2 * s_a - m_h;
-    let a22 = -w2 * i_a + k_a - m_a;
-    a11 * a22 - a12 * a21
+    let i_alpha = R2 * m * B * B;
+    TypicalSection {
+        b: B,
+        a: A,
+        rho: RHO,
+        m,
+        s_alpha: m * X_ALPHA * B,
+        i_alpha,
+        k_h: m * W_H * W_H,
+        k_alpha: i_alpha * W_A * W_A,
+    }
 }
 
-/// Newton on (U, ω) for det = 0 with central-difference derivatives.
-fn theodorsen_flutter(mut u: f64, mut w: f64) -> (f64, f64) {
-    for _ in 0..50 {
-        let d = determinant(u, w);
-        let (hu, hw) = (1e-6 * u, 1e-6 * w);
-        let du = (determinant(u + hu, w) - determinant(u - hu, w)) / (2.0 * hu);
-        let dw = (determinant(u, w + hw) - determinant(u, w - hw)) / (2.0 * hw);
-        // [Re du Re dw; Im du Im dw] [δu; δw] = −[Re d; Im d]
-        let det = du.re * dw.im - dw.re * du.im;
-        let du_step = -(d.re * dw.im - dw.re * d.im) / det;
-        let dw_step = -(du.re * d.im - d.re * du.im) / det;
-        u += du_step;
-        w += dw_step;
-        if du_step.abs() < 1e-13 * u && dw_step.abs() < 1e-13 * w {
-            break;
-        }
-    }
-    (u, w)
+/// The root of the flutter determinant with Theodorsen's `C(k)` from the guess `(u, w)`.
+fn theodorsen_flutter(u: f64, w: f64) -> (f64, f64) {
+    section().flutter(u, w, &theodorsen)
 }
 
 fn chain_flutter(aerodynamics: Aerodynamics, method: FlutterMethod) -> (f64, f64) {
@@ -245,4 +218,8 @@ fn every_model_matches_the_reference_typical_section() {
         (d - dr) / dr
     );
     assert!((d - dr).abs() < 1e-12 * dr);
+    // The shared reference's closed form (used for examples/section_flutter.toml by the CLI's
+    // tests) is the same √8: measured to the last ulp, bound 1e-14.
+    let closed = section().divergence_speed() / (B * W_A);
+    assert!((closed - dr).abs() < 1e-14 * dr, "{closed}");
 }

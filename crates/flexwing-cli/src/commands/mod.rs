@@ -3,6 +3,7 @@
 
 pub mod dynamic;
 pub mod flutter;
+pub mod interrupt;
 pub mod modes;
 pub mod reproduce;
 pub mod statics;
@@ -144,6 +145,15 @@ pub fn overall_word(incomplete: &[Incomplete]) -> &'static str {
         .unwrap_or("complete")
 }
 
+/// The word of one model's run in the reports: `complete`, `suspect`, `incomplete`, or
+/// `interrupted` when the user stopped it.
+pub fn run_word(status: &Status) -> &'static str {
+    match status.stop() {
+        Some(Stop::Interrupted { .. } | Stop::SweepInterrupted { .. }) => "interrupted",
+        _ => status.word(),
+    }
+}
+
 /// `WHAT: MESSAGE` of everything listed, joined by `; `; `None` when nothing is: the `error` of
 /// a JSON document.
 pub fn error_text(incomplete: &[Incomplete]) -> Option<String> {
@@ -177,11 +187,13 @@ pub fn status_entry(
     initial: &[String],
 ) -> Option<Incomplete> {
     match status {
-        Status::Stopped(stop @ Stop::Interrupted { .. }) => Some(Incomplete {
-            what: what.into(),
-            message: stop_message(stop, sweep, initial),
-            word: "interrupted",
-        }),
+        Status::Stopped(stop @ (Stop::Interrupted { .. } | Stop::SweepInterrupted { .. })) => {
+            Some(Incomplete {
+                what: what.into(),
+                message: stop_message(stop, sweep, initial),
+                word: "interrupted",
+            })
+        }
         Status::Stopped(stop) => Some(Incomplete::stopped(
             what,
             stop_message(stop, sweep, initial),
@@ -279,6 +291,9 @@ pub fn stop_message(stop: &Stop, sweep: Option<&str>, initial: &[String]) -> Str
             )
         }
         Stop::Interrupted { time: None } => "interrupted before it started".into(),
+        Stop::SweepInterrupted { done, points } => {
+            format!("interrupted after {done} of {points} points; the points computed are kept")
+        }
         other => format!("{other:?}"),
     }
 }

@@ -205,6 +205,8 @@ struct JsonReport<'a> {
     calibration: &'static str,
     modes: Vec<JsonMode<'a>>,
     files: Vec<String>,
+    /// Always `"complete"`: a modal analysis that fails prints the error document instead.
+    status: &'static str,
 }
 
 #[derive(Serialize)]
@@ -254,6 +256,7 @@ fn json_report(
             })
             .collect(),
         files: files.iter().map(|f| f.display().to_string()).collect(),
+        status: "complete",
     };
     // Serializing plain structs of numbers and strings cannot fail.
     let mut text = serde_json::to_string_pretty(&report).unwrap_or_default();

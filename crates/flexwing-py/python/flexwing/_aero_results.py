@@ -71,6 +71,13 @@ class AeroStaticRun(_Result):
             equilibria that do not move the divergence pressure, from the frozen state), else
             ``None``.
         divergence_dynamic_pressure: its dynamic pressure (Pa), or ``None``.
+        divergence_basis: how it was found: ``"bracketed"`` (a sign change of the frozen
+            state's divergence pressure less the dynamic pressure between two speeds of the
+            sweep, refined) or ``"undeformed"`` (every equilibrium undeformed: the linear
+            divergence speed of the undeformed wing, wherever it lies); ``None`` if none.
+        divergence_within_sweep: whether it lies within the speeds the sweep reached; an
+            ``"undeformed"`` speed beyond them holds only while the wing stays undeformed (the
+            CLI marks it ``*``); ``None`` if none.
         speed: free-stream speed at each equilibrium (m/s), ``(p,)``.
         dynamic_pressure: ``½ρU²`` (Pa), ``(p,)``.
         tip_x, tip_y: tip position (m), ``(p,)``; tip_twist: tip twist (rad, nose-up), ``(p,)``.
@@ -95,6 +102,8 @@ class AeroStaticRun(_Result):
     message: Optional[str]
     divergence_speed: Optional[float]
     divergence_dynamic_pressure: Optional[float]
+    divergence_basis: Optional[str]
+    divergence_within_sweep: Optional[bool]
     speed: np.ndarray
     dynamic_pressure: np.ndarray
     tip_x: np.ndarray
@@ -217,6 +226,7 @@ class FlutterRun(_Result):
         other_stops: the p-k check's stop when the eigen-analysis stopped too (dicts).
         divergence_speed, divergence_dynamic_pressure: the static divergence speed (m/s) and
             pressure (Pa) found along the equilibria, or ``None``.
+        divergence_basis, divergence_within_sweep: as :class:`AeroStaticRun`.
         flutter_speed, flutter_frequency: ``eigenvalues.flutter_speed`` (m/s) and
             ``eigenvalues.flutter_frequency`` (rad/s).
         eigenvalues: the model's own eigen-analysis, a :class:`Stability`.
@@ -235,6 +245,8 @@ class FlutterRun(_Result):
     other_stops: List[Dict[str, Any]]
     divergence_speed: Optional[float]
     divergence_dynamic_pressure: Optional[float]
+    divergence_basis: Optional[str]
+    divergence_within_sweep: Optional[bool]
     flutter_speed: Optional[float]
     flutter_frequency: Optional[float]
     eigenvalues: Stability

@@ -7,7 +7,7 @@ use flexwing::analysis::aero::Aero;
 use flexwing::analysis::{ModelKind, Status};
 use flexwing::model::aero::Aerodynamics;
 use flexwing::model::FullModel;
-use flexwing::solve::aeroelastic::Divergence;
+use flexwing::solve::aeroelastic::{Divergence, DivergenceBasis};
 use flexwing::solve::StaticStats;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -100,6 +100,14 @@ pub fn equilibria<'py>(
         "divergence_dynamic_pressure",
         r.divergence.map(|v| v.dynamic_pressure),
     )?;
+    d.set_item(
+        "divergence_basis",
+        r.divergence.map(|v| basis_word(v.basis)),
+    )?;
+    d.set_item(
+        "divergence_within_sweep",
+        r.divergence.map(|v| v.within_sweep),
+    )?;
     let points = r.points;
     let column = |f: &dyn Fn(&AeroPoint) -> f64| out1(py, points.iter().map(f).collect());
     d.set_item("speed", column(&|p| p.speed))?;
@@ -134,4 +142,12 @@ pub fn equilibria<'py>(
     let stats: Vec<&StaticStats> = points.iter().map(|p| &p.stats).collect();
     d.set_item("stats", stats_dict(py, &stats)?)?;
     Ok(d)
+}
+
+/// The word of a divergence speed's basis (the CLI's JSON word).
+pub fn basis_word(basis: DivergenceBasis) -> &'static str {
+    match basis {
+        DivergenceBasis::Bracketed => "bracketed",
+        DivergenceBasis::Undeformed => "undeformed",
+    }
 }

@@ -58,6 +58,16 @@ fn run<'py>(py: Python<'py>, plan: &FlutterPlan, r: &FlutterRun) -> PyResult<Bou
         "divergence_dynamic_pressure",
         r.divergence.as_ref().map(|v| v.dynamic_pressure),
     )?;
+    d.set_item(
+        "divergence_basis",
+        r.divergence
+            .as_ref()
+            .map(|v| super::aero_statics::basis_word(v.basis)),
+    )?;
+    d.set_item(
+        "divergence_within_sweep",
+        r.divergence.as_ref().map(|v| v.within_sweep),
+    )?;
     d.set_item("flutter_speed", r.stability.flutter.map(|c| c.speed))?;
     d.set_item(
         "flutter_frequency",

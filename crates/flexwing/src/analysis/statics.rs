@@ -14,7 +14,7 @@ use super::{Progress, Status, Stop};
 use crate::error::{Error, InputError, SolveError};
 use crate::model::StructuralModel;
 use crate::model::{AppliedLoads, DistributedForce, Force, FullModel, Load, ReducedModel, Shape};
-use crate::solve::{sweep_static, Modes, StaticOptions, StaticSolution, StaticStats};
+use crate::solve::{sweep_static_until, Modes, StaticOptions, StaticSolution, StaticStats};
 use crate::text::short;
 
 /// A static analysis. Build it with [`StaticPlan::new`], set the fields, and check it with
@@ -110,6 +110,9 @@ impl StaticPlan {
                     field(&format!("sweep.scales[{i}]")),
                     format!("must be finite, got {}", short(sweep.scales[i])),
                 ));
+            }
+            for (i, &v) in sweep.scales.iter().enumerate() {
+                crate::magnitude::check(&field(&format!("sweep.scales[{i}]")), "", v)?;
             }
         }
         self.options.validate(prefix)
@@ -331,16 +334,20 @@ pub fn run(plan: &StaticPlan, progress: &mut dyn Progress) -> Result<StaticOutco
         let run = match (kind.mode_indices(), &unloaded) {
             (Some(indices), Some(modes)) => {
                 let rom = ReducedModel::new(full, modes.shapes(), &indices)?;
-                solver.run(kind.clone(), &rom)
+                solver.run(kind.clone(), &rom, progress)
             }
-            _ => solver.run(kind.clone(), full),
+            _ => solver.run(kind.clone(), full, progress),
         };
         progress.advance(1.0);
         progress.finish();
         runs.push(run);
     }
     compare_tips(&mut runs);
+    let interrupted = runs
+        .iter()
+        .any(|r| matches!(r.status.stop(), Some(Stop::SweepInterrupted { .. })));
     let loaded_modes = match (plan.modes, &unloaded) {
+        _ if interrupted => None,
         (Some(count), Some(unloaded)) => loaded_modes(full, &applied, &runs, count, unloaded),
         _ => None,
     };
@@ -357,12 +364,28 @@ struct Solver<'a> {
 }
 
 impl Solver<'_> {
-    /// Sweep `model`, timing the solve alone.
-    fn run<M: StructuralModel>(&self, kind: ModelKind, model: &M) -> ModelRun {
+    /// Sweep `model`, timing the solve alone; `progress` is asked before each point whether
+    /// to stop ([`Stop::SweepInterrupted`]).
+    fn run<M: StructuralModel>(
+        &self,
+        kind: ModelKind,
+        model: &M,
+        progress: &mut dyn Progress,
+    ) -> ModelRun {
         let start = Instant::now();
-        let result = sweep_static(model, self.applied, &self.points, self.options);
+        let result =
+            sweep_static_until(model, self.applied, &self.points, self.options, &mut || {
+                progress.cancelled()
+            });
         let wall_time_s = start.elapsed().as_secs_f64();
         let (solutions, status) = match result {
+            Ok(s) if s.len() < self.points.len() => {
+                let stop = Stop::SweepInterrupted {
+                    done: s.len(),
+                    points: self.points.len(),
+                };
+                (s, Status::Stopped(stop))
+            }
             Ok(s) => (s, Status::Complete),
             Err(e) => {
                 // The solver's load factor runs from the previous point (rest before the first)

@@ -91,6 +91,14 @@ pub enum Stop {
         /// Simulated time reached (dynamics), if any.
         time: Option<f64>,
     },
+    /// The caller interrupted a sweep (a static load sweep, a flutter analysis) with Ctrl-C or a
+    /// cancelled progress callback after `done` of its `points` points; those are kept.
+    SweepInterrupted {
+        /// Points (load levels, or speeds of the eigen-analysis) completed.
+        done: usize,
+        /// Points of the whole sweep.
+        points: usize,
+    },
     /// The static aeroelastic equilibrium at speed `point` (0-based) of `points` was not found
     /// (past divergence, or the solver failed); the speeds before it are kept.
     SpeedPoint {

@@ -117,9 +117,13 @@ impl Beam {
         if !(length.is_finite() && length > 0.0) {
             return Err(InputError::new(
                 field("length"),
-                format!("must be a finite positive number, got {length}"),
+                format!(
+                    "must be a finite positive number, got {}",
+                    crate::text::short(length)
+                ),
             ));
         }
+        crate::magnitude::check(&field("length"), "", length)?;
         let nodes = stations(prefix, length, discretization)?;
         section
             .ei
@@ -189,6 +193,15 @@ impl Beam {
                 (masses, offsets, inertias, Some(k))
             }
         };
+        check_frequencies(
+            prefix,
+            &lengths,
+            &masses,
+            &offsets,
+            &inertias,
+            &bending_stiffness,
+            torsion_stiffness.as_deref(),
+        )?;
         Ok(Self {
             length,
             nodes,
@@ -290,13 +303,20 @@ fn stations(prefix: &str, length: f64, d: &Discretization) -> Result<Vec<f64>, I
             }
             let tol = 1e-9 * length;
             if x[0].abs() > tol {
-                return Err(InputError::new(f, format!("must start at 0, got {}", x[0])));
+                return Err(InputError::new(
+                    f,
+                    format!("must start at 0, got {}", crate::text::short(x[0])),
+                ));
             }
             let last = x[x.len() - 1];
             if !((last - length).abs() <= tol) {
                 return Err(InputError::new(
                     f,
-                    format!("must end at the length {length}, got {last}"),
+                    format!(
+                        "must end at the length {}, got {}",
+                        crate::text::short(length),
+                        crate::text::short(last)
+                    ),
                 ));
             }
             for k in 1..x.len() {
@@ -305,9 +325,9 @@ fn stations(prefix: &str, length: f64, d: &Discretization) -> Result<Vec<f64>, I
                         f,
                         format!(
                             "must be strictly increasing, but x[{k}] = {} <= x[{}] = {}",
-                            x[k],
+                            crate::text::short(x[k]),
                             k - 1,
-                            x[k - 1]
+                            crate::text::short(x[k - 1])
                         ),
                     ));
                 }
@@ -318,6 +338,45 @@ fn stations(prefix: &str, length: f64, d: &Discretization) -> Result<Vec<f64>, I
             Ok(out)
         }
     }
+}
+
+/// The second rule of [`crate::magnitude`]: every element's frequency squared, its joint spring
+/// against its own inertia (`K_θ,i / (m_i ℓ_i²)` in bending, `K_ψ,i / (J_i + m_i d0_i²)` in
+/// torsion), lies within [`FREQUENCY_SQUARED`](crate::magnitude::FREQUENCY_SQUARED), so that the
+/// stiffness and mass matrices the solvers combine are within 120 decades of each other.
+fn check_frequencies(
+    prefix: &str,
+    lengths: &[f64],
+    masses: &[f64],
+    offsets: &[f64],
+    inertias: &[f64],
+    bending: &[f64],
+    torsion: Option<&[f64]>,
+) -> Result<(), InputError> {
+    let (lo, hi) = crate::magnitude::FREQUENCY_SQUARED;
+    let short = crate::text::short;
+    let check = |key: &str, i: usize, w2: f64, formula: &str| {
+        if (lo..=hi).contains(&w2) {
+            return Ok(());
+        }
+        Err(InputError::new(
+            crate::field(prefix, key),
+            format!(
+                "with the mass and length given, element {} has a frequency squared {formula} =                  {} (per time unit squared), outside [{lo:e}, {hi:e}]: stiffness, mass and length                  are out of proportion (the range accepted, docs/model-choices.md)",
+                i + 1,
+                short(w2)
+            ),
+        ))
+    };
+    for i in 0..lengths.len() {
+        let w2 = bending[i] / (masses[i] * lengths[i] * lengths[i]);
+        check("section.EI", i, w2, "K_θ/(m ℓ²)")?;
+        if let Some(k) = torsion {
+            let w2 = k[i] / (inertias[i] + masses[i] * offsets[i] * offsets[i]);
+            check("section.GJ", i, w2, "K_ψ/(J + m d0²)")?;
+        }
+    }
+    Ok(())
 }
 
 /// With the inertia given about the elastic axis, `I_cg = I_ea − m d0²` must not be negative.
@@ -347,10 +406,11 @@ fn check_inertia_about_elastic_axis(
                 return Err(InputError::new(
                     field,
                     format!(
-                        "about the elastic axis it must be at least m·d0², but at x = {x} m \
+                        "about the elastic axis it must be at least m·d0², but at x = {} m \
                          I_ea = {} and m·d0² = {} (negative inertia about the mass centre)",
-                        t.polar_inertia.at(x),
-                        m.at(x) * t.offset.at(x).powi(2)
+                        crate::text::short(x),
+                        crate::text::short(t.polar_inertia.at(x)),
+                        crate::text::short(m.at(x) * t.offset.at(x).powi(2))
                     ),
                 ));
             }

@@ -46,7 +46,7 @@ impl Profile {
                     Sign::Any => true,
                 };
             if ok {
-                Ok(())
+                crate::magnitude::check(field, what, v).map(|_| ())
             } else {
                 let need = match sign {
                     Sign::Positive => "a finite positive number",
@@ -55,7 +55,7 @@ impl Profile {
                 };
                 Err(InputError::new(
                     field,
-                    format!("{what} must be {need}, got {v}"),
+                    format!("{what} must be {need}, got {}", crate::text::short(v)),
                 ))
             }
         };
@@ -75,13 +75,15 @@ impl Profile {
                     if !xk.is_finite() {
                         return Err(InputError::new(field, format!("station x[{k}] is {xk}")));
                     }
+                    crate::magnitude::check(field, &format!("station x[{k}]"), xk)?;
                     if k > 0 && xk <= x[k - 1] {
                         return Err(InputError::new(
                             field,
                             format!(
-                                "stations must be strictly increasing, but x[{k}] = {xk} <= x[{}] = {}",
+                                "stations must be strictly increasing, but x[{k}] = {} <= x[{}] = {}",
+                                crate::text::short(xk),
                                 k - 1,
-                                x[k - 1]
+                                crate::text::short(x[k - 1])
                             ),
                         ));
                     }
@@ -94,9 +96,10 @@ impl Profile {
                     return Err(InputError::new(
                         field,
                         format!(
-                            "table covers [{}, {}] m but the span is [0, {length}] m",
-                            x[0],
-                            x[x.len() - 1]
+                            "table covers [{}, {}] m but the span is [0, {}] m",
+                            crate::text::short(x[0]),
+                            crate::text::short(x[x.len() - 1]),
+                            crate::text::short(length)
                         ),
                     ));
                 }

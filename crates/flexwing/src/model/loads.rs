@@ -187,7 +187,7 @@ impl FullModel {
             let f = |name: &str| format!("{field}[{i}].{name}");
             let finite = |name: &str, v: f64| -> Result<f64, InputError> {
                 if v.is_finite() {
-                    Ok(v)
+                    crate::magnitude::check(&f(name), "", v)
                 } else {
                     Err(InputError::new(f(name), format!("must be finite, got {v}")))
                 }
@@ -196,7 +196,11 @@ impl FullModel {
                 if !span.is_finite() || span < 0.0 || span > length * (1.0 + 1e-12) {
                     return Err(InputError::new(
                         f("span"),
-                        format!("must lie on the beam, in [0, {length}] m, got {span}"),
+                        format!(
+                            "must lie on the beam, in [0, {}] m, got {}",
+                            crate::text::short(length),
+                            crate::text::short(span)
+                        ),
                     ));
                 }
                 Ok(self.locate(span.min(length)))

@@ -110,7 +110,7 @@ impl Damping {
     pub fn validate(&self, field: &str, n_dofs: usize) -> Result<(), InputError> {
         let check = |name: &str, v: f64| {
             if v.is_finite() && v >= 0.0 {
-                Ok(())
+                crate::magnitude::check(&crate::field(field, name), "", v).map(|_| ())
             } else {
                 Err(InputError::new(
                     crate::field(field, name),
@@ -209,7 +209,7 @@ impl TimeFunction {
     pub fn validate(&self, field: &str, t0: f64, t1: f64) -> Result<(), InputError> {
         let finite = |name: &str, v: f64| {
             if v.is_finite() {
-                Ok(())
+                crate::magnitude::check(&format!("{field}.{name}"), "", v).map(|_| ())
             } else {
                 Err(InputError::new(
                     format!("{field}.{name}"),

@@ -22,6 +22,6 @@ pub use energy_audit::{AuditLimits, EnergyBalance};
 pub use modes::{ModeShape, Modes, ModesMethod, ModesStats, DENSE_MAX_DOFS};
 pub use newton_tangent::CHAIN_TANGENT_MIN_DOFS;
 pub use statics::{
-    continue_static, linear_static, solve_static, sweep_static, StaticOptions, StaticSolution,
-    StaticStats, SweepError, FOLLOWER_STABILITY_MAX_DOFS,
+    continue_static, linear_static, solve_static, sweep_static, sweep_static_until, StaticOptions,
+    StaticSolution, StaticStats, SweepError, FOLLOWER_STABILITY_MAX_DOFS,
 };

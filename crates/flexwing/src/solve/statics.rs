@@ -655,8 +655,26 @@ pub fn sweep_static<M: StructuralModel>(
     points: &[Vec<f64>],
     options: &StaticOptions,
 ) -> Result<Vec<StaticSolution>, SweepError> {
+    sweep_static_until(model, loads, points, options, &mut || false)
+}
+
+/// As [`sweep_static`], polling `stop` before each point: when it returns `true` the sweep
+/// returns the equilibria found so far, fewer than `points` (an interrupted run).
+///
+/// # Errors
+/// As [`sweep_static`].
+pub fn sweep_static_until<M: StructuralModel>(
+    model: &M,
+    loads: &AppliedLoads,
+    points: &[Vec<f64>],
+    options: &StaticOptions,
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Vec<StaticSolution>, SweepError> {
     let mut done: Vec<StaticSolution> = Vec::with_capacity(points.len());
     for (i, scales) in points.iter().enumerate() {
+        if stop() {
+            break;
+        }
         // Each point from the previous one (the first from rest), with the one before it (or
         // rest) for the secant predictor.
         let rest = (vec![0.0; model.n_dofs()], vec![0.0; scales.len()]);

@@ -10,6 +10,7 @@ use std::path::PathBuf;
 
 pub mod aero_reference;
 pub mod elastica;
+pub mod typical_section;
 
 /// A two-point (linear root → tip) table over `[0, length]`.
 pub fn linear(length: f64, root: f64, tip: f64) -> Profile {

@@ -133,7 +133,7 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
 
     let show_progress = !args.json && std::io::stderr().is_terminal();
     let mut progress = Progress::new(show_progress);
-    progress::catch_interrupts();
+    super::interrupt::catch_interrupts(false);
     let result = dynamics::run(&plan, &mut progress).map_err(|e| match e {
         Error::Input(e) => Failure::input(format!("{name}: {e}")),
         e => Failure::run(format!(

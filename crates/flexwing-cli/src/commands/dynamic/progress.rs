@@ -2,7 +2,6 @@
 //! model. It stays hidden unless stderr is a terminal (and `--json` is off), and appears only
 //! once the run has taken [`DELAY`], so that short runs print nothing.
 
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use flexwing::analysis;
@@ -12,19 +11,6 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 const DELAY: Duration = Duration::from_secs(1);
 /// Resolution of the bar: positions per end time.
 const TICKS: u64 = 1000;
-
-/// Set by Ctrl-C or `kill` (SIGINT, SIGTERM) once [`catch_interrupts`] ran: the run stops after
-/// its current step and writes what it computed, with the status `interrupted`.
-static INTERRUPTED: AtomicBool = AtomicBool::new(false);
-
-/// Catch Ctrl-C and `kill` for the rest of the process: they set [`INTERRUPTED`] instead of
-/// ending it. A second Ctrl-C while the output is written is caught too; only SIGKILL ends the
-/// process at once (and then `status.txt` still reads `running`).
-pub fn catch_interrupts() {
-    // An error means a handler is already set (a second command in the same process, in
-    // tests): the first one sets the same flag.
-    let _ = ctrlc::set_handler(|| INTERRUPTED.store(true, Ordering::SeqCst));
-}
 
 /// Progress over the models of a run.
 pub struct Progress {
@@ -79,9 +65,9 @@ impl analysis::Progress for Progress {
         bar.set_position((fraction * TICKS as f64) as u64);
     }
 
-    /// Whether Ctrl-C or `kill` came (after [`catch_interrupts`]).
+    /// Whether Ctrl-C or `kill` came (after [`crate::commands::interrupt::catch_interrupts`]).
     fn cancelled(&mut self) -> bool {
-        INTERRUPTED.load(Ordering::Relaxed)
+        crate::commands::interrupt::interrupted()
     }
 
     /// The current model is done: clear its bar.

@@ -16,6 +16,8 @@ struct SummaryRow {
     model: String,
     dofs: usize,
     divergence_speed_m_s: Option<f64>,
+    /// False: the divergence speed lies beyond the sweep (not reached by it).
+    divergence_within_sweep: Option<bool>,
     flutter_speed_m_s: Option<f64>,
     flutter_frequency_rad_s: Option<f64>,
     unstable_at_start: usize,
@@ -106,17 +108,14 @@ pub fn write_files(dir: &Path, outcome: &Outcome, with_plot: bool) -> anyhow::Re
                 model: r.kind.label(),
                 dofs: r.dofs,
                 divergence_speed_m_s: r.divergence.as_ref().and_then(|d| finite(d.speed)),
+                divergence_within_sweep: r.divergence.as_ref().map(|d| d.within_sweep),
                 flutter_speed_m_s: f.and_then(|c| finite(c.speed)),
                 flutter_frequency_rad_s: f.and_then(|c| finite(c.frequency)),
                 unstable_at_start: r.stability.unstable_at_start.len(),
                 pk_flutter_speed_m_s: pk.and_then(|c| finite(c.speed)),
                 pk_flutter_frequency_rad_s: pk.and_then(|c| finite(c.frequency)),
                 wall_time_s: finite(r.wall_time_s),
-                status: if r.status.is_complete() {
-                    "complete"
-                } else {
-                    "incomplete"
-                },
+                status: crate::commands::run_word(&r.status),
             }
         }),
     )?;

@@ -15,7 +15,6 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexwing::analysis::aero::flutter::{self, FlutterOutcome, FlutterRun};
-use flexwing::analysis::NoProgress;
 use flexwing::model::aero::Aerodynamics;
 use flexwing::Error;
 
@@ -72,13 +71,9 @@ impl Outcome {
         &self.result.runs
     }
 
-    /// `complete` or `incomplete`.
+    /// `complete`, `incomplete` or `interrupted` ([`super::overall_word`]).
     pub fn status(&self) -> &'static str {
-        if self.incomplete.is_empty() {
-            "complete"
-        } else {
-            "incomplete"
-        }
+        super::overall_word(&self.incomplete)
     }
 
     /// Why `run` did not complete, if it did not.
@@ -124,7 +119,8 @@ pub fn run(args: &FlutterArgs) -> Result<(), Failure> {
         .clone()
         .unwrap_or_else(|| default_out_dir(&args.case));
     crate::output::prepare_dir(&dir, files::FILES, true).map_err(Failure::Run)?;
-    let result = flutter::run(&plan, &mut NoProgress).map_err(|e| match e {
+    super::interrupt::catch_interrupts(true);
+    let result = flutter::run(&plan, &mut super::interrupt::Cancel).map_err(|e| match e {
         Error::Input(e) => Failure::input(format!("{name}: {e}")),
         e => Failure::run(format!("{name}: {e}")),
     })?;
@@ -132,11 +128,8 @@ pub fn run(args: &FlutterArgs) -> Result<(), Failure> {
     let mut notes = Vec::new();
     for r in &result.runs {
         let label = r.kind.label();
-        if let Some(stop) = r.status.stop() {
-            incomplete.push(Incomplete::stopped(
-                label.clone(),
-                stop_message(stop, None, &[]),
-            ));
+        if let Some(entry) = super::status_entry(&label, &r.status, None, &[]) {
+            incomplete.push(entry);
         }
         for stop in &r.other_stops {
             incomplete.push(Incomplete::stopped(

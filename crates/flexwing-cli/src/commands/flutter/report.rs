@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use flexwing::analysis::aero::flutter::{FlutterRun, Stability};
-use flexwing::solve::aeroelastic::{Crossing, CrossingKind};
+use flexwing::solve::aeroelastic::{Crossing, CrossingKind, DivergenceBasis};
 use serde::Serialize;
 
 use super::Outcome;
@@ -87,9 +87,14 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
             "{:<w$}  {:>5}  {:>16}  {:>17}  {:>13}",
             r.kind.label(),
             r.dofs,
-            r.divergence
-                .as_ref()
-                .map_or_else(|| "none".into(), |d| fixed(Some(d.speed), 5)),
+            r.divergence.as_ref().map_or_else(
+                || "none".into(),
+                |d| format!(
+                    "{}{}",
+                    fixed(Some(d.speed), 5),
+                    if d.within_sweep { "" } else { "*" }
+                )
+            ),
             u,
             omega
         );
@@ -100,6 +105,18 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
         let _ = writeln!(s, "  {:>14.3}", 1e3 * r.wall_time_s);
     }
 
+    if runs
+        .iter()
+        .any(|r| r.divergence.is_some_and(|d| !d.within_sweep))
+    {
+        let _ = writeln!(
+            s,
+            "* beyond the sweep ({} to {} m/s), not reached by it: the linear divergence speed of \
+             the undeformed wing, which stayed undeformed at every speed of the sweep",
+            short(sp[0]),
+            short(sp[sp.len() - 1])
+        );
+    }
     let _ = writeln!(s);
     let _ = writeln!(
         s,
@@ -138,7 +155,7 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
         let _ = writeln!(s, "status: complete");
     }
     for i in &outcome.incomplete {
-        let _ = writeln!(s, "status: incomplete: {}: {}", i.what, i.message);
+        let _ = writeln!(s, "status: {}: {}: {}", i.word, i.what, i.message);
     }
     for f in files {
         let _ = writeln!(s, "wrote {}", f.display());
@@ -179,6 +196,11 @@ struct JsonModel<'a> {
 struct JsonDivergence {
     speed_m_s: Option<f64>,
     dynamic_pressure_pa: Option<f64>,
+    /// "bracketed" (between two speeds of the sweep) or "undeformed" (the linear divergence
+    /// pressure of the undeformed wing).
+    basis: &'static str,
+    /// False: beyond the speeds of the sweep, not reached by it.
+    within_sweep: bool,
 }
 
 #[derive(Serialize)]
@@ -264,6 +286,11 @@ fn json_model<'a>(outcome: &'a Outcome, r: &FlutterRun) -> JsonModel<'a> {
         divergence: r.divergence.as_ref().map(|d| JsonDivergence {
             speed_m_s: finite(d.speed),
             dynamic_pressure_pa: finite(d.dynamic_pressure),
+            basis: match d.basis {
+                DivergenceBasis::Bracketed => "bracketed",
+                DivergenceBasis::Undeformed => "undeformed",
+            },
+            within_sweep: d.within_sweep,
         }),
         eigenvalues: json_stability(&r.stability),
         pk: r.pk.as_ref().map(json_stability),
@@ -282,11 +309,7 @@ fn json_model<'a>(outcome: &'a Outcome, r: &FlutterRun) -> JsonModel<'a> {
             })
             .collect(),
         equilibria_complete: r.equilibria_status.is_complete(),
-        status: if r.status.is_complete() {
-            "complete"
-        } else {
-            "incomplete"
-        },
+        status: crate::commands::run_word(&r.status),
         error: outcome.message_of(r),
     }
 }

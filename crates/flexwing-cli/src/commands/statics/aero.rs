@@ -58,6 +58,8 @@ struct SummaryRow {
     dofs: usize,
     wall_time_s: Option<f64>,
     divergence_speed_m_s: Option<f64>,
+    /// False: the divergence speed lies beyond the sweep (not reached by it).
+    divergence_within_sweep: Option<bool>,
     status: &'static str,
     error: Option<String>,
 }
@@ -110,6 +112,7 @@ fn summary(r: &AeroStaticRun, incomplete: &[Incomplete]) -> SummaryRow {
         dofs: r.dofs,
         wall_time_s: finite(r.wall_time_s),
         divergence_speed_m_s: r.divergence.as_ref().and_then(|d| finite(d.speed)),
+        divergence_within_sweep: r.divergence.as_ref().map(|d| d.within_sweep),
         status: if r.status.is_complete() {
             "complete"
         } else {
@@ -233,8 +236,17 @@ fn tables(
             );
         }
         match &r.divergence {
-            Some(d) => {
+            Some(d) if d.within_sweep => {
                 let _ = writeln!(s, "divergence speed: {:.5} m/s", d.speed);
+            }
+            Some(d) => {
+                let _ = writeln!(
+                    s,
+                    "divergence speed: {:.5} m/s, beyond the sweep and not reached by it: the \
+                     linear divergence speed of the undeformed wing, which stayed undeformed at \
+                     every speed of the sweep",
+                    d.speed
+                );
             }
             None => {
                 let _ = writeln!(s, "divergence speed: not reached");

@@ -13,7 +13,6 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexwing::analysis::statics::{self, LoadedMode, ModelRun, StaticOutcome};
-use flexwing::analysis::NoProgress;
 use flexwing::model::Load;
 use flexwing::Error;
 
@@ -123,7 +122,8 @@ pub fn run(args: &StaticArgs) -> Result<(), Failure> {
         .clone()
         .unwrap_or_else(|| default_out_dir(&args.case));
     crate::output::prepare_dir(&dir, files::FILES, true).map_err(Failure::Run)?;
-    let result = statics::run(&plan, &mut NoProgress).map_err(|e| match e {
+    super::interrupt::catch_interrupts(true);
+    let result = statics::run(&plan, &mut super::interrupt::Cancel).map_err(|e| match e {
         Error::Input(e) => Failure::input(format!("{name}: {e}")),
         e => Failure::run(format!(
             "{name}: modal analysis about the undeformed state failed: {e}"

@@ -253,7 +253,7 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
         let _ = writeln!(s, "status: complete");
     }
     for i in &outcome.incomplete {
-        let _ = writeln!(s, "status: incomplete: {}: {}", i.what, i.message);
+        let _ = writeln!(s, "status: {}: {}: {}", i.word, i.what, i.message);
     }
     for f in files {
         let _ = writeln!(s, "wrote {}", f.display());
@@ -357,11 +357,7 @@ pub fn json(outcome: &Outcome, files: &[PathBuf]) -> String {
                 wall_time_s: r.wall_time_s,
                 ratio_to_full: outcome.result.ratio_to_full(r),
                 max_tip_difference_m: r.max_tip_difference(),
-                status: if r.status.is_complete() {
-                    "complete"
-                } else {
-                    "incomplete"
-                },
+                status: crate::commands::run_word(&r.status),
                 error: outcome.message_of(r),
                 points: r.points.iter().enumerate().map(json_point).collect(),
             })

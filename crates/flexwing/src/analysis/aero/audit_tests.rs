@@ -92,7 +92,7 @@ fn slope(points: &[(f64, f64)]) -> f64 {
 /// orders range over 4.1–7.8: step-size control makes them noisy). BDF (orders ≤ 2): 6.0e-4 … 1.4e-6
 /// in 82 … 1542 steps, fitted order 2.1 (bound [1.7, 2.5]). Generalized-α (second order) with
 /// fixed steps 4, 2, 1, 0.5 ms: 1.47e-5, 3.66e-6, 9.13e-7, 2.28e-7, order 2.00 (bound
-/// [1.9, 2.1]). Every run complete (the default limit is 10⁴ rtol, 1e-2 for a fixed step).
+/// [1.9, 2.1]). Every run complete (the default limit is 1000 rtol within [1e-5, 0.1], 1e-2 for a fixed step).
 #[test]
 fn the_balance_closes_at_the_integrators_order() {
     for manoeuvre in [false, true] {

@@ -107,7 +107,10 @@ impl FlutterPlan {
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
             return Err(InputError::new(
                 fields.analysis("tolerance"),
-                format!("must be in (0, 1), got {}", self.tolerance),
+                format!(
+                    "must be in (0, 1), got {}",
+                    crate::text::short(self.tolerance)
+                ),
             ));
         }
         if self.pk && !self.aero.aerodynamics.is_unsteady() {
@@ -228,6 +231,19 @@ pub struct Stability {
 }
 
 impl Stability {
+    /// No eigen-analysis (it was not run: the run was interrupted before it).
+    fn none() -> Self {
+        Self {
+            speeds: Vec::new(),
+            branches: Vec::new(),
+            crossings: Vec::new(),
+            flutter: None,
+            unstable_at_start: Vec::new(),
+            stats: FlutterStats::default(),
+            wall_time_s: 0.0,
+        }
+    }
+
     fn of(out: SolverOutcome, wall_time_s: f64) -> (Self, Option<Stop>) {
         let stability = Self {
             speeds: out.speeds,
@@ -370,6 +386,25 @@ fn analyse<M: AeroStructure>(
     progress: &mut dyn Progress,
 ) -> Result<FlutterRun, InputError> {
     let start = Instant::now();
+    // Ctrl-C (a cancelled progress) is honoured between the parts: the equilibria, the
+    // eigen-analysis and the p-k check each run to their end once begun.
+    let points = plan.speeds().len();
+    let interrupted = |done: usize| Stop::SweepInterrupted { done, points };
+    let dofs = aero.structure().n_dofs();
+    if progress.cancelled() {
+        return Ok(FlutterRun {
+            kind: kind.clone(),
+            dofs,
+            equilibria: Vec::new(),
+            divergence: None,
+            equilibria_status: Status::Stopped(interrupted(0)),
+            stability: Stability::none(),
+            pk: None,
+            wall_time_s: 0.0,
+            status: Status::Stopped(interrupted(0)),
+            other_stops: Vec::new(),
+        });
+    }
     let parts = if plan.pk { 3.0 } else { 2.0 };
     let part = |k: f64| move |f: f64| (k + f) / parts;
     let mut stops = Vec::new();
@@ -378,7 +413,6 @@ fn analyse<M: AeroStructure>(
         map: part(0.0),
     };
     let equilibria = sweep_model(kind, aero, statics, &mut sub)?;
-    let dofs = aero.structure().n_dofs();
     let eig = |method: FlutterMethod, k: f64, progress: &mut dyn Progress| {
         let t = Instant::now();
         let map = part(k);
@@ -387,9 +421,20 @@ fn analyse<M: AeroStructure>(
         })?;
         Ok::<_, InputError>(Stability::of(out, t.elapsed().as_secs_f64()))
     };
-    let (stability, stop) = eig(FlutterMethod::Eigenvalues, 1.0, progress)?;
+    let (stability, stop) = if progress.cancelled() {
+        let none = Stability::none();
+        let stop = Some(interrupted(0));
+        (none, stop)
+    } else {
+        eig(FlutterMethod::Eigenvalues, 1.0, progress)?
+    };
     stops.extend(stop);
-    let pk = if plan.pk {
+    let pk = if plan.pk && progress.cancelled() {
+        if stops.is_empty() {
+            stops.push(interrupted(stability.speeds.len()));
+        }
+        None
+    } else if plan.pk {
         let (pk, stop) = eig(FlutterMethod::PkTheodorsen, 2.0, progress)?;
         stops.extend(stop);
         Some(pk)

@@ -115,6 +115,8 @@ impl SpeedSweep {
         for (i, &u) in self.speeds.iter().enumerate() {
             let reason = if !u.is_finite() {
                 format!("must be finite, got {}", short(u))
+            } else if let Err(e) = crate::magnitude::check("", "", u) {
+                e.reason
             } else if positive && u <= 0.0 {
                 format!(
                     "must be positive (the branches start from the wet modes at U = 0), got {}",

@@ -347,14 +347,12 @@ impl Simulator<'_> {
         run.status = status_of(&balance, error, Some(&halt));
         let full = aero.full();
         let eqs = &mut system.0;
-        let mut dy = vec![0.0; eqs.dim()];
         let mut next_snapshot = self.snapshots.iter().peekable();
         for (index, (&t, y)) in trajectory.t.iter().zip(&trajectory.y).enumerate() {
             let q = aero.structure().full_coordinates(&y[..n]);
             let shape = full.shape(&q);
             let (tip_x, tip_y, tip_twist) = shape.tip();
-            // The right-hand side leaves the strip forces of (t, y) behind.
-            eqs.rhs(t, y, &mut dy);
+            let lift = eqs.vertical_aerodynamic_force_at(t, y);
             let (kinetic, strain) = eqs.energies(y);
             let (work, dissipated) = eqs.work_and_dissipation(y).unwrap_or((0.0, 0.0));
             run.samples.push(AeroSample {
@@ -363,7 +361,7 @@ impl Simulator<'_> {
                 tip_y,
                 tip_twist,
                 root_bending_moment: full.stiffness()[0] * q[0],
-                lift: eqs.vertical_aerodynamic_force(t),
+                lift,
                 speed: eqs.flight().speed(t),
                 kinetic,
                 strain,

@@ -81,7 +81,10 @@ impl AeroStaticPlan {
         if !(self.divergence_tolerance > 0.0 && self.divergence_tolerance < 1.0) {
             return Err(InputError::new(
                 fields.analysis("divergence_tolerance"),
-                format!("must be in (0, 1), got {}", self.divergence_tolerance),
+                format!(
+                    "must be in (0, 1), got {}",
+                    crate::text::short(self.divergence_tolerance)
+                ),
             ));
         }
         let n = wing.structure().n_dofs();

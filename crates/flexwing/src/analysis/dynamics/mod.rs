@@ -142,6 +142,7 @@ impl DynamicPlan {
                 format!("must be a finite positive number, got {}", short(end)),
             ));
         }
+        crate::magnitude::check(&field("end_time"), "", end)?;
         self.check_output_times(prefix)?;
         self.settings.validate(prefix)?;
         self.check_steps(prefix)?;
@@ -303,6 +304,9 @@ impl DynamicPlan {
                             format!("{field}.{key}[{k}]"),
                             format!("must be finite, got {}", short(v[k])),
                         ));
+                    }
+                    for (k, &x) in v.iter().enumerate() {
+                        crate::magnitude::check(&format!("{field}.{key}[{k}]"), "", x)?;
                     }
                 }
                 Ok(())

@@ -135,15 +135,19 @@ impl FlightCondition {
         if !(self.speed.is_finite() && self.speed >= 0.0) {
             return Err(InputError::new(
                 format!("{field}.speed"),
-                format!("must be a finite non-negative speed, got {}", self.speed),
+                format!(
+                    "must be a finite non-negative speed, got {}",
+                    crate::text::short(self.speed)
+                ),
             ));
         }
+        crate::magnitude::check(&format!("{field}.speed"), "", self.speed)?;
         if !(self.root_angle.is_finite() && self.root_angle.abs() < 0.5 * std::f64::consts::PI) {
             return Err(InputError::new(
                 format!("{field}.root_angle"),
                 format!(
                     "must be finite and below π/2 in magnitude (rad), got {}",
-                    self.root_angle
+                    crate::text::short(self.root_angle)
                 ),
             ));
         }
@@ -154,6 +158,7 @@ impl FlightCondition {
                     format!("must be finite, got {g}"),
                 ));
             }
+            crate::magnitude::check(&format!("{field}.gravity"), "", g)?;
         }
         Ok(())
     }
@@ -222,7 +227,8 @@ impl Aeroelastic<FullModel> {
             return Err(InputError::new(
                 f("elastic_axis"),
                 format!(
-                    "must lie on the chord, a fraction in [0, 1] from the leading edge, got {v}"
+                    "must lie on the chord, a fraction in [0, 1] from the leading edge, got {}",
+                    crate::text::short(*v)
                 ),
             ));
         }
@@ -237,9 +243,13 @@ impl Aeroelastic<FullModel> {
         if !(density.is_finite() && density > 0.0) {
             return Err(InputError::new(
                 f("density"),
-                format!("must be a finite positive number (kg/m³), got {density}"),
+                format!(
+                    "must be a finite positive number (kg/m³), got {}",
+                    crate::text::short(density)
+                ),
             ));
         }
+        crate::magnitude::check(&f("density"), "", density)?;
         if let Aerodynamics::Peters { states } = aerodynamics {
             if !(1..=MAX_PETERS_STATES).contains(&states) {
                 return Err(InputError::new(

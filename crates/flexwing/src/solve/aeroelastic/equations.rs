@@ -240,6 +240,60 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
             .sum()
     }
 
+    /// Total aerodynamic force along the ground's vertical (N) at state `y` and time `t`: the
+    /// velocities `ẋ = M⁻¹ p` and the strip loads only, not the whole right-hand side (the
+    /// outputs of a response ask for it at every output time). NaN if `M(x)` is not positive
+    /// definite.
+    pub(crate) fn vertical_aerodynamic_force_at(&mut self, t: f64, y: &[f64]) -> f64 {
+        let n = self.n;
+        let (xp, a) = y[..2 * n + self.na].split_at(2 * n);
+        let (x, p) = xp.split_at(n);
+        let mut xdot = std::mem::take(&mut self.xdot);
+        let mut scratch_a = std::mem::take(&mut self.scratch_a);
+        let ok = self
+            .aero
+            .structure()
+            .velocities_into(x, p, &mut self.ws, &mut xdot);
+        self.set_air(t);
+        self.force.fill(0.0);
+        self.eval.evaluate(
+            x,
+            &xdot,
+            a,
+            self.force.as_mut_slice(),
+            false,
+            &mut scratch_a,
+        );
+        self.xdot = xdot;
+        self.scratch_a = scratch_a;
+        if ok {
+            self.vertical_aerodynamic_force(t)
+        } else {
+            f64::NAN
+        }
+    }
+
+    /// Tip displacement of the elastic axis from the undeformed tip `(dx, dy)` (m), tip twist
+    /// (rad) and full-model coordinates of the configuration of the last evaluation of the
+    /// loads (by the chain's trigonometry already computed there).
+    pub(crate) fn last_tip(&self) -> ([f64; 2], f64, &[f64]) {
+        let full = self.aero.full();
+        let q = self.eval.coordinates();
+        let motion = &self.eval.sc.motion;
+        let mut tip = [-full.beam().length(), 0.0];
+        for (l, m) in full.beam().lengths().iter().zip(motion) {
+            tip[0] += l * m.cos_theta;
+            tip[1] += l * m.sin_theta;
+        }
+        let n = full.n_elements();
+        let twist = if full.has_torsion() {
+            q[n..].iter().sum()
+        } else {
+            0.0
+        };
+        (tip, twist, q)
+    }
+
     /// Replace the flight history (same gravity loads: the gravitational acceleration of the
     /// history given at construction is kept, its root-angle factor follows the new history).
     pub(crate) fn set_flight(&mut self, flight: FlightHistory) {

@@ -82,6 +82,11 @@ impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
         self.aero.structure().n_dofs()
     }
 
+    /// Full-model coordinates of the last [`Self::evaluate`].
+    pub(crate) fn coordinates(&self) -> &[f64] {
+        &self.q
+    }
+
     /// Lag states per strip.
     pub(crate) fn states_per_strip(&self) -> usize {
         self.lag.as_ref().map_or(0, |l| l.n_states())
@@ -109,9 +114,11 @@ impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
         match self.aero.structure().basis() {
             None => out.copy_from_slice(v),
             Some(phi) => {
+                // Raw column slices: nalgebra's column iterators do not vectorize (measured
+                // 3× slower here).
                 out.fill(0.0);
-                for (c, &e) in v.iter().enumerate() {
-                    for (o, p) in out.iter_mut().zip(phi.column(c).iter()) {
+                for (col, &e) in phi.as_slice().chunks_exact(out.len()).zip(v) {
+                    for (o, p) in out.iter_mut().zip(col) {
                         *o += p * e;
                     }
                 }
@@ -128,8 +135,8 @@ impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
                 }
             }
             Some(phi) => {
-                for (c, o) in out.iter_mut().enumerate() {
-                    let s: f64 = phi.column(c).iter().zip(v).map(|(a, b)| a * b).sum();
+                for (col, o) in phi.as_slice().chunks_exact(v.len()).zip(out.iter_mut()) {
+                    let s: f64 = col.iter().zip(v).map(|(a, b)| a * b).sum();
                     *o = if add { *o + s } else { s };
                 }
             }
@@ -179,12 +186,22 @@ impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
         self.sc.q = sq;
         if let Some(lag) = &self.lag {
             let ns = lag.n_states();
+            let h = lag.h.as_slice();
             for (i, s) in aero.strips.iter().enumerate() {
                 let rate = self.air[i].speed / s.b;
                 let ai = &a[i * ns..(i + 1) * ns];
-                for k in 0..ns {
-                    let hk: f64 = (0..ns).map(|j| lag.h[(k, j)] * ai[j]).sum();
-                    adot[i * ns + k] = rate * (hk + lag.b[k] * self.sc.w[i]);
+                let di = &mut adot[i * ns..(i + 1) * ns];
+                for (d, b) in di.iter_mut().zip(lag.b.iter()) {
+                    *d = b * self.sc.w[i];
+                }
+                // d += H̄ a_i, by columns of the column-major H̄.
+                for (col, &aj) in h.chunks_exact(ns).zip(ai) {
+                    for (d, hk) in di.iter_mut().zip(col) {
+                        *d += hk * aj;
+                    }
+                }
+                for d in di.iter_mut() {
+                    *d *= rate;
                 }
             }
         }

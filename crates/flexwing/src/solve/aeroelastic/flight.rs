@@ -111,7 +111,7 @@ impl FlightHistory {
         self.initial.validate(field)?;
         let finite = |name: &str, v: f64| {
             if v.is_finite() {
-                Ok(())
+                crate::magnitude::check(&format!("{field}.{name}"), "", v).map(|_| ())
             } else {
                 Err(InputError::new(
                     format!("{field}.{name}"),
@@ -144,7 +144,10 @@ impl FlightHistory {
                 if !(length.is_finite() && length > 0.0) {
                     return Err(InputError::new(
                         format!("{field}.gust.length"),
-                        format!("must be a finite positive length (m), got {length}"),
+                        format!(
+                            "must be a finite positive length (m), got {}",
+                            crate::text::short(length)
+                        ),
                     ));
                 }
                 if !(self.initial.speed > 0.0) {

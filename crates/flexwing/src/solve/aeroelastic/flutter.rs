@@ -98,7 +98,10 @@ impl FlutterPlan {
             if !(u.is_finite() && u > 0.0) || (i > 0 && u <= self.speeds[i - 1]) {
                 return Err(InputError::new(
                     format!("{field}.speeds[{i}]"),
-                    format!("speeds must be finite, positive and strictly increasing, got {u}"),
+                    format!(
+                        "speeds must be finite, positive and strictly increasing, got {}",
+                        crate::text::short(u)
+                    ),
                 ));
             }
         }
@@ -120,7 +123,10 @@ impl FlutterPlan {
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
             return Err(InputError::new(
                 format!("{field}.tolerance"),
-                format!("must be in (0, 1), got {}", self.tolerance),
+                format!(
+                    "must be in (0, 1), got {}",
+                    crate::text::short(self.tolerance)
+                ),
             ));
         }
         self.static_options

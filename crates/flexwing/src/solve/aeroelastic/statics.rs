@@ -52,7 +52,10 @@ impl StaticAeroPlan {
             if !(u.is_finite() && u >= 0.0) || (i > 0 && u <= self.speeds[i - 1]) {
                 return Err(InputError::new(
                     format!("{field}.speeds[{i}]"),
-                    format!("speeds must be finite, non-negative and strictly increasing, got {u}"),
+                    format!(
+                        "speeds must be finite, non-negative and strictly increasing, got {}",
+                        crate::text::short(u)
+                    ),
                 ));
             }
         }
@@ -65,7 +68,10 @@ impl StaticAeroPlan {
         if !(self.divergence_tolerance > 0.0 && self.divergence_tolerance < 1.0) {
             return Err(InputError::new(
                 format!("{field}.divergence_tolerance"),
-                format!("must be in (0, 1), got {}", self.divergence_tolerance),
+                format!(
+                    "must be in (0, 1), got {}",
+                    crate::text::short(self.divergence_tolerance)
+                ),
             ));
         }
         self.options.validate(&format!("{field}.options"))
@@ -104,6 +110,24 @@ pub struct Divergence {
     pub speed: f64,
     /// Divergence dynamic pressure (Pa).
     pub dynamic_pressure: f64,
+    /// How it was found.
+    pub basis: DivergenceBasis,
+    /// Whether the speed lies within the speeds the sweep attempted (its first to its last, or
+    /// to the one where it stopped: past the divergence speed the static solver fails). A
+    /// [`DivergenceBasis::Undeformed`] speed may lie beyond them: no equilibrium was computed
+    /// there, so it holds only as far as the wing stays undeformed (no root angle, gravity or
+    /// other load, and a symmetric section: then exactly).
+    pub within_sweep: bool,
+}
+
+/// How a divergence speed was found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DivergenceBasis {
+    /// `μ(x*(q)) − q` changes sign between two speeds of the sweep: refined between them.
+    Bracketed,
+    /// Every equilibrium of the sweep is undeformed and has the same divergence pressure: the
+    /// linear divergence pressure of the undeformed wing `μ(0)`, wherever it lies.
+    Undeformed,
 }
 
 /// What a static aeroelastic sweep produced.
@@ -113,8 +137,9 @@ pub struct StaticAeroOutcome {
     pub points: Vec<AeroEquilibrium>,
     /// The divergence speed: where `μ(x*(q)) = q` between two points of the sweep, refined; or,
     /// for a sweep whose equilibria do not move the divergence pressure (the undeformed wing),
-    /// `μ` itself. `None` if no real mode diverges, or the crossing lies beyond the sweep and the
-    /// divergence pressure still changes with the state.
+    /// `μ` itself, flagged when it lies outside the sweep ([`Divergence::within_sweep`]). `None`
+    /// if no real mode diverges, or the crossing lies beyond the sweep and the divergence
+    /// pressure still changes with the state.
     pub divergence: Option<Divergence>,
     /// The sweep stopped at this speed index with this error (partial output kept above).
     pub stopped: Option<(usize, SolveError)>,
@@ -441,10 +466,15 @@ fn find_divergence<'a, M: AeroStructure>(
             .all(|m| m.is_some_and(|m| (m - mu0).abs() <= 1e-9 * mu0))
             && points.iter().all(|p| p.x.iter().all(|v| v.abs() < 1e-12))
         {
-            let _ = first;
+            // The last speed attempted: the last one, or the one where the sweep stopped (past
+            // the divergence speed the static solver fails).
+            let last = plan.speeds[points.len().min(plan.speeds.len() - 1)];
+            let last_q = 0.5 * rho * last * last;
             return Some(Divergence {
                 speed: speed(mu0),
                 dynamic_pressure: mu0,
+                basis: DivergenceBasis::Undeformed,
+                within_sweep: (first.dynamic_pressure..=last_q).contains(&mu0),
             });
         }
     }
@@ -490,6 +520,8 @@ fn find_divergence<'a, M: AeroStructure>(
             return Some(Divergence {
                 speed: speed(qm),
                 dynamic_pressure: qm,
+                basis: DivergenceBasis::Bracketed,
+                within_sweep: true,
             });
         }
     }
