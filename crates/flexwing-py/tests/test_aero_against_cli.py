@@ -173,5 +173,26 @@ def test_gust_response_matches_the_cli(cli, tmp_path):
             ("speed", "speed_m_s"),
             ("kinetic", "kinetic_j"),
             ("strain", "strain_j"),
+            ("work", "work_j"),
+            ("dissipated", "dissipated_j"),
+            ("balance_error", "energy_balance_error"),
         ]:
             close(getattr(run, attr), [s[key] for s in samples])
+        # The energy audit: the CLI's block, key by key, and its summary columns.
+        audit, expected_audit = run.energy_audit, model["energy_audit"]
+        for key, cli_key in [
+            ("balanced", "balanced"),
+            ("max_error", "max_error"),
+            ("max_error_time", "max_error_t_s"),
+            ("limit", "limit"),
+            ("exceeded_time", "exceeded_t_s"),
+            ("runaway_limit", "runaway_limit"),
+            ("runaway_time", "runaway_t_s"),
+            ("reference_energy", "reference_energy_J"),
+        ]:
+            if expected_audit[cli_key] is None or isinstance(expected_audit[cli_key], bool):
+                assert audit[key] == expected_audit[cli_key], key
+            else:
+                close(audit[key], expected_audit[cli_key])
+        close(audit["max_error"], summary["energy_balance_max_error"])
+        close(audit["limit"], summary["energy_balance_limit"])

@@ -5,7 +5,8 @@
 //! Prints Markdown tables for docs/performance.md.
 //!
 //! Run: `cargo bench -p flexwing --bench aero` (add `-- --quick` for a short run; name sections
-//! to run only those: `-- flutter`, `-- sweep`, `-- gust`).
+//! to run only those: `-- flutter`, `-- sweep`, `-- gust`, `-- audit`: the cost of the energy
+//! audit on the gust response).
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -15,10 +16,13 @@ use common::{cpu_per_call, fmt_time, measure};
 
 use flexwing::beam::Profile;
 use flexwing::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCondition};
-use flexwing::model::ReducedModel;
+use flexwing::model::{AppliedLoads, ReducedModel, StructuralModel};
 use flexwing::solve::aeroelastic::{
-    flutter, response, FlightHistory, FlutterPlan, Gust, GustShape, ResponseOutcome, ResponsePlan,
+    flutter, response, AeroelasticEquations, FlightHistory, FlutterPlan, Gust, GustShape,
+    ResponseOutcome, ResponsePlan,
 };
+use flexwing::solve::integrate::{IntegratorStats, Radau, RadauOptions, Tolerances};
+use flexwing::solve::{AuditLimits, Damping};
 
 fn patil(n: usize) -> Aeroelastic {
     flexwing::wings::patil_wing(n, Aerodynamics::Peters { states: 6 }).expect("valid wing")
@@ -80,7 +84,7 @@ fn main() {
     let sections: Vec<&str> = args
         .iter()
         .map(String::as_str)
-        .filter(|a| ["flutter", "sweep", "gust"].contains(a))
+        .filter(|a| ["flutter", "sweep", "gust", "audit"].contains(a))
         .collect();
     let want = |name: &str| sections.is_empty() || sections.contains(&name);
     let (budget, batches) = if quick {
@@ -99,6 +103,9 @@ fn main() {
     }
     if want("gust") {
         gust_table(&wing, &rom6, budget, batches);
+    }
+    if want("audit") {
+        audit_table(&wing, &rom6, budget, batches);
     }
 }
 
@@ -239,6 +246,111 @@ fn gust_table(
             fmt_time(t),
             s * 100.0,
             fmt_time(cpu)
+        );
+    }
+}
+
+/// The gust response of `aero` integrated by Radau (lag states eliminated in the Newton
+/// systems) from the initial equilibrium `x0`, with or without the energy audit: the counters
+/// and the audit's largest balance error.
+fn audited_gust<M: AeroStructure>(
+    aero: &Aeroelastic<M>,
+    x0: &[f64],
+    rtol: f64,
+    audit: bool,
+) -> (IntegratorStats, Option<f64>) {
+    let loads = AppliedLoads::none();
+    let plan = gust_plan(rtol);
+    let mut eqs =
+        AeroelasticEquations::new(aero, &loads, vec![], plan.flight, &Damping::None, "flight")
+            .expect("equations");
+    if audit {
+        let floor = eqs.energy_resolution(rtol);
+        eqs.set_energy_audit(Some(AuditLimits {
+            balance: Some((1e3 * rtol).clamp(1e-5, 0.1)),
+            runaway: 9.0,
+            floor,
+        }));
+    }
+    let a0 = eqs.steady_states(0.0, x0);
+    let y0 = eqs.state(x0, &vec![0.0; x0.len()], &a0);
+    let atol = eqs.state_atol(rtol);
+    let t_out: Vec<f64> = (0..=100).map(|k| 0.02 * k as f64).collect();
+    let (_, stats) = Radau {
+        options: RadauOptions {
+            tolerances: Tolerances { rtol, atol },
+            ..Default::default()
+        },
+    }
+    .integrate(&mut eqs, 0.0, &y0, &t_out, &mut |_| {})
+    .expect("gust response");
+    let error = eqs.energy_balance().map(|b| {
+        let mut b = b.clone();
+        b.finish();
+        b.max_error
+    });
+    (stats, error)
+}
+
+/// The cost of the energy audit on the 1−cos gust response (the gust table's runs, integrated
+/// here with Radau's default options, with and without the audit).
+fn audit_table(
+    wing: &Aeroelastic,
+    rom6: &Aeroelastic<ReducedModel>,
+    budget: Duration,
+    batches: usize,
+) {
+    println!("\nEnergy audit of the 1−cos gust response, 2 s, Radau, n = 32: cost\n");
+    println!(
+        "| model | rtol | steps off/on | Newton iterations off/on | time off | time on | \
+         cost | balance error |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    for (name, rtol) in [
+        ("full", 1e-4),
+        ("full", 1e-3),
+        ("reduced r = 6", 1e-4),
+        ("reduced r = 6", 1e-3),
+    ] {
+        let full = name == "full";
+        let x0 = |rtol| -> Vec<f64> {
+            let out = if full {
+                response(wing, &gust_plan(rtol), "response", &mut |_| {})
+            } else {
+                response(rom6, &gust_plan(rtol), "response", &mut |_| {})
+            };
+            let n = if full {
+                wing.structure().n_dofs()
+            } else {
+                rom6.structure().n_dofs()
+            };
+            out.expect("plan").states[0][..n].to_vec()
+        };
+        let x0 = x0(rtol);
+        let go = |audit| {
+            if full {
+                audited_gust(wing, &x0, rtol, audit)
+            } else {
+                audited_gust(rom6, &x0, rtol, audit)
+            }
+        };
+        let ((off, _), (on, error)) = (go(false), go(true));
+        let (t_off, _) = measure(budget, batches, || {
+            black_box(go(false));
+        });
+        let (t_on, _) = measure(budget, batches, || {
+            black_box(go(true));
+        });
+        println!(
+            "| {name} | {rtol:.0e} | {}/{} | {}/{} | {} | {} | {:+.0} % | {:.1e} |",
+            off.steps,
+            on.steps,
+            off.newton_iterations,
+            on.newton_iterations,
+            fmt_time(t_off),
+            fmt_time(t_on),
+            100.0 * (t_on / t_off - 1.0),
+            error.unwrap_or(f64::NAN)
         );
     }
 }

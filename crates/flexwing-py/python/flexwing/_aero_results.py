@@ -310,8 +310,18 @@ class AeroDynamicRun(_Result):
         lift: total aerodynamic force along the ground's vertical (N), ``(T,)``.
         speed: free-stream speed U(t) (m/s), ``(T,)``.
         kinetic: kinetic energy of the structure and the fluid's apparent mass (J); strain:
-            strain energy (J); total: their sum; each ``(T,)``. No energy audit: the library's
-            aeroelastic response does not integrate the work of the aerodynamic loads yet.
+            strain energy (J); total: their sum; each ``(T,)``.
+        work: work of the loads since t = 0 (J), ``(T,)``: the applied loads, gravity and the
+            aerodynamic loads other than the apparent mass (circulatory, the non-circulatory
+            velocity term, gust, changes of speed and root angle); dissipated: energy
+            dissipated by the structural damping since t = 0 (J), ``(T,)``.
+        balance_error: the energy balance ``(H − H(0) − W + D) / E`` at each output time, with
+            ``H = total`` (the apparent mass included), relative to the largest energy held or
+            given (positive: energy created), ``(T,)``.
+        energy_audit: what the energy audit found over the accepted steps, as
+            ``DynamicRun.energy_audit`` (``None`` if the run did not start). A run whose
+            balance error exceeded ``limit`` is ``"suspect"``; one whose energy ran away is
+            stopped (``stop["reason"] == "energy-runaway"``).
         snapshots: as ``DynamicRun.snapshots``.
         max_tip_difference: largest tip distance from the first model's (m), or ``None``.
     """
@@ -338,6 +348,10 @@ class AeroDynamicRun(_Result):
     kinetic: np.ndarray
     strain: np.ndarray
     total: np.ndarray
+    work: np.ndarray
+    dissipated: np.ndarray
+    balance_error: np.ndarray
+    energy_audit: Optional[Dict[str, Any]]
     snapshots: Dict[str, np.ndarray]
     max_tip_difference: Optional[float]
     extra: Dict[str, Any] = field(default_factory=dict)
@@ -357,7 +371,8 @@ class AeroDynamicResult(_Runs, _Result):
 
     Attributes:
         runs: one :class:`AeroDynamicRun` per model: full, then the reduced models.
-        status: ``"complete"`` if every model reached every output time, else ``"stopped"``.
+        status: ``"complete"`` if every model reached every output time with its energy balance
+            within its limit, ``"suspect"`` if one's balance exceeded it, else ``"stopped"``.
         end_time: the simulated time (s).
         aerodynamics: as ``AeroStaticResult.aerodynamics``.
         start: ``"equilibrium"`` (the static aeroelastic equilibrium of the initial flight) or

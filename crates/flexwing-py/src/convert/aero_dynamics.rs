@@ -8,7 +8,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::aero_statics::aerodynamics;
-use super::dynamics::snapshots;
+use super::dynamics::{audit, snapshots};
 use super::statics::kind_name;
 use super::status::{overall, status_fields};
 use crate::arrays::out1;
@@ -79,6 +79,13 @@ fn run<'py>(
     d.set_item("kinetic", column(|s| s.kinetic))?;
     d.set_item("strain", column(|s| s.strain))?;
     d.set_item("total", column(|s| s.kinetic + s.strain))?;
+    d.set_item("work", column(|s| s.work))?;
+    d.set_item("dissipated", column(|s| s.dissipated))?;
+    d.set_item("balance_error", column(|s| s.balance_error))?;
+    d.set_item(
+        "energy_audit",
+        r.energy.as_ref().map(|e| audit(py, e)).transpose()?,
+    )?;
     d.set_item("snapshots", snapshots(py, &r.snapshots, nodes)?)?;
     d.set_item("max_tip_difference", r.max_tip_difference)?;
     Ok(d)

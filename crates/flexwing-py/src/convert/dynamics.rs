@@ -42,7 +42,7 @@ pub fn raw<'py>(
 /// `max_error` and `max_error_time` (s), `limit` (`None` without a balance), `exceeded_time`
 /// (s, the first time the error passed `limit`), `runaway_limit`, `runaway_time` (s), and
 /// `reference_energy` (J, the largest energy held or given).
-fn audit<'py>(py: Python<'py>, e: &EnergyBalance) -> PyResult<Bound<'py, PyDict>> {
+pub fn audit<'py>(py: Python<'py>, e: &EnergyBalance) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("balanced", e.limits.balance.is_some())?;
     d.set_item("max_error", e.max_error)?;

@@ -123,7 +123,7 @@ impl EnergyBalance {
 
     /// Settle the largest error and the first time the limit was exceeded, against the final
     /// reference energy.
-    pub(crate) fn finish(&mut self) {
+    pub fn finish(&mut self) {
         let e = self.reference;
         if let Some(&(t, r)) = self.records.last() {
             self.max_error = r / e;

@@ -3,21 +3,25 @@
 //! `[dynamic]`, from the static aeroelastic equilibrium of the initial flight (or at rest).
 //!
 //! Files: `dynamic_aero.csv` (one row per model and output time: tip, twist, root bending moment,
-//! lift, speed, energies), `dynamic_summary.csv`, `status.txt`; with `--plot` `dynamic_tip.svg/.png`.
+//! lift, speed, energies, the work of the loads and the dissipated energy, the energy balance),
+//! `dynamic_summary.csv` (with the energy audit's largest error and limit), `status.txt`; with
+//! `--plot` `dynamic_tip.svg/.png`. A run whose energy balance exceeds its limit is `suspect`, one
+//! whose energy runs away is stopped (docs/model-choices.md, "Energy audit"): both exit 1.
 //! Non-finite numbers (none expected) are written as empty fields (CSV) or `null` (JSON).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use flexwing::analysis::aero::response::{self, AeroDynamicOutcome, AeroDynamicRun};
-use flexwing::analysis::NoProgress;
+use flexwing::analysis::{NoProgress, Stop};
 use flexwing::Error;
 use serde::Serialize;
 
+use super::report::JsonAudit;
 use super::DynamicArgs;
 use crate::commands::flutter::aero_line;
 use crate::commands::{
-    default_out_dir, model_line, status_text, stop_message, Failure, Incomplete,
+    default_out_dir, model_line, status_entry, status_text, Failure, Incomplete,
 };
 use crate::output;
 use crate::plot::{self, HistoryPlot, HistorySeries};
@@ -39,6 +43,9 @@ struct SampleRow {
     speed_m_s: Option<f64>,
     kinetic_j: Option<f64>,
     strain_j: Option<f64>,
+    work_j: Option<f64>,
+    dissipated_j: Option<f64>,
+    energy_balance_error: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -54,6 +61,9 @@ struct SummaryRow {
     factorizations: usize,
     wall_time_s: Option<f64>,
     max_tip_difference_m: Option<f64>,
+    energy_balance_max_error: Option<f64>,
+    energy_balance_max_error_t_s: Option<f64>,
+    energy_balance_limit: Option<f64>,
     status: &'static str,
     error: Option<String>,
 }
@@ -73,6 +83,7 @@ struct JsonReport<'a> {
 #[derive(Serialize)]
 struct JsonModel {
     summary: SummaryRow,
+    energy_audit: Option<JsonAudit>,
     samples: Vec<SampleRow>,
 }
 
@@ -88,6 +99,9 @@ fn samples(r: &AeroDynamicRun) -> impl Iterator<Item = SampleRow> + '_ {
         speed_m_s: finite(s.speed),
         kinetic_j: finite(s.kinetic),
         strain_j: finite(s.strain),
+        work_j: finite(s.work),
+        dissipated_j: finite(s.dissipated),
+        energy_balance_error: finite(s.balance_error),
     })
 }
 
@@ -110,11 +124,18 @@ fn summary(r: &AeroDynamicRun, incomplete: &[Incomplete]) -> SummaryRow {
         factorizations: st.factorizations,
         wall_time_s: finite(r.wall_time_s),
         max_tip_difference_m: r.max_tip_difference.and_then(finite),
-        status: if r.status.is_complete() {
-            "complete"
-        } else {
-            "incomplete"
-        },
+        energy_balance_max_error: r.energy.as_ref().and_then(|e| finite(e.max_error)),
+        energy_balance_max_error_t_s: r.energy.as_ref().and_then(|e| finite(e.max_error_time)),
+        energy_balance_limit: r.energy.as_ref().and_then(|e| e.limits.balance),
+        status: status_word(r),
+    }
+}
+
+/// `complete`, `suspect`, `incomplete` or `interrupted`.
+fn status_word(r: &AeroDynamicRun) -> &'static str {
+    match r.status.stop() {
+        Some(Stop::Interrupted { .. }) => "interrupted",
+        _ => r.status.word(),
     }
 }
 
@@ -143,11 +164,7 @@ pub fn run(args: &DynamicArgs, case: &Case) -> Result<(), Failure> {
     let incomplete: Vec<Incomplete> = result
         .runs
         .iter()
-        .filter_map(|r| {
-            r.status
-                .stop()
-                .map(|stop| Incomplete::stopped(r.kind.label(), stop_message(stop, None, &[])))
-        })
+        .filter_map(|r| status_entry(&r.kind.label(), &r.status, None, &[]))
         .collect();
     let s = &plan.structure;
     let model = model_line(&s.model);
@@ -176,6 +193,7 @@ pub fn run(args: &DynamicArgs, case: &Case) -> Result<(), Failure> {
                 .iter()
                 .map(|r| JsonModel {
                     summary: summary(r, &incomplete),
+                    energy_audit: r.energy.as_ref().map(JsonAudit::of),
                     samples: samples(r).collect(),
                 })
                 .collect(),
@@ -192,8 +210,8 @@ pub fn run(args: &DynamicArgs, case: &Case) -> Result<(), Failure> {
     let printed = crate::commands::print_stdout(&text, args.json);
     if let Some(first) = incomplete.first() {
         return Err(Failure::run(format!(
-            "{name}: {}: {} (see status.txt)",
-            first.what, first.message
+            "{name}: {}: {}: {} (see status.txt)",
+            first.what, first.word, first.message
         )));
     }
     printed
@@ -233,7 +251,7 @@ fn tables(
         .max(10);
     let _ = writeln!(
         s,
-        "{:<w$}  {:>5}  {:>11}  {:>17}  {:>6}  {:>8}  {:>5}  {:>14}  {:>13}  {:>12}",
+        "{:<w$}  {:>5}  {:>11}  {:>17}  {:>6}  {:>8}  {:>5}  {:>14}  {:>13}  {:>12}  {:>12}  {:>12}  status",
         "model",
         "dofs",
         "aero states",
@@ -243,7 +261,9 @@ fn tables(
         "LU",
         "wall time (ms)",
         "ratio to 1st",
-        "max Δtip (m)"
+        "max Δtip (m)",
+        "energy error",
+        "energy limit",
     );
     for r in &result.runs {
         let ratio = result
@@ -252,9 +272,18 @@ fn tables(
         let diff = r
             .max_tip_difference
             .map_or_else(|| "-".into(), |v| format!("{v:.2e}"));
+        let energy = r
+            .energy
+            .as_ref()
+            .map_or_else(|| "-".into(), |e| format!("{:.2e}", e.max_error));
+        let limit = r
+            .energy
+            .as_ref()
+            .and_then(|e| e.limits.balance)
+            .map_or_else(|| "-".into(), |l| format!("{l:.1e}"));
         let _ = writeln!(
             s,
-            "{:<w$}  {:>5}  {:>11}  {:>17}  {:>6}  {:>8}  {:>5}  {:>14.3}  {:>13}  {:>12}",
+            "{:<w$}  {:>5}  {:>11}  {:>17}  {:>6}  {:>8}  {:>5}  {:>14.3}  {:>13}  {:>12}  {:>12}  {:>12}  {}",
             r.kind.label(),
             r.dofs,
             r.aero_states,
@@ -264,7 +293,10 @@ fn tables(
             r.stats.factorizations,
             1e3 * r.wall_time_s,
             ratio,
-            diff
+            diff,
+            energy,
+            limit,
+            status_word(r)
         );
     }
     let _ = writeln!(s);
@@ -296,7 +328,7 @@ fn tables(
         let _ = writeln!(s, "status: complete");
     }
     for i in incomplete {
-        let _ = writeln!(s, "status: incomplete: {}: {}", i.what, i.message);
+        let _ = writeln!(s, "status: {}: {}: {}", i.word, i.what, i.message);
     }
     for f in files {
         let _ = writeln!(s, "wrote {}", f.display());

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use flexwing::analysis::dynamics::{DynamicPlan, Initial, ModelRun, Sample};
 use flexwing::analysis::Stop;
 use flexwing::solve::integrate::Method;
-use flexwing::solve::{Damping, Gyroscopic, TimeFunction};
+use flexwing::solve::{Damping, EnergyBalance, Gyroscopic, TimeFunction};
 use serde::Serialize;
 
 use super::Outcome;
@@ -362,7 +362,7 @@ struct JsonModel<'a> {
 /// What the energy audit of a run found (docs/validation.md, "Energy audit").
 #[derive(Serialize)]
 #[allow(non_snake_case)]
-struct JsonAudit {
+pub(super) struct JsonAudit {
     /// Whether the model has an energy balance (all but the simplified model).
     balanced: bool,
     /// `max_t |H − H(0) − W + D| / E`: for the simplified model, the energy its equations create.
@@ -412,6 +412,22 @@ struct JsonEnergy {
     balance_error: Vec<f64>,
 }
 
+impl JsonAudit {
+    /// The audit `e` of a run.
+    pub(super) fn of(e: &EnergyBalance) -> Self {
+        Self {
+            balanced: e.limits.balance.is_some(),
+            max_error: e.max_error,
+            max_error_t_s: e.max_error_time,
+            limit: e.limits.balance,
+            exceeded_t_s: e.exceeded_at,
+            runaway_limit: e.limits.runaway,
+            runaway_t_s: e.runaway_at,
+            reference_energy_J: e.reference,
+        }
+    }
+}
+
 fn json_model<'a>(outcome: &'a Outcome, r: &'a ModelRun) -> JsonModel<'a> {
     let column = |f: fn(&Sample) -> f64| r.samples.iter().map(f).collect::<Vec<f64>>();
     let st = &r.stats;
@@ -452,16 +468,7 @@ fn json_model<'a>(outcome: &'a Outcome, r: &'a ModelRun) -> JsonModel<'a> {
             dissipated_J: column(|p| p.dissipated),
             balance_error: column(|p| p.balance_error),
         },
-        energy_audit: r.energy.as_ref().map(|e| JsonAudit {
-            balanced: e.limits.balance.is_some(),
-            max_error: e.max_error,
-            max_error_t_s: e.max_error_time,
-            limit: e.limits.balance,
-            exceeded_t_s: e.exceeded_at,
-            runaway_limit: e.limits.runaway,
-            runaway_t_s: e.runaway_at,
-            reference_energy_J: e.reference,
-        }),
+        energy_audit: r.energy.as_ref().map(JsonAudit::of),
     }
 }
 

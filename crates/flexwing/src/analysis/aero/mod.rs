@@ -17,6 +17,8 @@
 //! `{aero}.flight.gust.length`, the speeds `{aero}.sweep.speeds[i]`, the static solver's options
 //! `{statics}.tolerance`, the analysis' own settings `{analysis}.reduced[i]`.
 
+#[cfg(test)]
+mod audit_tests;
 pub mod flutter;
 pub mod response;
 pub mod statics;

@@ -6,19 +6,24 @@
 //! equilibrium of the initial flight condition (the loads at their `t = 0` value, gravity), at
 //! rest with the lag states in steady state, or undeformed at rest.
 
+use std::ops::ControlFlow;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::Instant;
 
 use nalgebra::DMatrix;
 
 use super::{build, models, Aero, Built, Fields};
-use crate::analysis::dynamics::{DynamicPlan, Initial, Snapshot};
+use crate::analysis::dynamics::{status_of, DynamicPlan, Initial, Snapshot};
 use crate::analysis::{ModelKind, Progress, Status, Stop};
 use crate::error::{Error, InputError, SolveError};
 use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic};
 use crate::model::{AppliedLoads, Load};
 use crate::solve::aeroelastic::{AeroelasticEquations, FlightHistory, SteadyAeroModel};
 use crate::solve::integrate::{integrate, IntegratorStats, Method, OdeSystem};
-use crate::solve::{continue_static, Damping, Gyroscopic, StaticOptions, TimeFunction};
+use crate::solve::{
+    continue_static, Damping, EnergyBalance, Gyroscopic, StaticOptions, TimeFunction,
+};
 
 /// Where an aeroelastic response starts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -130,6 +135,14 @@ pub struct AeroSample {
     pub kinetic: f64,
     /// Strain energy of the springs (J).
     pub strain: f64,
+    /// Work of the applied, gravity and aerodynamic loads since `t = 0`,
+    /// `W = ∫ ẋ·(Q_other + Q_grav + Q_aero) dt` (J).
+    pub work: f64,
+    /// Energy dissipated by the structural damping since `t = 0`, `D = ∫ ẋᵀ C ẋ dt` (J).
+    pub dissipated: f64,
+    /// The energy balance `(H − H(0) − W + D) / E` at this time, relative to the energy the run
+    /// has held or been given ([`crate::solve::EnergyBalance`]); positive is energy created.
+    pub balance_error: f64,
 }
 
 /// The response of one model.
@@ -151,8 +164,12 @@ pub struct AeroDynamicRun {
     pub samples: Vec<AeroSample>,
     /// The deformed shape at the plan's snapshot times reached.
     pub snapshots: Vec<Snapshot>,
-    /// Whether every output time was reached, or where and why the run stopped.
+    /// Whether every output time was reached and the energy balance held, or where and why the
+    /// run stopped or is doubtful.
     pub status: Status,
+    /// What the energy audit found over the accepted steps (`solve/aeroelastic/audit.rs`);
+    /// `None` if the run did not start (its initial state or equations failed).
+    pub energy: Option<EnergyBalance>,
     /// Largest distance of the tip from the first model's, over the output times both reached
     /// (m); `None` for the first model.
     pub max_tip_difference: Option<f64>,
@@ -257,6 +274,7 @@ impl Simulator<'_> {
             samples: Vec::new(),
             snapshots: Vec::new(),
             status: Status::Complete,
+            energy: None,
             max_tip_difference: None,
         };
         let x0 = match self.initial_state(aero) {
@@ -282,6 +300,15 @@ impl Simulator<'_> {
             }
         };
         let eqs = &mut system.0;
+        // The energy audit (as a structural run's, `integrate_audited`): on before the state is
+        // built, so that it starts from H(0) and the state carries W and D.
+        let floor = eqs.energy_resolution(s.settings.atol);
+        let limits = s.audit.limits(true, &s.settings, floor);
+        eqs.set_energy_audit(Some(limits));
+        // The caller's cancellation, polled after every step, stops the integrator through the
+        // equations' halt flag.
+        let halt = Arc::new(AtomicBool::new(false));
+        eqs.set_halt(Some(Arc::clone(&halt)));
         let a0 = eqs.steady_states(0.0, &x0);
         let y0 = eqs.state(&x0, &vec![0.0; n], &a0);
         let end = s.end_time;
@@ -293,20 +320,31 @@ impl Simulator<'_> {
             0.0,
             &y0,
             &s.output_times,
-            &mut |t| progress.advance((t / end).clamp(0.0, 1.0)),
+            &mut |t| {
+                progress.advance((t / end).clamp(0.0, 1.0));
+                if progress.cancelled() {
+                    halt.store(true, Ordering::Relaxed);
+                }
+            },
         );
         run.wall_time_s = start.elapsed().as_secs_f64();
-        let trajectory = match result {
+        let (trajectory, error) = match result {
             Ok((trajectory, stats)) => {
                 run.stats = stats;
-                trajectory
+                (trajectory, None)
             }
             Err(failure) => {
                 run.stats = failure.stats;
-                run.status = Status::Stopped(Stop::Integration(failure.error));
-                failure.trajectory
+                (failure.trajectory, Some(failure.error))
             }
         };
+        let mut balance = system
+            .0
+            .energy_balance()
+            .cloned()
+            .unwrap_or_else(|| EnergyBalance::start(limits, 0.0));
+        balance.finish();
+        run.status = status_of(&balance, error, Some(&halt));
         let full = aero.full();
         let eqs = &mut system.0;
         let mut next_snapshot = self.snapshots.iter().peekable();
@@ -316,6 +354,7 @@ impl Simulator<'_> {
             let (tip_x, tip_y, tip_twist) = shape.tip();
             let lift = eqs.vertical_aerodynamic_force_at(t, y);
             let (kinetic, strain) = eqs.energies(y);
+            let (work, dissipated) = eqs.work_and_dissipation(y).unwrap_or((0.0, 0.0));
             run.samples.push(AeroSample {
                 t,
                 tip_x,
@@ -326,12 +365,16 @@ impl Simulator<'_> {
                 speed: eqs.flight().speed(t),
                 kinetic,
                 strain,
+                work,
+                dissipated,
+                balance_error: balance.relative(kinetic + strain, work, dissipated),
             });
             if next_snapshot.peek() == Some(&&index) {
                 next_snapshot.next();
                 run.snapshots.push(Snapshot { index, t, shape });
             }
         }
+        run.energy = Some(balance);
         run
     }
 
@@ -388,8 +431,12 @@ impl<M: AeroStructure> OdeSystem for Scaled<'_, M> {
         self.0.jacobian(t, y, jac)
     }
     fn atol_scale(&mut self, scale: &mut [f64]) {
-        // `state_atol` is linear in its tolerance: at 1 it gives the scales.
+        // `state_atol` is linear in its tolerance: at 1 it gives the scales (infinite for the
+        // audit's quadrature states).
         scale.copy_from_slice(&self.0.state_atol(1.0));
+    }
+    fn step_accepted(&mut self, t: f64, y: &[f64]) -> ControlFlow<()> {
+        self.0.step_accepted(t, y)
     }
 }
 

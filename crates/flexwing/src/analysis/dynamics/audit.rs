@@ -185,7 +185,7 @@ pub fn integrate_audited<M: StructuralModel>(
 }
 
 /// The status of a run that ended with `error` (if any), after the audit found `balance`.
-fn status_of(
+pub(crate) fn status_of(
     balance: &EnergyBalance,
     error: Option<SolveError>,
     halt: Option<&AtomicBool>,

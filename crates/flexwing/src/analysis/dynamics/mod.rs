@@ -10,6 +10,7 @@ mod audit;
 mod outcome;
 mod run;
 
+pub(crate) use audit::status_of;
 pub use audit::{
     integrate_audited, AuditSettings, AuditedRun, DEFAULT_RUNAWAY, MAX_TOLERANCE, MIN_TOLERANCE,
 };

@@ -17,8 +17,13 @@
 //! ∂ȧ_i/∂x = (V_i/b_i) B̄ (W_x,i + W_v,i A)   ∂ȧ_i/∂p = (V_i/b_i) B̄ W_v,i M⁻¹   ∂ȧ_i/∂a_i = (V_i/b_i) H̄
 //! ```
 
+use std::ops::ControlFlow;
+use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
+
 use nalgebra::{Complex, DMatrix, DVector};
 
+use super::audit::{dot, AeroAudit};
 use super::evaluator::{AeroDerivatives, AeroEvaluator};
 use super::flight::FlightHistory;
 use super::linear::Linearization;
@@ -59,7 +64,7 @@ pub struct LinearSystem {
 /// analysis. Evaluations of the right-hand side allocate nothing.
 pub struct AeroelasticEquations<'a, M: AeroStructure> {
     aero: &'a Aeroelastic<M>,
-    structural: EquationsOfMotion<'a, M>,
+    pub(super) structural: EquationsOfMotion<'a, M>,
     loads: &'a AppliedLoads,
     time_functions: Vec<TimeFunction>,
     /// The structural damping matrix `C` (constant), `None` without damping.
@@ -68,8 +73,8 @@ pub struct AeroelasticEquations<'a, M: AeroStructure> {
     flight: FlightHistory,
     gravity: Option<AppliedLoads>,
     ws: M::Workspace,
-    n: usize,
-    na: usize,
+    pub(super) n: usize,
+    pub(super) na: usize,
     force: DVector<f64>,
     gravity_jac: DMatrix<f64>,
     derivatives: AeroDerivatives,
@@ -84,6 +89,10 @@ pub struct AeroelasticEquations<'a, M: AeroStructure> {
     newton_systems: AeroNewtonSystems,
     /// The Newton solver by elimination of the lag states, made on first use.
     schur: Option<LagSchur>,
+    /// The energy audit, if on (`audit.rs`): the state then ends with `W` and `D`.
+    pub(super) audit: Option<AeroAudit>,
+    /// A flag that, once set, stops the integration after the next accepted step.
+    pub(super) halt: Option<Arc<AtomicBool>>,
     /// Right-hand-side evaluations.
     pub rhs_evaluations: usize,
     /// Jacobian evaluations.
@@ -151,6 +160,8 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
             structured: StructuredJacobian::zeros(0, 0),
             newton_systems: AeroNewtonSystems::Auto,
             schur: None,
+            audit: None,
+            halt: None,
             rhs_evaluations: 0,
             jacobian_evaluations: 0,
         })
@@ -169,10 +180,12 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         &self.flight
     }
 
-    /// State `(x, p, a)` for coordinates `x`, velocities `ẋ` and lag states `a`.
+    /// State `(x, p, a)` for coordinates `x`, velocities `ẋ` and lag states `a`; with the
+    /// energy audit, followed by `W = D = 0`, and the audit restarts from it (`audit.rs`).
     pub fn state(&mut self, x: &[f64], xdot: &[f64], a: &[f64]) -> Vec<f64> {
         let mut y = self.structural.state(x, xdot);
         y.extend_from_slice(a);
+        self.restart_audit(&mut y);
         y
     }
 
@@ -182,6 +195,8 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         let mut v = self.structural.state_atol(atol);
         let u = self.flight.initial.speed.max(1.0);
         v.extend(std::iter::repeat_n(atol * u, self.na));
+        // The audit's quadrature states are left out of the error control.
+        v.resize(self.dim(), f64::INFINITY);
         v
     }
 
@@ -231,7 +246,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     /// definite.
     pub(crate) fn vertical_aerodynamic_force_at(&mut self, t: f64, y: &[f64]) -> f64 {
         let n = self.n;
-        let (xp, a) = y.split_at(2 * n);
+        let (xp, a) = y[..2 * n + self.na].split_at(2 * n);
         let (x, p) = xp.split_at(n);
         let mut xdot = std::mem::take(&mut self.xdot);
         let mut scratch_a = std::mem::take(&mut self.scratch_a);
@@ -466,17 +481,30 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
 
 impl<M: AeroStructure> OdeSystem for AeroelasticEquations<'_, M> {
     fn dim(&self) -> usize {
-        2 * self.n + self.na
+        2 * self.n + self.na + if self.audit.is_some() { 2 } else { 0 }
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         self.rhs_evaluations += 1;
         let n = self.n;
-        let (xp, a) = y.split_at(2 * n);
-        let (dxp, da) = dy.split_at_mut(2 * n);
-        self.structural.rhs(t, xp, dxp);
+        let (xp, a) = y[..2 * n + self.na].split_at(2 * n);
+        let (dxp, rest) = dy.split_at_mut(2 * n);
+        let (da, quadrature) = rest.split_at_mut(self.na);
+        match self.audit.as_mut() {
+            // The structural rates with the power of its loads and damping (`audit.rs`).
+            Some(audit) => {
+                self.structural.rhs(t, xp, &mut audit.structural);
+                dxp.copy_from_slice(&audit.structural[..2 * n]);
+            }
+            None => self.structural.rhs(t, xp, dxp),
+        }
         let x = &xp[..n];
         let (dx, dp) = dxp.split_at_mut(n);
+        let structural_power = if self.audit.is_some() {
+            dot(dx, dp)
+        } else {
+            0.0
+        };
         if let Some(g) = &self.gravity {
             let s = self.gravity_scale(t);
             self.aero
@@ -488,6 +516,14 @@ impl<M: AeroStructure> OdeSystem for AeroelasticEquations<'_, M> {
         }
         self.set_air(t);
         self.eval.evaluate(x, dx, a, dp, true, da);
+        if let Some(audit) = &self.audit {
+            audit.quadrature_rates(dot(dx, dp) - structural_power, quadrature);
+        }
+    }
+
+    /// The halt flag, then the energy audit's check of the balance at the step's end.
+    fn step_accepted(&mut self, t: f64, y: &[f64]) -> ControlFlow<()> {
+        self.audit_step(t, y)
     }
 
     fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
@@ -495,7 +531,8 @@ impl<M: AeroStructure> OdeSystem for AeroelasticEquations<'_, M> {
         if sj.ss.nrows() != 2 * self.n {
             sj = StructuredJacobian::zeros(self.n, self.aero.n_strips());
         }
-        self.structured_jacobian(t, y, &mut sj, false);
+        let m = 2 * self.n + self.na;
+        self.structured_jacobian(t, &y[..m], &mut sj, false);
         let n = self.n;
         jac.fill(0.0);
         jac.view_mut((0, 0), (2 * n, 2 * n)).copy_from(&sj.ss);
@@ -538,28 +575,45 @@ impl<M: AeroStructure> NewtonSolver for AeroelasticEquations<'_, M> {
         let Some(mut schur) = self.schur.take() else {
             return false;
         };
-        self.structured_jacobian(t, y, &mut schur.jac, true);
+        let m = 2 * self.n + self.na;
+        self.structured_jacobian(t, &y[..m], &mut schur.jac, true);
         let finite = schur.jac.is_finite();
         schur.linearized();
         self.schur = Some(schur);
         finite
     }
     fn factor_real(&mut self, slot: usize, c: f64) -> bool {
+        if let Some(audit) = self.audit.as_mut() {
+            audit.shift_real(slot, c);
+        }
         self.schur.as_mut().is_some_and(|s| s.factor_real(slot, c))
     }
     fn factor_complex(&mut self, slot: usize, c: Complex<f64>) -> bool {
+        if let Some(audit) = self.audit.as_mut() {
+            audit.shift_complex(slot, c);
+        }
         self.schur
             .as_mut()
             .is_some_and(|s| s.factor_complex(slot, c))
     }
     fn solve_real(&mut self, slot: usize, b: &mut [f64]) {
+        let (b, quadrature) = b.split_at_mut(2 * self.n + self.na);
         if let Some(s) = self.schur.as_mut() {
             s.solve_real(slot, b);
         }
+        if let Some(audit) = &self.audit {
+            audit.solve_real(slot, quadrature);
+        }
     }
     fn solve_complex(&mut self, slot: usize, re: &mut [f64], im: &mut [f64]) {
+        let m = 2 * self.n + self.na;
+        let (re, qr) = re.split_at_mut(m);
+        let (im, qi) = im.split_at_mut(m);
         if let Some(s) = self.schur.as_mut() {
             s.solve_complex(slot, re, im);
+        }
+        if let Some(audit) = &self.audit {
+            audit.solve_complex(slot, qr, qi);
         }
     }
 }

@@ -2,6 +2,7 @@
 //! aerodynamics, static aeroelastic equilibrium and divergence, stability and flutter, the
 //! frequency-domain (p-k) check, and time responses to gusts and manoeuvres.
 
+mod audit;
 mod balance;
 mod clu;
 mod equations;
