@@ -13,7 +13,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use flexwing::analysis::aero::response::{self, AeroDynamicOutcome, AeroDynamicRun};
-use flexwing::analysis::{NoProgress, Stop};
+use flexwing::analysis::Stop;
 use flexwing::Error;
 use serde::Serialize;
 
@@ -157,10 +157,13 @@ pub fn run(args: &DynamicArgs, case: &Case) -> Result<(), Failure> {
         .clone()
         .unwrap_or_else(|| default_out_dir(&args.case));
     crate::output::prepare_dir(&dir, FILES, true).map_err(Failure::Run)?;
-    let result = response::run(&plan, &mut NoProgress).map_err(|e| match e {
-        Error::Input(e) => Failure::input(format!("{name}: {e}")),
-        e => Failure::run(format!("{name}: {e}")),
-    })?;
+    // Ctrl-C and `kill` stop the run after the current step, as for structural runs.
+    crate::commands::interrupt::catch_interrupts(false);
+    let result =
+        response::run(&plan, &mut crate::commands::interrupt::Cancel).map_err(|e| match e {
+            Error::Input(e) => Failure::input(format!("{name}: {e}")),
+            e => Failure::run(format!("{name}: {e}")),
+        })?;
     let incomplete: Vec<Incomplete> = result
         .runs
         .iter()
