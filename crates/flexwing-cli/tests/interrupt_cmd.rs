@@ -1,6 +1,7 @@
 //! Ctrl-C (SIGINT) and `kill` (SIGTERM) during `static` and `flutter` sweeps (issue 9): the run
 //! stops at its next check (before the next sweep point; between the parts of a flutter
-//! analysis), writes what it computed, `status.txt` says `interrupted`, the exit status is 1.
+//! analysis and before every trial speed of its branch tracking), writes what it computed,
+//! `status.txt` says `interrupted`, the exit status is 1.
 //! As `dynamic_cmd.rs`'s test of `dynamic`, regression tests against the documented behaviour
 //! (docs/cli.md).
 

@@ -20,8 +20,8 @@ use crate::error::{Error, InputError};
 use crate::model::aero::{AeroStructure, Aeroelastic, FlightCondition};
 use crate::model::{FullModel, Load};
 use crate::solve::aeroelastic::{
-    flutter_polled, Branch, Crossing, Divergence, FlutterMethod, FlutterStop, FlutterOutcome as SolverOutcome,
-    FlutterPlan as SolverPlan, FlutterStats, StaticAeroPlan,
+    flutter_polled, Branch, Crossing, Divergence, FlutterMethod, FlutterOutcome as SolverOutcome,
+    FlutterPlan as SolverPlan, FlutterStats, FlutterStop, StaticAeroPlan,
 };
 use crate::solve::{Damping, StaticOptions};
 

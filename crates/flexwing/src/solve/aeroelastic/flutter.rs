@@ -254,7 +254,11 @@ impl std::fmt::Display for FlutterStop {
         use crate::text::short;
         match self {
             Self::Equilibrium { speed, error } => {
-                write!(f, "no static equilibrium at U = {} m/s: {error}", short(*speed))
+                write!(
+                    f,
+                    "no static equilibrium at U = {} m/s: {error}",
+                    short(*speed)
+                )
             }
             Self::BranchLost {
                 branch: Some(b),
@@ -521,7 +525,7 @@ pub fn flutter_polled<M: AeroStructure>(
     let mut history: Vec<Step> = vec![(0.0, current.clone())];
     let mut u_prev = 0.0;
     let mut slope: Option<Vec<C64>> = None; // ds/dU of the last step
-    // Consecutive steps accepted at the smallest step with two branches on one root.
+                                            // Consecutive steps accepted at the smallest step with two branches on one root.
     let mut merged_run = 0;
     'speeds: for &target in &plan.speeds {
         let from = u_prev;
@@ -674,7 +678,9 @@ pub fn flutter_polled<M: AeroStructure>(
                 continue;
             }
             if !keep_going(u_prev / u_max) {
-                outcome.stopped.get_or_insert(FlutterStop::Cancelled { speed: u_prev });
+                outcome
+                    .stopped
+                    .get_or_insert(FlutterStop::Cancelled { speed: u_prev });
                 break 'crossings;
             }
             let kind = if ra < 0.0 {
