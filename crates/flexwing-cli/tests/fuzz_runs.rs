@@ -128,6 +128,7 @@ const NULL_KEYS: &[&str] = &[
     ".divergence",
     ".divergence_speed_m_s",
     ".divergence_pressure_pa",
+    ".divergence_within_sweep",
     ".pk",
     ".limit",
     ".energy_audit",
