@@ -1,7 +1,8 @@
 //! Ctrl-C (SIGINT) and `kill` (SIGTERM) during `static` and `flutter` sweeps and aeroelastic
 //! gust responses (issue 9): the run stops at its next check (before the next sweep point;
-//! between the parts of a flutter analysis; after the current integrator step of a response),
-//! writes what it computed, `status.txt` says `interrupted`, the exit status is 1.
+//! between the parts of a flutter analysis and before every trial speed of its branch tracking;
+//! after the current integrator step of a response), writes what it computed, `status.txt` says
+//! `interrupted`, the exit status is 1.
 //! As `dynamic_cmd.rs`'s test of `dynamic`, regression tests against the documented behaviour
 //! (docs/cli.md).
 

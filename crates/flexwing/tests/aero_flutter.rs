@@ -180,3 +180,86 @@ fn p_k_theodorsen_validates_the_finite_state_flutter_points() {
         }
     }
 }
+
+/// Regression test (issue 9's fuzz find): Patil's wing, n = 8, Peters 6 states, a coarse sweep
+/// of 3 speeds from 2 to 1000 m/s. Before the step control took 92 s in the p-k check alone
+/// (97 663 halvings, 10.8 million Newton iterations: after a coalescence every sub-step restarted
+/// from the whole interval and fell to the smallest step). The work is now bounded by the rule of
+/// `flutter.rs`: per interval of the plan at most `MAX_SUBSTEPS` accepted sub-steps, and at most
+/// one halving per acceptance beyond `log2(interval / smallest step) < 25` — so at most
+/// `2 MAX_SUBSTEPS + 25` trial speeds per interval. The outcome is either a flutter point equal to
+/// the fine sweep's (2 m/s steps to 40 m/s, the same model, tolerance 1e-7 asked: bound 1e-6
+/// relative) or none with an honest stop naming the interval; the coarse sweep finds the onset
+/// before it stops (measured: eigenvalues, branch 3 lost between 2 and 88.99 m/s after 18
+/// sub-steps, 61 trials; p-k, the sub-step cap between 2 and 501 m/s, 2019 trials).
+#[test]
+fn coarse_sweep_work_is_bounded_and_its_flutter_point_matches_a_fine_sweep() {
+    use flexwing::solve::aeroelastic::{FlutterMethod, FlutterStop, MAX_SUBSTEPS};
+    let wing = common::patil_wing(8, Aerodynamics::Peters { states: 6 });
+    for method in [FlutterMethod::Eigenvalues, FlutterMethod::PkTheodorsen] {
+        let run = |speeds: Vec<f64>| {
+            let mut plan = FlutterPlan::new(speeds, 4);
+            plan.tolerance = 1e-7;
+            plan.method = method;
+            flutter(&wing, &plan, "flutter", &mut |_| {}).unwrap()
+        };
+        let fine = run((1..=20).map(|k| 2.0 * k as f64).collect());
+        assert!(fine.stopped.is_none(), "{:?}", fine.stopped);
+        let reference = fine.flutter.expect("the fine sweep flutters");
+        let speeds = vec![2.0, 501.0, 1000.0];
+        let coarse = run(speeds.clone());
+        println!(
+            "{method:?}: {:?}; stop: {}",
+            coarse.stats,
+            coarse
+                .stopped
+                .as_ref()
+                .map_or("none".into(), |s| s.to_string())
+        );
+        // Three intervals of the plan (0 → 2 → 501 → 1000).
+        let bound = speeds.len() * (2 * MAX_SUBSTEPS + 25);
+        assert!(coarse.stats.trials <= bound, "{:?}", coarse.stats);
+        let f = coarse.flutter.expect("the onset lies before the stop");
+        assert!(
+            (f.speed / reference.speed - 1.0).abs() < 1e-6
+                && (f.frequency / reference.frequency - 1.0).abs() < 1e-6,
+            "{f:?} against {reference:?}"
+        );
+        match &coarse.stopped {
+            None => {}
+            Some(FlutterStop::BranchLost {
+                from,
+                speed,
+                substeps,
+                ..
+            }) => {
+                assert!(speeds.contains(from) && speed > from && *speed <= 1000.0);
+                assert!(*substeps <= MAX_SUBSTEPS);
+            }
+            Some(other) => panic!("{other:?}"),
+        }
+    }
+}
+
+/// Cancellation is polled inside the tracking: a callback that says stop after its third call
+/// ends the analysis there with `Cancelled` and the data reached, and is not called again.
+#[test]
+fn a_cancelled_flutter_analysis_stops_at_once() {
+    use flexwing::solve::aeroelastic::{flutter_polled, FlutterMethod, FlutterStop};
+    let wing = common::patil_wing(8, Aerodynamics::Peters { states: 6 });
+    let mut plan = FlutterPlan::new(vec![2.0, 501.0, 1000.0], 4);
+    plan.method = FlutterMethod::PkTheodorsen;
+    let mut calls = 0;
+    let out = flutter_polled(&wing, &plan, "flutter", &mut |_| {
+        calls += 1;
+        calls < 3
+    })
+    .unwrap();
+    assert!(
+        matches!(out.stopped, Some(FlutterStop::Cancelled { .. })),
+        "{:?}",
+        out.stopped
+    );
+    assert_eq!(calls, 3);
+    assert!(out.stats.trials <= 2, "{:?}", out.stats);
+}

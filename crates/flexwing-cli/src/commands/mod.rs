@@ -272,12 +272,9 @@ pub fn stop_message(stop: &Stop, sweep: Option<&str>, initial: &[String]) -> Str
             "no static equilibrium at U = {} m/s: {error}",
             short(*speed)
         ),
-        Stop::Flutter(FlutterStop::BranchLost { branch, speed }) => format!(
-            "branch {} lost at U = {} m/s (Newton's method failed even at the smallest speed \
-             step; refine the sweep)",
-            branch + 1,
-            short(*speed)
-        ),
+        Stop::Flutter(stop @ (FlutterStop::BranchLost { .. } | FlutterStop::Cancelled { .. })) => {
+            stop.to_string()
+        }
         Stop::EnergyRunaway { time, gain, limit } => format!(
             "stopped at t = {} s: the run created energy that no load supplied, {} times the \
              energy it held or was given (limit energy_runaway = {}): a blown-up run",

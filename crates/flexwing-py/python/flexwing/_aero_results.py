@@ -182,8 +182,8 @@ class Stability(_Result):
             (rad/s), ``branch`` and ``mode`` (int), each of length C.
         unstable_at_start: branches (indices) already unstable at the first speed: no flutter
             speed exists within the sweep.
-        stats: counters: ``linearizations``, ``newton_iterations``, ``halvings``,
-            ``static_solves``.
+        stats: counters: ``linearizations``, ``newton_iterations``, ``halvings``, ``trials``
+            (trial speeds of the branch tracking), ``static_solves``.
         wall_time_s: wall time of this eigen-analysis (s).
     """
 

@@ -153,6 +153,7 @@ fn stability<'py>(py: Python<'py>, s: &Stability) -> PyResult<Bound<'py, PyDict>
     stats.set_item("linearizations", s.stats.linearizations)?;
     stats.set_item("newton_iterations", s.stats.newton_iterations)?;
     stats.set_item("halvings", s.stats.halvings)?;
+    stats.set_item("trials", s.stats.trials)?;
     stats.set_item("static_solves", s.stats.static_solves)?;
     d.set_item("stats", stats)?;
     d.set_item("wall_time_s", s.wall_time_s)?;

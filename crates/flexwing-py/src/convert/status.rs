@@ -207,16 +207,20 @@ pub fn stop_dict<'py>(
                 short(*speed)
             )
         }
-        Stop::Flutter(FlutterStop::BranchLost { branch, speed }) => {
+        Stop::Flutter(
+            stop @ FlutterStop::BranchLost {
+                branch,
+                from,
+                speed,
+                substeps,
+            },
+        ) => {
             d.set_item("reason", "flutter-branch-lost")?;
             d.set_item("branch", branch)?;
+            d.set_item("from", from)?;
             d.set_item("speed", speed)?;
-            format!(
-                "branch {} lost at U = {} m/s (Newton's method failed even at the smallest speed \
-                 step; refine the sweep)",
-                branch + 1,
-                short(*speed)
-            )
+            d.set_item("substeps", substeps)?;
+            stop.to_string()
         }
         other => format!("{other:?}"),
     };

@@ -20,8 +20,8 @@ use crate::error::{Error, InputError};
 use crate::model::aero::{AeroStructure, Aeroelastic, FlightCondition};
 use crate::model::{FullModel, Load};
 use crate::solve::aeroelastic::{
-    flutter, Branch, Crossing, Divergence, FlutterMethod, FlutterOutcome as SolverOutcome,
-    FlutterPlan as SolverPlan, FlutterStats, StaticAeroPlan,
+    flutter_polled, Branch, Crossing, Divergence, FlutterMethod, FlutterOutcome as SolverOutcome,
+    FlutterPlan as SolverPlan, FlutterStats, FlutterStop, StaticAeroPlan,
 };
 use crate::solve::{Damping, StaticOptions};
 
@@ -244,7 +244,12 @@ impl Stability {
         }
     }
 
-    fn of(out: SolverOutcome, wall_time_s: f64) -> (Self, Option<Stop>) {
+    fn of(out: SolverOutcome, wall_time_s: f64, points: usize) -> (Self, Option<Stop>) {
+        let done = out.speeds.len();
+        let stop = out.stopped.map(|s| match s {
+            FlutterStop::Cancelled { .. } => Stop::SweepInterrupted { done, points },
+            other => Stop::Flutter(other),
+        });
         let stability = Self {
             speeds: out.speeds,
             branches: out.branches.iter().map(BranchData::of).collect(),
@@ -254,7 +259,7 @@ impl Stability {
             stats: out.stats,
             wall_time_s,
         };
-        (stability, out.stopped.map(Stop::Flutter))
+        (stability, stop)
     }
 }
 
@@ -386,8 +391,8 @@ fn analyse<M: AeroStructure>(
     progress: &mut dyn Progress,
 ) -> Result<FlutterRun, InputError> {
     let start = Instant::now();
-    // Ctrl-C (a cancelled progress) is honoured between the parts: the equilibria, the
-    // eigen-analysis and the p-k check each run to their end once begun.
+    // Ctrl-C (a cancelled progress) is honoured between the parts and inside the eigen-analysis
+    // and the p-k check (polled at every trial speed of the branch tracking).
     let points = plan.speeds().len();
     let interrupted = |done: usize| Stop::SweepInterrupted { done, points };
     let dofs = aero.structure().n_dofs();
@@ -416,10 +421,11 @@ fn analyse<M: AeroStructure>(
     let eig = |method: FlutterMethod, k: f64, progress: &mut dyn Progress| {
         let t = Instant::now();
         let map = part(k);
-        let out = flutter(aero, &solver_plan(plan, dofs, method), "", &mut |f| {
-            progress.advance(map(f))
+        let out = flutter_polled(aero, &solver_plan(plan, dofs, method), "", &mut |f| {
+            progress.advance(map(f));
+            !progress.cancelled()
         })?;
-        Ok::<_, InputError>(Stability::of(out, t.elapsed().as_secs_f64()))
+        Ok::<_, InputError>(Stability::of(out, t.elapsed().as_secs_f64(), points))
     };
     let (stability, stop) = if progress.cancelled() {
         let none = Stability::none();
@@ -474,6 +480,7 @@ mod tests {
     use super::*;
     use crate::analysis::NoProgress;
     use crate::model::aero::Aerodynamics;
+    use crate::solve::aeroelastic::flutter;
 
     fn speeds() -> Vec<f64> {
         (1..=10).map(|k| 4.0 * k as f64).collect()

@@ -5,7 +5,11 @@
 //! eigenvalues there) and are continued in `U` by Newton's method on the rational eigenproblem of
 //! `linear.rs`, with a secant predictor. A step is accepted when every branch converges, keeps its
 //! shape (modal assurance criterion against the previous step at least [`MAC_MIN`]) and no two
-//! branches meet; otherwise the speed step is halved. A sign change of `Re s` between two accepted
+//! branches meet; otherwise the speed step is halved (down to `1e-7` of the last speed), and the
+//! step after an accepted one is at most twice as long. The work per interval of the plan is
+//! bounded: at most [`MAX_SUBSTEPS`] accepted sub-steps, at most [`MAX_MERGED_STEPS`] smallest
+//! steps in a row with two branches on one root; beyond either the analysis stops and says
+//! between which speeds ([`FlutterStop::BranchLost`]). A sign change of `Re s` between two accepted
 //! steps is refined by the Illinois (regula falsi) method on `Re s(U)` to the plan's tolerance.
 //! The equilibrium is recomputed at every speed (static solver, load stepping in dynamic
 //! pressure, continued from the previous speed), so deflected wings are linearized about their
@@ -30,6 +34,19 @@ type Step = (f64, Vec<(C64, DVector<C64>)>);
 /// Smallest modal assurance criterion between a branch's eigenvectors at consecutive accepted
 /// steps.
 pub const MAC_MIN: f64 = 0.8;
+
+/// Most accepted sub-steps between two consecutive speeds of the plan (and from `U = 0` to the
+/// first). A well-resolved sweep takes one per interval; the step control (halve on failure,
+/// then at most double) needs about `log2(interval / smallest step)` more to cross a coalescence.
+/// An interval that needs more stops the analysis honestly ([`FlutterStop::BranchLost`] with
+/// `branch: None`): refine the sweep there.
+pub const MAX_SUBSTEPS: usize = 1000;
+
+/// Most consecutive steps accepted at the smallest speed step with two branches on the same
+/// root. Crossing a coalescence takes one or two; branches that stay on one root have lost one
+/// of them, and following them at the smallest step would take `interval / (1e-7 U_max)` steps
+/// (the minutes-long runs of issue 9): the analysis stops instead.
+pub const MAX_MERGED_STEPS: usize = 4;
 
 /// How the eigenvalues of the linearized system are computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -195,6 +212,8 @@ pub struct FlutterStats {
     pub newton_iterations: usize,
     /// Speed steps halved.
     pub halvings: usize,
+    /// Trial speeds (accepted or not): each one linearization and one Newton solve per branch.
+    pub trials: usize,
     /// Static equilibria solved.
     pub static_solves: usize,
 }
@@ -209,13 +228,67 @@ pub enum FlutterStop {
         /// The static solver's error.
         error: SolveError,
     },
-    /// Newton's method lost a branch even at the smallest speed step.
+    /// A branch was lost between `from` and `speed`: Newton's method failed even at the
+    /// smallest speed step, or two branches stayed on one root for more than
+    /// [`MAX_MERGED_STEPS`] smallest steps; or (`branch: None`) the interval needed more than
+    /// [`MAX_SUBSTEPS`] accepted sub-steps. Refine the sweep there.
     BranchLost {
-        /// Branch index.
-        branch: usize,
+        /// Branch index, if one branch was lost (`None`: the sub-step cap was reached).
+        branch: Option<usize>,
+        /// The last speed of the plan reached (m/s): the start of the interval.
+        from: f64,
         /// Speed attempted (m/s).
         speed: f64,
+        /// Sub-steps accepted in the interval before the stop.
+        substeps: usize,
     },
+    /// The caller cancelled the analysis (its callback returned `false`) at this speed (m/s).
+    Cancelled {
+        /// The last speed accepted (m/s).
+        speed: f64,
+    },
+}
+
+impl std::fmt::Display for FlutterStop {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use crate::text::short;
+        match self {
+            Self::Equilibrium { speed, error } => {
+                write!(
+                    f,
+                    "no static equilibrium at U = {} m/s: {error}",
+                    short(*speed)
+                )
+            }
+            Self::BranchLost {
+                branch: Some(b),
+                from,
+                speed,
+                substeps,
+            } => write!(
+                f,
+                "branch {} lost between U = {} and {} m/s after {substeps} sub-steps (Newton's \
+                 method failed, or two branches stayed on one root, even at the smallest speed \
+                 step; refine the sweep there)",
+                b + 1,
+                short(*from),
+                short(*speed)
+            ),
+            Self::BranchLost {
+                branch: None,
+                from,
+                speed,
+                substeps,
+            } => write!(
+                f,
+                "branches not tracked between U = {} and {} m/s within {substeps} sub-steps (the \
+                 cap per speed interval); refine the sweep there",
+                short(*from),
+                short(*speed)
+            ),
+            Self::Cancelled { speed } => write!(f, "interrupted at U = {} m/s", short(*speed)),
+        }
+    }
 }
 
 /// What a flutter analysis produced.
@@ -256,6 +329,10 @@ impl<M: AeroStructure> EquilibriumPath<'_, M> {
             s.push(0.5 * self.rho * u * u);
             s
         };
+        // A speed already solved (a refinement may ask again) is not solved twice.
+        if let Some((_, x)) = self.solved.iter().find(|(v, _)| *v == u) {
+            return Ok(x.clone());
+        }
         let from = self
             .solved
             .iter()
@@ -290,6 +367,26 @@ pub fn flutter<M: AeroStructure>(
     plan: &FlutterPlan,
     field: &str,
     progress: &mut dyn FnMut(f64),
+) -> Result<FlutterOutcome, InputError> {
+    flutter_polled(aero, plan, field, &mut |f| {
+        progress(f);
+        true
+    })
+}
+
+/// [`flutter`] that can be cancelled: `keep_going` hears the fraction of the speed range covered
+/// before every trial speed, after every accepted one and before every crossing refinement, and
+/// returning `false` stops the analysis there ([`FlutterStop::Cancelled`], the data up to there
+/// kept). Between two calls there is at most one linearization (a static solve on a deformed wing)
+/// and one set of branch solves.
+///
+/// # Errors
+/// As [`flutter`].
+pub fn flutter_polled<M: AeroStructure>(
+    aero: &Aeroelastic<M>,
+    plan: &FlutterPlan,
+    field: &str,
+    keep_going: &mut dyn FnMut(f64) -> bool,
 ) -> Result<FlutterOutcome, InputError> {
     let n = aero.structure().n_dofs();
     plan.validate(field, n)?;
@@ -428,11 +525,37 @@ pub fn flutter<M: AeroStructure>(
     let mut history: Vec<Step> = vec![(0.0, current.clone())];
     let mut u_prev = 0.0;
     let mut slope: Option<Vec<C64>> = None; // ds/dU of the last step
+                                            // Consecutive steps accepted at the smallest step with two branches on one root.
+    let mut merged_run = 0;
     'speeds: for &target in &plan.speeds {
+        let from = u_prev;
+        let mut substeps = 0;
+        // The first trial of an interval is the whole interval (a well-resolved sweep takes one
+        // step per speed); after a halving, a step at most twice the last accepted one.
+        let mut h_next = target - u_prev;
         while u_prev < target {
-            let mut h = target - u_prev;
+            if substeps == MAX_SUBSTEPS {
+                outcome.stopped = Some(FlutterStop::BranchLost {
+                    branch: None,
+                    from,
+                    speed: target,
+                    substeps,
+                });
+                break 'speeds;
+            }
+            let mut h = h_next.min(target - u_prev);
             let accepted = loop {
-                let u = u_prev + h;
+                if !keep_going(u_prev / u_max) {
+                    outcome.stopped = Some(FlutterStop::Cancelled { speed: u_prev });
+                    break 'speeds;
+                }
+                // The whole remainder lands on the plan's speed exactly.
+                let u = if h == target - u_prev {
+                    target
+                } else {
+                    u_prev + h
+                };
+                stats.trials += 1;
                 let lin = match linearize(u, &mut path, &mut eqs, &mut stats) {
                     Ok(l) => l,
                     Err(error) => {
@@ -467,14 +590,17 @@ pub fn flutter<M: AeroStructure>(
                     }
                 }
                 // Two branches converged to the same root?
+                let mut merged = None;
                 for a in 0..next.len() {
                     for b in 0..a {
                         if (next[a].0 - next[b].0).norm() <= 1e-7 * next[a].0.norm().max(1e-6) {
                             ok = false;
+                            merged = Some(a);
                         }
                     }
                 }
                 if ok {
+                    merged_run = 0;
                     break (u, next);
                 }
                 if h > h_min {
@@ -482,9 +608,30 @@ pub fn flutter<M: AeroStructure>(
                     stats.halvings += 1;
                     continue;
                 }
-                if let Some(branch) = lost {
-                    outcome.stopped = Some(FlutterStop::BranchLost { branch, speed: u });
+                if let Some(b) = lost {
+                    outcome.stopped = Some(FlutterStop::BranchLost {
+                        branch: Some(b),
+                        from,
+                        speed: u,
+                        substeps,
+                    });
                     break 'speeds;
+                }
+                // Accepted at the smallest step: a coalescence is passed in a step or two; two
+                // branches that stay on one root have lost one of them.
+                if let Some(b) = merged {
+                    merged_run += 1;
+                    if merged_run > MAX_MERGED_STEPS {
+                        outcome.stopped = Some(FlutterStop::BranchLost {
+                            branch: Some(b),
+                            from,
+                            speed: u,
+                            substeps,
+                        });
+                        break 'speeds;
+                    }
+                } else {
+                    merged_run = 0;
                 }
                 for br in outcome.branches.iter_mut() {
                     br.uncertain = true;
@@ -492,6 +639,8 @@ pub fn flutter<M: AeroStructure>(
                 break (u, next);
             };
             let (u, next) = accepted;
+            substeps += 1;
+            h_next = 2.0 * (u - u_prev);
             slope = Some(
                 next.iter()
                     .zip(&current)
@@ -501,7 +650,7 @@ pub fn flutter<M: AeroStructure>(
             current = next;
             u_prev = u;
             history.push((u, current.clone()));
-            progress(u / u_max);
+            keep_going(u / u_max);
         }
         outcome.speeds.push(target);
         for (br, (s, _)) in outcome.branches.iter_mut().zip(&current) {
@@ -518,7 +667,7 @@ pub fn flutter<M: AeroStructure>(
         .collect();
     // Crossings after the first speed of the plan.
     let first = plan.speeds[0];
-    for w in history.windows(2) {
+    'crossings: for w in history.windows(2) {
         let ((ua, sa), (ub, sb)) = (&w[0], &w[1]);
         if *ub <= first {
             continue;
@@ -527,6 +676,12 @@ pub fn flutter<M: AeroStructure>(
             let (ra, rb) = (sa[b].0.re, sb[b].0.re);
             if (ra < 0.0) == (rb < 0.0) {
                 continue;
+            }
+            if !keep_going(u_prev / u_max) {
+                outcome
+                    .stopped
+                    .get_or_insert(FlutterStop::Cancelled { speed: u_prev });
+                break 'crossings;
             }
             let kind = if ra < 0.0 {
                 CrossingKind::Onset

@@ -23,8 +23,9 @@ pub use statics::{
 mod flutter;
 
 pub use flutter::{
-    flutter, stability_eigenvalues, Branch, Crossing, CrossingKind, FlutterMethod, FlutterOutcome,
-    FlutterPlan, FlutterStats, FlutterStop, MAC_MIN,
+    flutter, flutter_polled, stability_eigenvalues, Branch, Crossing, CrossingKind, FlutterMethod,
+    FlutterOutcome, FlutterPlan, FlutterStats, FlutterStop, MAC_MIN, MAX_MERGED_STEPS,
+    MAX_SUBSTEPS,
 };
 mod response;
 
