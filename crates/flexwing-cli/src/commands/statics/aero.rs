@@ -10,15 +10,12 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use flexwing::analysis::aero::statics::{self, AeroStaticOutcome, AeroStaticRun};
-use flexwing::analysis::NoProgress;
 use flexwing::Error;
 use serde::Serialize;
 
 use super::StaticArgs;
 use crate::commands::flutter::aero_line;
-use crate::commands::{
-    default_out_dir, model_line, status_text, stop_message, Failure, Incomplete,
-};
+use crate::commands::{default_out_dir, model_line, status_text, Failure, Incomplete};
 use crate::output::{self, short};
 use crate::plot::{self, ModelShapes, ShapePlot};
 use flexwing_case::Case;
@@ -113,11 +110,7 @@ fn summary(r: &AeroStaticRun, incomplete: &[Incomplete]) -> SummaryRow {
         wall_time_s: finite(r.wall_time_s),
         divergence_speed_m_s: r.divergence.as_ref().and_then(|d| finite(d.speed)),
         divergence_within_sweep: r.divergence.as_ref().map(|d| d.within_sweep),
-        status: if r.status.is_complete() {
-            "complete"
-        } else {
-            "incomplete"
-        },
+        status: crate::commands::run_word(&r.status),
     }
 }
 
@@ -140,18 +133,17 @@ pub fn run(args: &StaticArgs, case: &Case) -> Result<(), Failure> {
         .clone()
         .unwrap_or_else(|| default_out_dir(&args.case));
     crate::output::prepare_dir(&dir, FILES, true).map_err(Failure::Run)?;
-    let result = statics::run(&plan, &mut NoProgress).map_err(|e| match e {
-        Error::Input(e) => Failure::input(format!("{name}: {e}")),
-        e => Failure::run(format!("{name}: {e}")),
-    })?;
+    // Ctrl-C and `kill` stop the sweep before its next speed, as for structural sweeps.
+    crate::commands::interrupt::catch_interrupts(true);
+    let result =
+        statics::run(&plan, &mut crate::commands::interrupt::Cancel).map_err(|e| match e {
+            Error::Input(e) => Failure::input(format!("{name}: {e}")),
+            e => Failure::run(format!("{name}: {e}")),
+        })?;
     let incomplete: Vec<Incomplete> = result
         .runs
         .iter()
-        .filter_map(|r| {
-            r.status
-                .stop()
-                .map(|stop| Incomplete::stopped(r.kind.label(), stop_message(stop, None, &[])))
-        })
+        .filter_map(|r| crate::commands::status_entry(&r.kind.label(), &r.status, None, &[]))
         .collect();
     let model = model_line(&plan.model);
     let aero = aero_line(plan.aero.aerodynamics, plan.aero.density);

@@ -11,7 +11,7 @@ use crate::analysis::{ModelKind, Progress, Status, Stop};
 use crate::error::{Error, InputError};
 use crate::model::aero::{AeroStructure, Aeroelastic, FlightCondition};
 use crate::model::{FullModel, Load, Shape};
-use crate::solve::aeroelastic::{static_sweep, Divergence, StaticAeroPlan};
+use crate::solve::aeroelastic::{static_sweep_polled, Divergence, StaticAeroPlan};
 use crate::solve::{StaticOptions, StaticStats};
 
 /// Relative tolerance of the divergence dynamic pressure when a sweep brackets it.
@@ -257,10 +257,13 @@ pub(crate) fn sweep_model<M: AeroStructure>(
     progress: &mut dyn Progress,
 ) -> Result<AeroStaticRun, InputError> {
     let start = Instant::now();
-    let outcome = static_sweep(aero, sweep, "", &mut |f| progress.advance(f))?;
+    let outcome = static_sweep_polled(aero, sweep, "", &mut |f| {
+        progress.advance(f);
+        !progress.cancelled()
+    })?;
     let wall_time_s = start.elapsed().as_secs_f64();
     let full = aero.full();
-    let points = outcome
+    let points: Vec<AeroPoint> = outcome
         .points
         .into_iter()
         .map(|p| AeroPoint {
@@ -276,6 +279,10 @@ pub(crate) fn sweep_model<M: AeroStructure>(
         })
         .collect();
     let status = match outcome.stopped {
+        None if outcome.interrupted => Status::Stopped(Stop::SweepInterrupted {
+            done: points.len(),
+            points: sweep.speeds.len(),
+        }),
         None => Status::Complete,
         Some((point, error)) => Status::Stopped(Stop::SpeedPoint {
             point,
@@ -337,7 +344,7 @@ mod tests {
         p.reduced = vec![16];
         let out = run(&p, &mut NoProgress).unwrap();
         assert!(out.is_complete());
-        let direct = static_sweep(
+        let direct = crate::solve::aeroelastic::static_sweep(
             &p.aero.wing(&p.model, "aero").unwrap(),
             &StaticAeroPlan {
                 speeds: p.speeds(),

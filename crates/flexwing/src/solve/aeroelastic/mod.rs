@@ -17,8 +17,8 @@ pub use schur::AeroNewtonSystems;
 mod statics;
 
 pub use statics::{
-    static_sweep, AeroEquilibrium, Divergence, DivergenceBasis, StaticAeroOutcome, StaticAeroPlan,
-    SteadyAeroModel, SteadyAeroWorkspace,
+    static_sweep, static_sweep_polled, AeroEquilibrium, Divergence, DivergenceBasis,
+    StaticAeroOutcome, StaticAeroPlan, SteadyAeroModel, SteadyAeroWorkspace,
 };
 mod flutter;
 

@@ -143,6 +143,8 @@ pub struct StaticAeroOutcome {
     pub divergence: Option<Divergence>,
     /// The sweep stopped at this speed index with this error (partial output kept above).
     pub stopped: Option<(usize, SolveError)>,
+    /// The caller's poll asked the sweep to stop before the speed after the last point.
+    pub interrupted: bool,
 }
 
 /// The structure with the steady aerodynamic load appended to its loads, for the static solver:
@@ -305,6 +307,21 @@ pub fn static_sweep<M: AeroStructure>(
     field: &str,
     progress: &mut dyn FnMut(f64),
 ) -> Result<StaticAeroOutcome, InputError> {
+    static_sweep_polled(aero, plan, field, &mut |f| {
+        progress(f);
+        true
+    })
+}
+
+/// [`static_sweep`] with a poll: `step(fraction)` is called before each speed with the fraction
+/// done (and with 1 at the end); when it returns `false` the sweep stops there, keeping the
+/// points computed (`interrupted` in the outcome).
+pub fn static_sweep_polled<M: AeroStructure>(
+    aero: &Aeroelastic<M>,
+    plan: &StaticAeroPlan,
+    field: &str,
+    step: &mut dyn FnMut(f64) -> bool,
+) -> Result<StaticAeroOutcome, InputError> {
     plan.validate(field)?;
     let steady = aero.with_aerodynamics(Aerodynamics::Steady, field)?;
     let mut loads = plan.loads.clone();
@@ -328,7 +345,12 @@ pub fn static_sweep<M: AeroStructure>(
     let mut stopped = None;
     let n = model.n_dofs();
     let mut state = (vec![0.0; n], vec![0.0; k + 1]);
+    let mut interrupted = false;
     for (i, &u) in plan.speeds.iter().enumerate() {
+        if !step(i as f64 / plan.speeds.len() as f64) {
+            interrupted = true;
+            break;
+        }
         let target = scales_at(pressure(u));
         match continue_static(
             &model,
@@ -356,13 +378,16 @@ pub fn static_sweep<M: AeroStructure>(
                 break;
             }
         }
-        progress((i + 1) as f64 / plan.speeds.len() as f64);
+    }
+    if !interrupted {
+        step(1.0);
     }
     let divergence = find_divergence(&model, &applied, &mut ws, &points, plan, rho);
     Ok(StaticAeroOutcome {
         points,
         divergence,
         stopped,
+        interrupted,
     })
 }
 
