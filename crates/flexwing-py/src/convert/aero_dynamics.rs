@@ -53,15 +53,7 @@ fn run<'py>(
     d.set_item("dofs", r.dofs)?;
     d.set_item("aero_states", r.aero_states)?;
     d.set_item("integrator", r.integrator.name())?;
-    let s = &r.stats;
-    let stats = PyDict::new(py);
-    stats.set_item("steps", s.steps)?;
-    stats.set_item("rejected_steps", s.rejected_steps)?;
-    stats.set_item("rhs_evaluations", s.rhs_evaluations)?;
-    stats.set_item("jacobian_evaluations", s.jacobian_evaluations)?;
-    stats.set_item("factorizations", s.factorizations)?;
-    stats.set_item("newton_iterations", s.newton_iterations)?;
-    d.set_item("stats", stats)?;
+    d.set_item("stats", super::dynamics::integrator_stats(py, &r.stats)?)?;
     d.set_item("wall_time_s", r.wall_time_s)?;
     d.set_item("ratio_to_first", ratio_to_first)?;
     let (status, stop, message) = status_fields(py, &r.status, None)?;

@@ -1,6 +1,7 @@
 //! [`DynamicOutcome`] into `DynamicResult` and its `DynamicRun`s.
 
 use flexwing::analysis::dynamics::{DynamicOutcome, DynamicPlan, ModelRun, Sample, Snapshot};
+use flexwing::solve::integrate::IntegratorStats;
 use flexwing::solve::{EnergyBalance, Gyroscopic};
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -35,6 +36,18 @@ pub fn raw<'py>(
     d.set_item("status", overall(outcome.runs.iter().map(|r| &r.status)))?;
     d.set_item("end_time", plan.end_time)?;
     Ok(d)
+}
+
+/// An integrator's counters (`DynamicRun.stats`, `AeroDynamicRun.stats`).
+pub fn integrator_stats<'py>(py: Python<'py>, s: &IntegratorStats) -> PyResult<Bound<'py, PyDict>> {
+    let stats = PyDict::new(py);
+    stats.set_item("steps", s.steps)?;
+    stats.set_item("rejected_steps", s.rejected_steps)?;
+    stats.set_item("rhs_evaluations", s.rhs_evaluations)?;
+    stats.set_item("jacobian_evaluations", s.jacobian_evaluations)?;
+    stats.set_item("factorizations", s.factorizations)?;
+    stats.set_item("newton_iterations", s.newton_iterations)?;
+    Ok(stats)
 }
 
 /// What the energy audit found (the CLI's `energy_audit`, docs/validation.md "Energy audit"):
@@ -85,15 +98,7 @@ fn run<'py>(py: Python<'py>, plan: &DynamicPlan, r: &ModelRun) -> PyResult<Bound
     d.set_item("dofs", r.dofs)?;
     d.set_item("integrator", r.integrator.name())?;
     d.set_item("gyroscopic", gyroscopic_name(r.gyroscopic))?;
-    let s = &r.stats;
-    let stats = PyDict::new(py);
-    stats.set_item("steps", s.steps)?;
-    stats.set_item("rejected_steps", s.rejected_steps)?;
-    stats.set_item("rhs_evaluations", s.rhs_evaluations)?;
-    stats.set_item("jacobian_evaluations", s.jacobian_evaluations)?;
-    stats.set_item("factorizations", s.factorizations)?;
-    stats.set_item("newton_iterations", s.newton_iterations)?;
-    d.set_item("stats", stats)?;
+    d.set_item("stats", integrator_stats(py, &r.stats)?)?;
     d.set_item("wall_time_s", r.wall_time_s)?;
     let (status, stop, message) = status_fields(py, &r.status, None)?;
     d.set_item("status", status)?;
