@@ -33,6 +33,24 @@ fn interrupted_run(args: &[&str], signal: &str, after: Duration) -> (std::proces
     (o, sent.elapsed().as_secs_f64())
 }
 
+/// `flexwing COMMAND CASE --out OUT --json`, interrupted by `signal` after `after`.
+fn interrupted_command(
+    command: &str,
+    case: &std::path::Path,
+    out: &std::path::Path,
+    signal: &str,
+    after: Duration,
+) -> (std::process::Output, f64) {
+    let args = [
+        command,
+        case.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ];
+    interrupted_run(&args, signal, after)
+}
+
 /// A static sweep of 40 000 points on 200 elements: about 20 s (measured 2.2 s for 4000 points
 /// on the shared machine), interrupted after 1.5 s.
 const STATIC: &str = r#"
@@ -67,17 +85,8 @@ fn ctrl_c_and_kill_stop_a_static_sweep_and_keep_its_points() {
     let case = dir.write("case.toml", STATIC);
     for signal in ["-INT", "-TERM"] {
         let out = dir.path().join("out");
-        let (o, stop_s) = interrupted_run(
-            &[
-                "static",
-                case.to_str().unwrap(),
-                "--out",
-                out.to_str().unwrap(),
-                "--json",
-            ],
-            signal,
-            Duration::from_millis(1500),
-        );
+        let (o, stop_s) =
+            interrupted_command("static", &case, &out, signal, Duration::from_millis(1500));
         assert_eq!(o.status.code(), Some(1), "{signal}: {}", stderr(&o));
         // One point takes about 0.5 ms: the run stops well within a second of the signal.
         assert!(stop_s < 10.0, "{signal}: took {stop_s} s to stop");
@@ -115,17 +124,8 @@ fn ctrl_c_and_kill_stop_a_flutter_analysis_and_keep_what_it_found() {
     let case = dir.write("case.toml", &text);
     for signal in ["-INT", "-TERM"] {
         let out = dir.path().join("out");
-        let (o, _) = interrupted_run(
-            &[
-                "flutter",
-                case.to_str().unwrap(),
-                "--out",
-                out.to_str().unwrap(),
-                "--json",
-            ],
-            signal,
-            Duration::from_millis(1500),
-        );
+        let (o, _) =
+            interrupted_command("flutter", &case, &out, signal, Duration::from_millis(1500));
         assert_eq!(o.status.code(), Some(1), "{signal}: {}", stderr(&o));
         let status = std::fs::read_to_string(out.join("status.txt")).unwrap();
         assert!(status.starts_with("interrupted: "), "{signal}: {status}");
@@ -152,17 +152,8 @@ fn ctrl_c_and_kill_stop_a_gust_response_and_keep_its_samples() {
     let case = dir.write("case.toml", &text);
     for signal in ["-INT", "-TERM"] {
         let out = dir.path().join("out");
-        let (o, stop_s) = interrupted_run(
-            &[
-                "dynamic",
-                case.to_str().unwrap(),
-                "--out",
-                out.to_str().unwrap(),
-                "--json",
-            ],
-            signal,
-            Duration::from_millis(2000),
-        );
+        let (o, stop_s) =
+            interrupted_command("dynamic", &case, &out, signal, Duration::from_millis(2000));
         assert_eq!(o.status.code(), Some(1), "{signal}: {}", stderr(&o));
         assert!(stop_s < 10.0, "{signal}: took {stop_s} s to stop");
         let status = std::fs::read_to_string(out.join("status.txt")).unwrap();
@@ -199,17 +190,8 @@ fn ctrl_c_and_kill_stop_a_static_aeroelastic_sweep_and_keep_its_points() {
     let case = dir.write("case.toml", &text);
     for signal in ["-INT", "-TERM"] {
         let out = dir.path().join("out");
-        let (o, stop_s) = interrupted_run(
-            &[
-                "static",
-                case.to_str().unwrap(),
-                "--out",
-                out.to_str().unwrap(),
-                "--json",
-            ],
-            signal,
-            Duration::from_millis(1500),
-        );
+        let (o, stop_s) =
+            interrupted_command("static", &case, &out, signal, Duration::from_millis(1500));
         assert_eq!(o.status.code(), Some(1), "{signal}: {}", stderr(&o));
         // One speed takes under 1 ms: the run stops well within a second of the signal.
         assert!(stop_s < 10.0, "{signal}: took {stop_s} s to stop");
