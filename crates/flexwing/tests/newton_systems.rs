@@ -11,8 +11,8 @@ use common::*;
 use flexwing::beam::{Calibration, Profile};
 use flexwing::model::{Force, FullModel, Load};
 use flexwing::solve::integrate::{
-    Bdf, BdfOptions, ImplicitMidpoint, IntegratorStats, MidpointOptions, Radau, RadauOptions,
-    Tolerances, Trajectory,
+    Bdf, BdfOptions, GeneralizedAlpha, GeneralizedAlphaOptions, ImplicitMidpoint, IntegratorStats,
+    MidpointOptions, Radau, RadauOptions, Tolerances, Trajectory,
 };
 use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, NewtonSystems, TimeFunction};
 
@@ -34,6 +34,8 @@ enum Method {
     Bdf(f64),
     /// Fixed-step implicit midpoint.
     Midpoint(f64),
+    /// Fixed-step generalized-α, `ρ∞ = 0.5`.
+    Alpha(f64),
 }
 
 /// Integrate `model` under `loads` (each scaled by `10 sin(ω t)`-type functions `tf`) from rest
@@ -78,6 +80,15 @@ fn run(
             options: MidpointOptions {
                 tolerances: tolerances(1e-6, &mut eom),
                 step: Some(step),
+                ..Default::default()
+            },
+        }
+        .integrate(&mut eom, 0.0, &y0, t, &mut |_| {}),
+        Method::Alpha(step) => GeneralizedAlpha {
+            options: GeneralizedAlphaOptions {
+                tolerances: tolerances(1e-6, &mut eom),
+                step: Some(step),
+                spectral_radius: 0.5,
                 ..Default::default()
             },
         }
@@ -199,16 +210,22 @@ fn coupled_torsion_beam_gives_the_dense_paths_trajectory() {
 }
 
 #[test]
-fn bdf_and_midpoint_give_the_dense_paths_trajectories() {
+fn bdf_midpoint_and_generalized_alpha_give_the_dense_paths_trajectories() {
     // The chain path linearizes at every step, the dense one reuses its Jacobian: different
     // Newton iterates and, for BDF, slightly different steps, so the two agree to a fraction
     // of the integration error. Measured (n = 40, 0.3 s of case (b)): BDF at rtol 1e-5 1.5e-6 m
     // apart (its error is ~2e-4 m, docs/performance.md), the midpoint rule with fixed 1 ms
-    // steps (same steps) 3e-10 m. Bounds 2e-5 m and 1e-8 m.
+    // steps (same steps) 3e-10 m, generalized-α with the same steps 1.1e-8 m (the dense path
+    // reuses its Jacobian and stops Newton at 0.03 of the error scale, ~5e-7 rad per joint).
+    // Bounds 2e-5 m, 1e-8 m and 5e-8 m.
     let (loads, tf) = case_b_load();
     let model = table4(40);
     let t = times(0.3, 0.005);
-    for (method, bound) in [(Method::Bdf(1e-5), 2e-5), (Method::Midpoint(1e-3), 1e-8)] {
+    for (method, bound) in [
+        (Method::Bdf(1e-5), 2e-5),
+        (Method::Midpoint(1e-3), 1e-8),
+        (Method::Alpha(1e-3), 5e-8),
+    ] {
         let (dense, _) = run(&model, &loads, tf.clone(), &t, method, NewtonSystems::Dense);
         let (chain, stats) = run(&model, &loads, tf.clone(), &t, method, NewtonSystems::Chain);
         let d = tip_difference(&model, &dense, &chain);
@@ -250,4 +267,57 @@ fn case_b_at_n_1000_converges_with_the_step() {
         stats.newton_iterations as f64 <= 2.5 * stats.steps as f64,
         "{stats:?}"
     );
+}
+
+#[test]
+fn generalized_alpha_at_n_3000_converges_at_second_order_to_radau() {
+    // Where Radau's steps start failing Newton (n ≥ 3000, docs/model-choices.md), generalized-α
+    // (ρ∞ = 0.5) on the chain Newton systems: fixed steps of 2, 1 and 0.5 ms over the first
+    // 0.3 s of case (b) against Radau at rtol 1e-7 on n = 1000 (another method; the model at
+    // n = 1000 differs from n = 3000 by the O(1/n²) discretization, ~2e-8 m at the tip).
+    let (loads, tf) = case_b_load();
+    let t = times(0.3, 0.005);
+    let small = table4(1000);
+    let (reference, _) = run(
+        &small,
+        &loads,
+        tf.clone(),
+        &t,
+        Method::Radau(1e-7, 1e-3),
+        NewtonSystems::Auto,
+    );
+    let model = table4(3000);
+    let mut errors = Vec::new();
+    for h in [1e-3, 5e-4, 2.5e-4] {
+        let (traj, stats) = run(
+            &model,
+            &loads,
+            tf.clone(),
+            &t,
+            Method::Alpha(h),
+            NewtonSystems::Auto,
+        );
+        let tips = |m: &FullModel, tr: &Trajectory| -> Vec<[f64; 2]> {
+            let n = m.n_elements();
+            tr.y.iter()
+                .map(|y| {
+                    let p = m.node_positions(&m.kinematics(&y[..m.n_dofs()]))[n];
+                    [p[0], p[1]]
+                })
+                .collect()
+        };
+        let e = tips(&model, &traj)
+            .iter()
+            .zip(tips(&small, &reference))
+            .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
+            .fold(0.0, f64::max);
+        eprintln!("n = 3000, h = {h}: {e:.3e} m against Radau, {stats:?}");
+        // No step fails Newton (Radau's fail from n ≈ 3000 on in the full case (b)).
+        assert_eq!(stats.newton_failures, 0, "{stats:?}");
+        errors.push(e);
+    }
+    let orders: Vec<f64> = errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
+    eprintln!("observed orders {orders:?}");
+    // Second order (measured above); bounds leave room for the O(h³) terms at 2 ms.
+    assert!(orders.iter().all(|o| (1.7..2.4).contains(o)), "{orders:?}");
 }

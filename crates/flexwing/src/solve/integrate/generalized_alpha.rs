@@ -15,8 +15,8 @@
 //! ```
 //!
 //! Newton's method solves for `Δ = y_{n+1} − y_n` with the matrix `c I − J`, `c = α_m / (α_f γ h)`
-//! (the shifted Jacobian of the other implicit integrators, factored in one place,
-//! `NewtonMatrix`). The choice of this form over a second-order (Chung–Hulbert) one, the local
+//! (the shifted Jacobian of the other implicit integrators, factored by their `IterationMatrices`:
+//! the system's O(n) chain solver for the full beam model, else the dense Jacobian and LU). The choice of this form over a second-order (Chung–Hulbert) one, the local
 //! error estimate, the treatment of variable steps and the dense output are derived in
 //! `docs/model-choices.md` ("Generalized-α"); in short:
 //!
@@ -47,10 +47,8 @@
 //! of implicit formulas for the solution of ODEs", SIAM J. Sci. Stat. Comput. 1 (1980) 103–118
 //! (the filter).
 
-use nalgebra::DMatrix;
-
 use super::dopri5::initial_step;
-use super::lu::DenseLu;
+use super::iteration::IterationMatrices;
 use super::{
     check_output_times, failure, outputs_at_start, scaled_rms, IntegrationResult, IntegratorStats,
     OdeSystem, Tolerances, Trajectory,
@@ -150,43 +148,6 @@ impl Parameters {
     }
 }
 
-/// The Newton matrix `c I − J` of a step, factored: the one place where the integrator solves a
-/// linear system, so that a structured (O(n)) solver can replace the dense LU.
-pub(crate) struct NewtonMatrix {
-    lu: DenseLu,
-    /// The shift `c` it was factored with (NaN: not factored).
-    c: f64,
-}
-
-impl NewtonMatrix {
-    fn new(n: usize) -> Self {
-        Self {
-            lu: DenseLu::new(n),
-            c: f64::NAN,
-        }
-    }
-
-    /// Factor `c I − jac`; false if it is singular.
-    fn factor(&mut self, jac: &DMatrix<f64>, c: f64) -> bool {
-        let n = jac.nrows();
-        let m = self.lu.matrix_mut();
-        for (a, &b) in m.iter_mut().zip(jac.as_slice()) {
-            *a = -b;
-        }
-        for i in 0..n {
-            m[i + i * n] += c;
-        }
-        let ok = self.lu.factor();
-        self.c = if ok { c } else { f64::NAN };
-        ok
-    }
-
-    /// Overwrite `b` with `(c I − J)⁻¹ b`.
-    fn solve(&self, b: &mut [f64]) {
-        self.lu.solve_in_place(b);
-    }
-}
-
 /// The method's state between steps: `(t_n, y_n, ẏ_n)` and the past that the step-change
 /// correction, the predictor, the error estimate and the dense output need.
 pub(crate) struct State {
@@ -277,9 +238,11 @@ pub(crate) enum Newton {
 /// scratch of a run (allocated once).
 pub(crate) struct Stepper {
     pub(crate) p: Parameters,
-    /// `J = ∂f/∂y`, filled by the caller.
-    pub(crate) jac: DMatrix<f64>,
-    matrix: NewtonMatrix,
+    /// The Newton matrices `c I − J` (the system's structured solver, or the dense Jacobian
+    /// and LU), real slot 0.
+    mats: IterationMatrices,
+    /// The shift `c` slot 0 is factored with (NaN: not factored).
+    c: f64,
     /// `ẏ_n` adjusted to the current step.
     ydot_h: Vec<f64>,
     /// Increment `Δ = y_{n+1} − y_n`.
@@ -298,11 +261,13 @@ pub(crate) struct Stepper {
 }
 
 impl Stepper {
-    pub(crate) fn new(n: usize, rho: f64) -> Self {
+    /// For `system` (its dimension, and its structured Newton solver if it has one).
+    pub(crate) fn new<S: OdeSystem>(system: &mut S, rho: f64) -> Self {
+        let n = system.dim();
         Self {
             p: Parameters::new(rho),
-            jac: DMatrix::zeros(n, n),
-            matrix: NewtonMatrix::new(n),
+            mats: IterationMatrices::new(system),
+            c: f64::NAN,
             ydot_h: vec![0.0; n],
             delta: vec![0.0; n],
             corr: vec![0.0; n],
@@ -316,21 +281,42 @@ impl Stepper {
         }
     }
 
-    /// Make sure `c I − J` is factored for the step `h` (after `jac` changed, call
-    /// [`Self::jacobian_changed`]); false if it is singular.
-    pub(crate) fn factor(&mut self, h: f64, stats: &mut IntegratorStats) -> bool {
+    /// Linearize `system` at `(t, y)` (the Jacobian, or the structured solver's point); the
+    /// factorization is then stale. False if the system cannot be linearized there.
+    pub(crate) fn linearize<S: OdeSystem>(&mut self, system: &mut S, t: f64, y: &[f64]) -> bool {
+        self.c = f64::NAN;
+        self.mats.linearize(system, t, y)
+    }
+
+    /// Whether the system linearizes cheaply enough to do it at every step
+    /// ([`super::NewtonSolver::cheap_linearization`]).
+    pub(crate) fn cheap_linearization(&self) -> bool {
+        self.mats.cheap_linearization()
+    }
+
+    /// The Newton stopping tolerance `default`, tightened to the system's bound
+    /// ([`super::NewtonSolver::newton_tolerance`]).
+    pub(crate) fn newton_tolerance(&self, default: f64) -> f64 {
+        self.mats.newton_tolerance(default)
+    }
+
+    /// Make sure `c I − J` is factored for the step `h` (after [`Self::linearize`]); false if
+    /// it is singular.
+    pub(crate) fn factor<S: OdeSystem>(
+        &mut self,
+        system: &mut S,
+        h: f64,
+        stats: &mut IntegratorStats,
+    ) -> bool {
         let c = self.p.shift / h;
         // Kept for a step that differs by rounding only (the last one, cut to reach the end).
-        if (self.matrix.c - c).abs() <= 1e-10 * c {
+        if (self.c - c).abs() <= 1e-10 * c {
             return true;
         }
         stats.factorizations += 1;
-        self.matrix.factor(&self.jac, c)
-    }
-
-    /// The factorization is stale: `jac` was refilled.
-    pub(crate) fn jacobian_changed(&mut self) {
-        self.matrix.c = f64::NAN;
+        let ok = self.mats.factor_real(system, 0, c);
+        self.c = if ok { c } else { f64::NAN };
+        ok
     }
 
     /// Prepare a step of size `h` from `st`: the error scale of `y_n`, `ẏ_n` moved to the
@@ -389,7 +375,7 @@ impl Stepper {
                 let r = self.ydot_h[i] + p.alpha_m * (ydot_new - self.ydot_h[i]) - self.f[i];
                 self.corr[i] = -r / p.alpha_f;
             }
-            self.matrix.solve(&mut self.corr);
+            self.mats.solve_real(system, 0, &mut self.corr);
             let norm = scaled_rms(&self.corr, &self.scal);
             if !norm.is_finite() {
                 return Newton::Failed { non_finite: true };
@@ -429,8 +415,9 @@ impl Stepper {
     /// [`Self::newton`]): `C h³ y'''` with `y''' ≈ 6 y[t_{n−2}, t_{n−1}, t_n, t_{n+1}]`, filtered
     /// by `(I − J/c)⁻¹`. `None` without two past values. The scale is `atol + rtol max(|y_n|,
     /// |y_{n+1}|)`.
-    pub(crate) fn error(
+    pub(crate) fn error<S: OdeSystem>(
         &mut self,
+        system: &mut S,
         st: &State,
         t_new: f64,
         h: f64,
@@ -443,7 +430,7 @@ impl Stepper {
         let [ta, tb] = st.past_t;
         let (tc, td) = (st.t, t_new);
         // (I − J/c)⁻¹ = c (c I − J)⁻¹.
-        let k = 6.0 * self.p.error_constant * h * h * h * self.matrix.c;
+        let k = 6.0 * self.p.error_constant * h * h * h * self.c;
         let [ya, yb] = &st.past;
         for i in 0..st.y.len() {
             let (yc, yd) = (st.y[i], self.y_new[i]);
@@ -456,7 +443,7 @@ impl Stepper {
             self.err[i] = k * (dbcd - dabc) / (td - ta);
             self.scal[i] = atol[i] + rtol * yc.abs().max(yd.abs());
         }
-        self.matrix.solve(&mut self.err);
+        self.mats.solve_real(system, 0, &mut self.err);
         let e = scaled_rms(&self.err, &self.scal);
         Some(if e.is_finite() { e } else { 1e10 })
     }
@@ -577,7 +564,10 @@ impl GeneralizedAlpha {
         .min(startup_max);
 
         let mut st = State::new(t0, y0, &f0);
-        let mut step = Stepper::new(n, opts.spectral_radius);
+        let mut step = Stepper::new(system, opts.spectral_radius);
+        let newton_tolerance = step.newton_tolerance(opts.newton_tolerance);
+        // A structured solver that linearizes cheaply does it at every step (fewer iterations).
+        let relinearize = step.cheap_linearization();
         let mut need_jac = true;
         let mut jac_current = false;
         let mut last_failure_non_finite = false;
@@ -605,20 +595,20 @@ impl GeneralizedAlpha {
                 };
                 return failure(traj, stats, e);
             }
+            let mut jac_ok = true;
             if need_jac {
-                system.jacobian(t, &st.y, &mut step.jac);
+                jac_ok = step.linearize(system, t, &st.y);
                 stats.jacobian_evaluations += 1;
-                step.jacobian_changed();
                 jac_current = true;
                 need_jac = false;
             }
             step.predict(&st, h, &atol, rtol);
-            let outcome = if step.factor(h, &mut stats) {
+            let outcome = if jac_ok && step.factor(system, h, &mut stats) {
                 step.newton(
                     system,
                     &st,
                     h,
-                    opts.newton_tolerance,
+                    newton_tolerance,
                     opts.max_newton_iterations,
                     &mut stats,
                 )
@@ -646,7 +636,7 @@ impl GeneralizedAlpha {
 
             let mut factor = None;
             if adaptive {
-                if let Some(e) = step.error(&st, t_new, h, &atol, rtol) {
+                if let Some(e) = step.error(system, &st, t_new, h, &atol, rtol) {
                     let f = (SAFETY * e.max(1e-10).powf(-1.0 / 3.0)).clamp(FAC_MIN, FAC_MAX);
                     if e > 1.0 {
                         stats.rejected_steps += 1;
@@ -689,7 +679,7 @@ impl GeneralizedAlpha {
             if last || next_out == t_out.len() {
                 return Ok((traj, stats));
             }
-            need_jac = theta > opts.jacobian_reuse;
+            need_jac = relinearize || theta > opts.jacobian_reuse;
             h = match (opts.step, factor) {
                 (Some(hf), _) => hf,
                 // Keep the step, and the factorization, for moderate changes.
