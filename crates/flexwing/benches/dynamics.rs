@@ -6,7 +6,7 @@
 //!
 //! Run: `cargo bench -p flexwing --bench dynamics` (add `-- --quick` for a short run, `--
 //! --scaling` for the tables against n only, `-- --mass-diagonal` for the diagonal of `M⁻¹`
-//! against n only).
+//! against n only, `-- --alpha` for case (b) with generalized-α against n only).
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -16,8 +16,8 @@ use common::{fmt_time, measure};
 
 use flexwing::model::{AppliedLoads, Force, FullModel, Load, ReducedModel, StructuralModel};
 use flexwing::solve::integrate::{
-    integrate, IntegrationResult, IntegratorSettings, IntegratorStats, Method, OdeSystem, Radau,
-    RadauOptions, Tolerances,
+    integrate, GeneralizedAlpha, GeneralizedAlphaOptions, IntegrationResult, IntegratorSettings,
+    IntegratorStats, Method, OdeSystem, Radau, RadauOptions, Tolerances,
 };
 use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, Modes, NewtonSystems, TimeFunction};
 use nalgebra::DMatrix;
@@ -121,6 +121,61 @@ fn case_b_full(
     fixed: bool,
 ) -> FullRun {
     let n = full.n_elements();
+    case_b_run(full, loads, newton, t_end, |eom, y0, t| {
+        let tolerances = if fixed {
+            Tolerances {
+                rtol: 1.0,
+                atol: vec![1.0],
+            }
+        } else {
+            Tolerances {
+                rtol,
+                atol: eom.state_atol(0.2 / n as f64),
+            }
+        };
+        let radau = Radau {
+            options: RadauOptions {
+                tolerances,
+                max_step,
+                first_step: fixed.then_some(max_step),
+                // A run whose steps collapse stops here rather than grinding on.
+                max_steps: 3000,
+                ..Default::default()
+            },
+        };
+        radau.integrate(eom, 0.0, y0, t, &mut |_| {})
+    })
+}
+
+/// Case (b) on the full model over `[0, 1]` with generalized-α (`ρ∞ = rho`) at the fixed step
+/// `h`, on the chain Newton systems from 40 coordinates (`NewtonSystems::Auto`); the tolerances
+/// (coordinate atol `0.2/n · 1e-1`, rtol 1e-3) only scale its Newton stopping test.
+fn case_b_alpha(full: &FullModel, loads: &AppliedLoads, h: f64, rho: f64) -> FullRun {
+    let n = full.n_elements();
+    case_b_run(full, loads, NewtonSystems::Auto, 1.0, |eom, y0, t| {
+        let options = GeneralizedAlphaOptions {
+            tolerances: Tolerances {
+                rtol: 1e-3,
+                atol: eom.state_atol(0.02 / n as f64),
+            },
+            spectral_radius: rho,
+            step: Some(h),
+            ..Default::default()
+        };
+        GeneralizedAlpha { options }.integrate(eom, 0.0, y0, t, &mut |_| {})
+    })
+}
+
+/// Case (b) on the full model over `[0, t_end]` from rest with the Newton systems `newton`,
+/// integrated by `integrate(eom, y0, output times)`: tips every 5 ms, counters, wall time.
+fn case_b_run(
+    full: &FullModel,
+    loads: &AppliedLoads,
+    newton: NewtonSystems,
+    t_end: f64,
+    integrate: impl FnOnce(&mut EquationsOfMotion<'_, FullModel>, &[f64], &[f64]) -> IntegrationResult,
+) -> FullRun {
+    let n = full.n_elements();
     let tf = vec![TimeFunction::Sine {
         omega: 20.0,
         phase: 0.0,
@@ -128,34 +183,13 @@ fn case_b_full(
     let mut eom =
         EquationsOfMotion::new(full, loads, tf, Gyroscopic::Exact, &Damping::None).expect("eom");
     eom.set_newton_systems(newton).expect("full model");
-    let tolerances = if fixed {
-        Tolerances {
-            rtol: 1.0,
-            atol: vec![1.0],
-        }
-    } else {
-        Tolerances {
-            rtol,
-            atol: eom.state_atol(0.2 / n as f64),
-        }
-    };
     let t: Vec<f64> = (0..=200)
         .map(|k| k as f64 * 0.005)
         .filter(|&s| s <= t_end + 1e-12)
         .collect();
     let y0 = vec![0.0; 2 * full.n_dofs()];
-    let radau = Radau {
-        options: RadauOptions {
-            tolerances,
-            max_step,
-            first_step: fixed.then_some(max_step),
-            // A run whose steps collapse stops here rather than grinding on.
-            max_steps: 3000,
-            ..Default::default()
-        },
-    };
     let start = std::time::Instant::now();
-    let result = radau.integrate(&mut eom, 0.0, &y0, &t, &mut |_| {});
+    let result = integrate(&mut eom, &y0, &t);
     let seconds = start.elapsed().as_secs_f64();
     let (traj, stats, failure) = match result {
         Ok((traj, stats)) => (traj, stats, None),
@@ -323,6 +357,82 @@ fn scaling(quick: bool) {
     }
 }
 
+/// Case (b) end to end with generalized-α on the chain Newton systems against n: fixed steps
+/// of 1, 0.5 and 0.35 ms, the tip error against Radau at rtol 1e-8 (on the same n up to 1000, on
+/// n = 1000 above it: the model at n ≥ 1000 differs from n = 1000 by its O(1/n²)
+/// discretization, ~2e-8 m at the tip).
+fn alpha_scaling(quick: bool) {
+    println!(
+        "\nCase (b) end to end against n (1 s) with generalized-α, ρ∞ = 0.5, fixed steps h; tip \
+         error against Radau at rtol 1e-8 (same n up to 1000, n = 1000 above)\n"
+    );
+    println!("| n | h | steps | of which Newton failed | Newton its / step | tip error (m) | wall time | per step | slope |");
+    println!("|---|---|---|---|---|---|---|---|---|");
+    let sizes: &[usize] = if quick {
+        &[40, 160, 1000, 3000, 10000]
+    } else {
+        &[40, 160, 1000, 2000, 3000, 5000, 10000]
+    };
+    let tight = |full: &FullModel, loads: &AppliedLoads| {
+        let n = full.n_elements();
+        case_b_run(full, loads, NewtonSystems::Auto, 1.0, |eom, y0, t| {
+            let options = RadauOptions {
+                tolerances: Tolerances {
+                    rtol: 1e-8,
+                    atol: eom.state_atol(1e-8 * 20.0 / n as f64),
+                },
+                max_step: 1e-3,
+                ..Default::default()
+            };
+            Radau { options }.integrate(eom, 0.0, y0, t, &mut |_| {})
+        })
+    };
+    let mut reference_1000 = None;
+    let mut prev: [Option<(usize, f64)>; 3] = [None; 3];
+    for &n in sizes {
+        let full = table4(n);
+        let loads = tip_load(&full);
+        let reference = if n <= 1000 {
+            let r = tight(&full, &loads);
+            if n == 1000 {
+                reference_1000 = Some(r.tips.clone());
+            }
+            r.tips
+        } else {
+            reference_1000.clone().unwrap_or_else(|| {
+                let small = table4(1000);
+                tight(&small, &tip_load(&small)).tips
+            })
+        };
+        // 0.35 ms: the step for ~1e-4 m (second order from 2.0e-4 m at 0.5 ms).
+        for (k, h) in [1e-3, 5e-4, 3.5e-4].into_iter().enumerate() {
+            let run = case_b_alpha(&full, &loads, h, 0.5);
+            let attempts = (run.stats.steps + run.stats.rejected_steps) as f64;
+            let per = run.seconds / attempts;
+            let error = if run.failure.is_none() && run.tips.len() == reference.len() {
+                format!("{:.1e}", max_diff(&run.tips, &reference))
+            } else {
+                "–".into()
+            };
+            println!(
+                "| {n} | {} ms | {} | {} | {:.2} | {error} | {} | {} | {} |{}",
+                h * 1e3,
+                run.stats.steps,
+                run.stats.newton_failures,
+                run.stats.newton_iterations as f64 / attempts,
+                fmt_time(run.seconds),
+                fmt_time(per),
+                slope(prev[k], n, per),
+                run.failure
+                    .as_ref()
+                    .map(|e| format!(" stopped: {e}"))
+                    .unwrap_or_default()
+            );
+            prev[k] = Some((n, per));
+        }
+    }
+}
+
 /// The diagonal of `M(0)⁻¹` that gives the momenta their tolerances (once per run,
 /// `EquationsOfMotion::state_atol`): the O(n) covariance sweep against n unit solves (the O(n²)
 /// method it replaced, up to n = 3000), with the largest relative difference between the two.
@@ -394,6 +504,11 @@ fn main() {
         inverse_mass_diagonal_table(quick);
         // Only the tables against n up to 10 000 (a few minutes).
         scaling(quick);
+        alpha_scaling(quick);
+        return;
+    }
+    if std::env::args().any(|a| a == "--alpha") {
+        alpha_scaling(quick);
         return;
     }
     let (budget, batches) = if quick {
