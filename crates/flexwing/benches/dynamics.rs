@@ -6,6 +6,7 @@
 //!
 //! Run: `cargo bench -p flexwing --bench dynamics` (add `-- --quick` for a short run, `--
 //! --scaling` for the tables against n only, `-- --mass-diagonal` for the diagonal of `M⁻¹`
+//! against n only, `-- --damping [--max-n N]` for case (b) with Rayleigh and modal damping
 //! against n only).
 
 use std::hint::black_box;
@@ -101,19 +102,23 @@ struct FullRun {
     tips: Vec<[f64; 2]>,
     stats: IntegratorStats,
     seconds: f64,
+    /// Wall time of the equations' set-up (s): the damping operator, the tolerances.
+    setup_seconds: f64,
     /// Where and why it stopped, if it did.
     failure: Option<String>,
 }
 
-/// Case (b) on the full model over `[0, t_end]` with Radau and the Newton systems `newton`:
-/// rtol `rtol`, steps at most `max_step` (and all equal to it with `fixed`, the error control
+/// Case (b) on the full model over `[0, t_end]` with Radau, the Newton systems `newton` and the
+/// structural damping `damping`: rtol `rtol`, steps at most `max_step` (and all equal to it with `fixed`, the error control
 /// then switched off by tolerances of 1), and a coordinate atol of `0.2/n` rad per joint (the
 /// n = 20 setting of `flexwing reproduce`, 1e-2 rad, scaled by the joint's share of the span,
 /// so that the tolerance on the tip angle stays the same as n grows; the momenta's atol
 /// follows by `state_atol`).
+#[allow(clippy::too_many_arguments)]
 fn case_b_full(
     full: &FullModel,
     loads: &AppliedLoads,
+    damping: &Damping,
     newton: NewtonSystems,
     rtol: f64,
     max_step: f64,
@@ -125,8 +130,19 @@ fn case_b_full(
         omega: 20.0,
         phase: 0.0,
     }];
-    let mut eom =
-        EquationsOfMotion::new(full, loads, tf, Gyroscopic::Exact, &Damping::None).expect("eom");
+    let setup = std::time::Instant::now();
+    let mut eom = match EquationsOfMotion::new(full, loads, tf, Gyroscopic::Exact, damping) {
+        Ok(eom) => eom,
+        Err(e) => {
+            return FullRun {
+                tips: Vec::new(),
+                stats: IntegratorStats::default(),
+                seconds: f64::NAN,
+                setup_seconds: setup.elapsed().as_secs_f64(),
+                failure: Some(format!("set-up failed: {e}")),
+            }
+        }
+    };
     eom.set_newton_systems(newton).expect("full model");
     let tolerances = if fixed {
         Tolerances {
@@ -144,6 +160,7 @@ fn case_b_full(
         .filter(|&s| s <= t_end + 1e-12)
         .collect();
     let y0 = vec![0.0; 2 * full.n_dofs()];
+    let setup_seconds = setup.elapsed().as_secs_f64();
     let radau = Radau {
         options: RadauOptions {
             tolerances,
@@ -173,6 +190,7 @@ fn case_b_full(
         tips,
         stats,
         seconds,
+        setup_seconds,
         failure,
     }
 }
@@ -223,7 +241,16 @@ fn scaling(quick: bool) {
         let reps = if n <= 160 { 5 } else { 3 };
         let run = |newton| {
             case_b_timed(reps, || {
-                case_b_full(&full, &loads, newton, 1e-2, 1e-3, 0.02, true)
+                case_b_full(
+                    &full,
+                    &loads,
+                    &Damping::None,
+                    newton,
+                    1e-2,
+                    1e-3,
+                    0.02,
+                    true,
+                )
             })
         };
         let dense = (n <= 320).then(|| run(NewtonSystems::Dense));
@@ -276,13 +303,23 @@ fn scaling(quick: bool) {
         let reps = if n <= 160 { 3 } else { 1 };
         let go = |newton, rtol, h| {
             case_b_timed(reps, || {
-                case_b_full(&full, &loads, newton, rtol, h, 1.0, false)
+                case_b_full(&full, &loads, &Damping::None, newton, rtol, h, 1.0, false)
             })
         };
         let chain = go(NewtonSystems::Chain, 1e-2, 6e-3);
         let dense = (n <= 160).then(|| go(NewtonSystems::Dense, 1e-2, 6e-3));
-        let halved = (n <= 3000 && chain.failure.is_none())
-            .then(|| case_b_full(&full, &loads, NewtonSystems::Chain, 1e-3, 3e-3, 1.0, false));
+        let halved = (n <= 3000 && chain.failure.is_none()).then(|| {
+            case_b_full(
+                &full,
+                &loads,
+                &Damping::None,
+                NewtonSystems::Chain,
+                1e-3,
+                3e-3,
+                1.0,
+                false,
+            )
+        });
         let diff = |other: &Option<FullRun>| match other {
             Some(o) if o.failure.is_none() && chain.failure.is_none() => {
                 format!("{:.1e}", max_diff(&chain.tips, &o.tips))
@@ -377,6 +414,73 @@ fn inverse_mass_diagonal_table(quick: bool) {
     }
 }
 
+/// Case (b) with structural damping against n (Table 4 beam, 1 s; Radau, rtol 1e-2, steps ≤ 6 ms,
+/// coordinate atol 0.2/n rad per joint, the chain Newton systems): Rayleigh `α = 0.1 /s`,
+/// `β = 1e-4 s` and modal damping of 2 % on the first three modes, against the same run
+/// undamped; sizes up to `max_n`.
+fn damping_table(max_n: usize) {
+    println!(
+        "\nCase (b) with structural damping against n: Radau, rtol 1e-2, steps ≤ 6 ms, atol 0.2/n \
+         rad per joint, chain Newton systems; set-up = the equations' construction (damping \
+         operator, tolerances); slope of the integration's wall time against the previous row\n"
+    );
+    println!("| n | damping | steps (rejected) | RHS | Newton its | set-up | wall time | slope | undamped wall time | damped / undamped |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let kinds = [
+        (
+            "Rayleigh α 0.1, β 1e-4",
+            Damping::Rayleigh {
+                alpha: 0.1,
+                beta: 1e-4,
+            },
+        ),
+        (
+            "modal 2 % × 3",
+            Damping::Modal {
+                ratios: vec![0.02; 3],
+            },
+        ),
+    ];
+    let mut prev: Vec<Option<(usize, f64)>> = vec![None; kinds.len()];
+    for n in [160, 1000, 3000, 10000].into_iter().filter(|&n| n <= max_n) {
+        let full = table4(n);
+        let loads = tip_load(&full);
+        let run = |d: &Damping| {
+            case_b_full(
+                &full,
+                &loads,
+                d,
+                NewtonSystems::Chain,
+                1e-2,
+                6e-3,
+                1.0,
+                false,
+            )
+        };
+        let undamped = run(&Damping::None);
+        for ((label, damping), prev) in kinds.iter().zip(&mut prev) {
+            let r = run(damping);
+            println!(
+                "| {n} | {label} | {} ({}) | {} | {} | {} | {} | {} | {} | {:.2} |{}",
+                r.stats.steps,
+                r.stats.rejected_steps,
+                r.stats.rhs_evaluations,
+                r.stats.newton_iterations,
+                fmt_time(r.setup_seconds),
+                fmt_time(r.seconds),
+                slope(*prev, n, r.seconds),
+                fmt_time(undamped.seconds),
+                r.seconds / undamped.seconds,
+                r.failure
+                    .as_ref()
+                    .map(|e| format!(" stopped: {e}"))
+                    .unwrap_or_default()
+            );
+            *prev = Some((n, r.seconds));
+        }
+    }
+}
+
 fn max_diff(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
     a.iter()
         .zip(b)
@@ -386,6 +490,17 @@ fn max_diff(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
 
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
+    if std::env::args().any(|a| a == "--damping") {
+        // `--max-n N`: the largest n of the table (default 10 000).
+        let args: Vec<String> = std::env::args().collect();
+        let max_n = args
+            .iter()
+            .position(|a| a == "--max-n")
+            .and_then(|i| args.get(i + 1)?.parse().ok())
+            .unwrap_or(10000);
+        damping_table(max_n);
+        return;
+    }
     if std::env::args().any(|a| a == "--mass-diagonal") {
         inverse_mass_diagonal_table(quick);
         return;
