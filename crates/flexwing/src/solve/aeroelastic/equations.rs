@@ -67,8 +67,6 @@ pub struct AeroelasticEquations<'a, M: AeroStructure> {
     pub(super) structural: EquationsOfMotion<'a, M>,
     loads: &'a AppliedLoads,
     time_functions: Vec<TimeFunction>,
-    /// The structural damping matrix `C` (constant), `None` without damping.
-    damping: Option<DMatrix<f64>>,
     eval: AeroEvaluator<'a, M>,
     flight: FlightHistory,
     gravity: Option<AppliedLoads>,
@@ -116,7 +114,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     ) -> Result<Self, InputError> {
         flight.initial.validate(field)?;
         let model = aero.structure();
-        let mut structural = EquationsOfMotion::new(
+        let structural = EquationsOfMotion::new(
             model,
             loads,
             time_functions.clone(),
@@ -124,14 +122,6 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
             damping,
         )?;
         let n = model.n_dofs();
-        // C from the structural Jacobian at rest: ∂ṗ/∂p = −C M⁻¹ there.
-        let damping_matrix = (*damping != Damping::None).then(|| {
-            let mut jac = DMatrix::zeros(2 * n, 2 * n);
-            structural.jacobian(0.0, &vec![0.0; 2 * n], &mut jac);
-            let mut m0 = DMatrix::zeros(n, n);
-            model.mass_matrix_into(&vec![0.0; n], &mut model.workspace(), &mut m0);
-            -(jac.view((n, n), (n, n)) * m0)
-        });
         let gravity = match flight.initial.gravity {
             Some(g) => Some(aero.full().apply(&[Load::Gravity { g }], field)?),
             None => None,
@@ -142,7 +132,6 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
             structural,
             loads,
             time_functions,
-            damping: damping_matrix,
             eval: AeroEvaluator::new(aero),
             flight,
             gravity,
@@ -330,7 +319,11 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         let scales: Vec<f64> = self.time_functions.iter().map(|f| f.at(0.0)).collect();
         model.load_jacobian_into(x, self.loads, &scales, &mut self.ws, &mut self.gravity_jac);
         stiffness -= &self.gravity_jac;
-        let mut damping = self.damping.clone().unwrap_or_else(|| DMatrix::zeros(n, n));
+        // The structural damping matrix, formed once by the structural equations (`damping.rs`).
+        let mut damping = match self.structural.damping_matrix() {
+            Some(c) => c.clone(),
+            None => DMatrix::zeros(n, n),
+        };
         if let Some(g) = &self.gravity {
             let s = self.gravity_scale(0.0);
             model.load_jacobian_into(x, g, &s, &mut self.ws, &mut self.gravity_jac);
