@@ -237,7 +237,7 @@ impl<M: StructuralModel> DampingOperator<M> {
 
 /// `C` formed densely from the formulas (module documentation): the path of the models other
 /// than the full model, whose `r × r` matrices are small.
-fn dense_damping<M: StructuralModel>(
+pub(super) fn dense_damping<M: StructuralModel>(
     model: &M,
     damping: &Damping,
     field: &str,
