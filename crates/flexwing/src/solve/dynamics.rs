@@ -261,8 +261,10 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     ///
     /// # Errors
     /// If the number of time functions differs from the number of loads (field `loads`), a
-    /// finite-difference step is not positive (field `gyroscopic.step`), or damping coefficients
-    /// are not finite and non-negative (fields `damping.*`, [`Damping::validate`]).
+    /// finite-difference step is not positive (field `gyroscopic.step`), damping coefficients
+    /// are not finite and non-negative (fields `damping.*`, [`Damping::validate`]), or modal
+    /// damping asks for modes that cannot be computed or that double precision does not resolve
+    /// (fields `damping`, `damping.ratios`).
     pub fn new(
         model: &'a M,
         loads: &'a AppliedLoads,

@@ -779,7 +779,7 @@ pub(crate) mod tests {
         fn difference<M: AeroStructure>(aero: &Aeroelastic<M>, damping: &Damping) -> f64 {
             let loads = AppliedLoads::none();
             let flight = FlightHistory::steady(FlightCondition::at_speed(15.0));
-            let mut linear_damping = |d: &Damping| {
+            let linear_damping = |d: &Damping| {
                 let mut eom =
                     AeroelasticEquations::new(aero, &loads, vec![], flight.clone(), d, "f")
                         .unwrap();
