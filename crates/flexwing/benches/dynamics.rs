@@ -6,6 +6,7 @@
 //!
 //! Run: `cargo bench -p flexwing --bench dynamics` (add `-- --quick` for a short run, `--
 //! --scaling` for the tables against n only, `-- --mass-diagonal` for the diagonal of `M⁻¹`
+//! against n only, `-- --damping [--max-n N]` for case (b) with Rayleigh and modal damping
 //! against n only, `-- --alpha` for case (b) with generalized-α against n only).
 
 use std::hint::black_box;
@@ -101,19 +102,23 @@ struct FullRun {
     tips: Vec<[f64; 2]>,
     stats: IntegratorStats,
     seconds: f64,
+    /// Wall time of the equations' set-up (s): the damping operator, the tolerances.
+    setup_seconds: f64,
     /// Where and why it stopped, if it did.
     failure: Option<String>,
 }
 
-/// Case (b) on the full model over `[0, t_end]` with Radau and the Newton systems `newton`:
-/// rtol `rtol`, steps at most `max_step` (and all equal to it with `fixed`, the error control
+/// Case (b) on the full model over `[0, t_end]` with Radau, the Newton systems `newton` and the
+/// structural damping `damping`: rtol `rtol`, steps at most `max_step` (and all equal to it with `fixed`, the error control
 /// then switched off by tolerances of 1), and a coordinate atol of `0.2/n` rad per joint (the
 /// n = 20 setting of `flexwing reproduce`, 1e-2 rad, scaled by the joint's share of the span,
 /// so that the tolerance on the tip angle stays the same as n grows; the momenta's atol
 /// follows by `state_atol`).
+#[allow(clippy::too_many_arguments)]
 fn case_b_full(
     full: &FullModel,
     loads: &AppliedLoads,
+    damping: &Damping,
     newton: NewtonSystems,
     rtol: f64,
     max_step: f64,
@@ -121,7 +126,7 @@ fn case_b_full(
     fixed: bool,
 ) -> FullRun {
     let n = full.n_elements();
-    case_b_run(full, loads, newton, t_end, |eom, y0, t| {
+    case_b_run(full, loads, damping, newton, t_end, |eom, y0, t| {
         let tolerances = if fixed {
             Tolerances {
                 rtol: 1.0,
@@ -152,25 +157,34 @@ fn case_b_full(
 /// (coordinate atol `0.2/n · 1e-1`, rtol 1e-3) only scale its Newton stopping test.
 fn case_b_alpha(full: &FullModel, loads: &AppliedLoads, h: f64, rho: f64) -> FullRun {
     let n = full.n_elements();
-    case_b_run(full, loads, NewtonSystems::Auto, 1.0, |eom, y0, t| {
-        let options = GeneralizedAlphaOptions {
-            tolerances: Tolerances {
-                rtol: 1e-3,
-                atol: eom.state_atol(0.02 / n as f64),
-            },
-            spectral_radius: rho,
-            step: Some(h),
-            ..Default::default()
-        };
-        GeneralizedAlpha { options }.integrate(eom, 0.0, y0, t, &mut |_| {})
-    })
+    case_b_run(
+        full,
+        loads,
+        &Damping::None,
+        NewtonSystems::Auto,
+        1.0,
+        |eom, y0, t| {
+            let options = GeneralizedAlphaOptions {
+                tolerances: Tolerances {
+                    rtol: 1e-3,
+                    atol: eom.state_atol(0.02 / n as f64),
+                },
+                spectral_radius: rho,
+                step: Some(h),
+                ..Default::default()
+            };
+            GeneralizedAlpha { options }.integrate(eom, 0.0, y0, t, &mut |_| {})
+        },
+    )
 }
 
-/// Case (b) on the full model over `[0, t_end]` from rest with the Newton systems `newton`,
-/// integrated by `integrate(eom, y0, output times)`: tips every 5 ms, counters, wall time.
+/// Case (b) on the full model over `[0, t_end]` from rest with the structural damping `damping`
+/// and the Newton systems `newton`, integrated by `integrate(eom, y0, output times)` (which also
+/// sets the tolerances): tips every 5 ms, counters, set-up and integration wall times.
 fn case_b_run(
     full: &FullModel,
     loads: &AppliedLoads,
+    damping: &Damping,
     newton: NewtonSystems,
     t_end: f64,
     integrate: impl FnOnce(&mut EquationsOfMotion<'_, FullModel>, &[f64], &[f64]) -> IntegrationResult,
@@ -180,14 +194,26 @@ fn case_b_run(
         omega: 20.0,
         phase: 0.0,
     }];
-    let mut eom =
-        EquationsOfMotion::new(full, loads, tf, Gyroscopic::Exact, &Damping::None).expect("eom");
+    let setup = std::time::Instant::now();
+    let mut eom = match EquationsOfMotion::new(full, loads, tf, Gyroscopic::Exact, damping) {
+        Ok(eom) => eom,
+        Err(e) => {
+            return FullRun {
+                tips: Vec::new(),
+                stats: IntegratorStats::default(),
+                seconds: f64::NAN,
+                setup_seconds: setup.elapsed().as_secs_f64(),
+                failure: Some(format!("set-up failed: {e}")),
+            }
+        }
+    };
     eom.set_newton_systems(newton).expect("full model");
     let t: Vec<f64> = (0..=200)
         .map(|k| k as f64 * 0.005)
         .filter(|&s| s <= t_end + 1e-12)
         .collect();
     let y0 = vec![0.0; 2 * full.n_dofs()];
+    let setup_seconds = setup.elapsed().as_secs_f64();
     let start = std::time::Instant::now();
     let result = integrate(&mut eom, &y0, &t);
     let seconds = start.elapsed().as_secs_f64();
@@ -207,6 +233,7 @@ fn case_b_run(
         tips,
         stats,
         seconds,
+        setup_seconds,
         failure,
     }
 }
@@ -257,7 +284,16 @@ fn scaling(quick: bool) {
         let reps = if n <= 160 { 5 } else { 3 };
         let run = |newton| {
             case_b_timed(reps, || {
-                case_b_full(&full, &loads, newton, 1e-2, 1e-3, 0.02, true)
+                case_b_full(
+                    &full,
+                    &loads,
+                    &Damping::None,
+                    newton,
+                    1e-2,
+                    1e-3,
+                    0.02,
+                    true,
+                )
             })
         };
         let dense = (n <= 320).then(|| run(NewtonSystems::Dense));
@@ -310,13 +346,23 @@ fn scaling(quick: bool) {
         let reps = if n <= 160 { 3 } else { 1 };
         let go = |newton, rtol, h| {
             case_b_timed(reps, || {
-                case_b_full(&full, &loads, newton, rtol, h, 1.0, false)
+                case_b_full(&full, &loads, &Damping::None, newton, rtol, h, 1.0, false)
             })
         };
         let chain = go(NewtonSystems::Chain, 1e-2, 6e-3);
         let dense = (n <= 160).then(|| go(NewtonSystems::Dense, 1e-2, 6e-3));
-        let halved = (n <= 3000 && chain.failure.is_none())
-            .then(|| case_b_full(&full, &loads, NewtonSystems::Chain, 1e-3, 3e-3, 1.0, false));
+        let halved = (n <= 3000 && chain.failure.is_none()).then(|| {
+            case_b_full(
+                &full,
+                &loads,
+                &Damping::None,
+                NewtonSystems::Chain,
+                1e-3,
+                3e-3,
+                1.0,
+                false,
+            )
+        });
         let diff = |other: &Option<FullRun>| match other {
             Some(o) if o.failure.is_none() && chain.failure.is_none() => {
                 format!("{:.1e}", max_diff(&chain.tips, &o.tips))
@@ -375,17 +421,24 @@ fn alpha_scaling(quick: bool) {
     };
     let tight = |full: &FullModel, loads: &AppliedLoads| {
         let n = full.n_elements();
-        case_b_run(full, loads, NewtonSystems::Auto, 1.0, |eom, y0, t| {
-            let options = RadauOptions {
-                tolerances: Tolerances {
-                    rtol: 1e-8,
-                    atol: eom.state_atol(1e-8 * 20.0 / n as f64),
-                },
-                max_step: 1e-3,
-                ..Default::default()
-            };
-            Radau { options }.integrate(eom, 0.0, y0, t, &mut |_| {})
-        })
+        case_b_run(
+            full,
+            loads,
+            &Damping::None,
+            NewtonSystems::Auto,
+            1.0,
+            |eom, y0, t| {
+                let options = RadauOptions {
+                    tolerances: Tolerances {
+                        rtol: 1e-8,
+                        atol: eom.state_atol(1e-8 * 20.0 / n as f64),
+                    },
+                    max_step: 1e-3,
+                    ..Default::default()
+                };
+                Radau { options }.integrate(eom, 0.0, y0, t, &mut |_| {})
+            },
+        )
     };
     let mut reference_1000 = None;
     let mut prev: [Option<(usize, f64)>; 3] = [None; 3];
@@ -487,6 +540,104 @@ fn inverse_mass_diagonal_table(quick: bool) {
     }
 }
 
+/// Case (b) with structural damping against n (Table 4 beam, 1 s; Radau, rtol 1e-2, steps ≤ 6 ms,
+/// coordinate atol 0.2/n rad per joint, the chain Newton systems): Rayleigh `α = 0.1 /s`,
+/// `β = 1e-4 s` and modal damping of 2 % on the first three modes, against the same run
+/// undamped; sizes up to `max_n`.
+fn damping_table(max_n: usize) {
+    println!(
+        "\nCase (b) with structural damping against n: Radau, rtol 1e-2, steps ≤ 6 ms, atol 0.2/n \
+         rad per joint, chain Newton systems; set-up = the equations' construction (damping \
+         operator, tolerances); slope of the integration's wall time against the previous row\n"
+    );
+    let kinds = [
+        (
+            "Rayleigh α 0.1, β 1e-4",
+            Damping::Rayleigh {
+                alpha: 0.1,
+                beta: 1e-4,
+            },
+        ),
+        (
+            "modal 2 % × 3",
+            Damping::Modal {
+                ratios: vec![0.02; 3],
+            },
+        ),
+    ];
+    println!("\nOne right-hand side of case (b) (full model, exact γ) at a moving state, by damping; slope against the previous row\n");
+    println!(
+        "| n | undamped | slope | {} | slope | {} | slope |",
+        kinds[0].0, kinds[1].0
+    );
+    println!("|---|---|---|---|---|---|---|");
+    let mut prev: Vec<Option<(usize, f64)>> = vec![None; kinds.len() + 1];
+    for n in [160, 1000, 3000, 10000].into_iter().filter(|&n| n <= max_n) {
+        let full = table4(n);
+        let loads = tip_load(&full);
+        let mut cols = String::new();
+        let all = std::iter::once(&Damping::None).chain(kinds.iter().map(|(_, d)| d));
+        for (damping, prev) in all.zip(&mut prev) {
+            let tf = vec![TimeFunction::Sine {
+                omega: 20.0,
+                phase: 0.0,
+            }];
+            let mut eom =
+                EquationsOfMotion::new(&full, &loads, tf, Gyroscopic::Exact, damping).expect("eom");
+            let q: Vec<f64> = (0..n).map(|i| 2.0 / n as f64 * (i as f64).sin()).collect();
+            let y = eom.state(&q, &vec![0.1; n]);
+            let mut dy = vec![0.0; 2 * n];
+            let (t, _) = measure(Duration::from_millis(200), 3, || {
+                eom.rhs(0.1, black_box(&y), &mut dy)
+            });
+            cols += &format!(" {} | {} |", fmt_time(t), slope(*prev, n, t));
+            *prev = Some((n, t));
+        }
+        println!("| {n} |{cols}");
+    }
+    println!();
+    println!("| n | damping | steps (rejected) | RHS | Newton its | set-up | wall time | slope | undamped wall time | damped / undamped |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let mut prev: Vec<Option<(usize, f64)>> = vec![None; kinds.len()];
+    for n in [160, 1000, 3000, 10000].into_iter().filter(|&n| n <= max_n) {
+        let full = table4(n);
+        let loads = tip_load(&full);
+        let run = |d: &Damping| {
+            case_b_full(
+                &full,
+                &loads,
+                d,
+                NewtonSystems::Chain,
+                1e-2,
+                6e-3,
+                1.0,
+                false,
+            )
+        };
+        let undamped = run(&Damping::None);
+        for ((label, damping), prev) in kinds.iter().zip(&mut prev) {
+            let r = run(damping);
+            println!(
+                "| {n} | {label} | {} ({}) | {} | {} | {} | {} | {} | {} | {:.2} |{}",
+                r.stats.steps,
+                r.stats.rejected_steps,
+                r.stats.rhs_evaluations,
+                r.stats.newton_iterations,
+                fmt_time(r.setup_seconds),
+                fmt_time(r.seconds),
+                slope(*prev, n, r.seconds),
+                fmt_time(undamped.seconds),
+                r.seconds / undamped.seconds,
+                r.failure
+                    .as_ref()
+                    .map(|e| format!(" stopped: {e}"))
+                    .unwrap_or_default()
+            );
+            *prev = Some((n, r.seconds));
+        }
+    }
+}
+
 fn max_diff(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
     a.iter()
         .zip(b)
@@ -496,6 +647,17 @@ fn max_diff(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
 
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
+    if std::env::args().any(|a| a == "--damping") {
+        // `--max-n N`: the largest n of the table (default 10 000).
+        let args: Vec<String> = std::env::args().collect();
+        let max_n = args
+            .iter()
+            .position(|a| a == "--max-n")
+            .and_then(|i| args.get(i + 1)?.parse().ok())
+            .unwrap_or(10000);
+        damping_table(max_n);
+        return;
+    }
     if std::env::args().any(|a| a == "--mass-diagonal") {
         inverse_mass_diagonal_table(quick);
         return;

@@ -50,9 +50,21 @@ fn run(
     method: Method,
     newton: NewtonSystems,
 ) -> (Trajectory, IntegratorStats) {
+    run_damped(model, loads, tf, t, method, newton, &Damping::None)
+}
+
+/// [`run`] with structural damping `damping`.
+fn run_damped(
+    model: &FullModel,
+    loads: &[Load],
+    tf: Vec<TimeFunction>,
+    t: &[f64],
+    method: Method,
+    newton: NewtonSystems,
+    damping: &Damping,
+) -> (Trajectory, IntegratorStats) {
     let applied = model.apply(loads, "loads").unwrap();
-    let mut eom =
-        EquationsOfMotion::new(model, &applied, tf, Gyroscopic::Exact, &Damping::None).unwrap();
+    let mut eom = EquationsOfMotion::new(model, &applied, tf, Gyroscopic::Exact, damping).unwrap();
     eom.set_newton_systems(newton).unwrap();
     let n = model.n_elements();
     let y0 = vec![0.0; 2 * model.n_dofs()];
@@ -272,7 +284,7 @@ fn case_b_at_n_1000_converges_with_the_step() {
 #[test]
 fn generalized_alpha_at_n_3000_converges_at_second_order_to_radau() {
     // Where Radau's steps start failing Newton (n ≥ 3000, docs/model-choices.md), generalized-α
-    // (ρ∞ = 0.5) on the chain Newton systems: fixed steps of 2, 1 and 0.5 ms over the first
+    // (ρ∞ = 0.5) on the chain Newton systems: fixed steps of 1, 0.5 and 0.25 ms over the first
     // 0.3 s of case (b) against Radau at rtol 1e-7 on n = 1000 (another method; the model at
     // n = 1000 differs from n = 3000 by the O(1/n²) discretization, ~2e-8 m at the tip).
     let (loads, tf) = case_b_load();
@@ -318,6 +330,47 @@ fn generalized_alpha_at_n_3000_converges_at_second_order_to_radau() {
     }
     let orders: Vec<f64> = errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
     eprintln!("observed orders {orders:?}");
-    // Second order (measured above); bounds leave room for the O(h³) terms at 2 ms.
+    // Second order (measured above); bounds leave room for the O(h³) terms at 1 ms.
     assert!(orders.iter().all(|o| (1.7..2.4).contains(o)), "{orders:?}");
+}
+
+#[test]
+fn rayleigh_damped_case_b_at_n_2000_converges_with_the_step() {
+    // Rayleigh damping at n = 2000, which the dense damping matrix (formed once, then an O(n²)
+    // product at every right-hand side) made a matter of minutes (328 s for case (b) at n = 3000,
+    // docs/performance.md, "Damping at large n"): the case (b) setting against half the step and
+    // a tenth of the tolerance over the first 0.2 s. α = 5 /s, β = 1e-3 s: ζ₁ = 0.073 on the first
+    // mode, so the damping changes the tip by far more than the bound (checked against the
+    // undamped run). Measured coarse − fine 5.4e-7 m (the damped high modes leave less to
+    // integrate than case (b) undamped, 2.7e-5 m at n = 1000 above); bound 1e-5 m. Three runs,
+    // 1 s in release mode.
+    let (loads, tf) = case_b_load();
+    let model = table4(2000);
+    let t = times(0.2, 0.005);
+    let damping = Damping::Rayleigh {
+        alpha: 5.0,
+        beta: 1e-3,
+    };
+    let go = |method, damping: &Damping| {
+        run_damped(
+            &model,
+            &loads,
+            tf.clone(),
+            &t,
+            method,
+            NewtonSystems::Auto,
+            damping,
+        )
+    };
+    let (coarse, stats) = go(Method::Radau(1e-2, 6e-3), &damping);
+    let (fine, _) = go(Method::Radau(1e-3, 3e-3), &damping);
+    let (undamped, _) = go(Method::Radau(1e-2, 6e-3), &Damping::None);
+    let d = tip_difference(&model, &coarse, &fine);
+    let effect = tip_difference(&model, &coarse, &undamped);
+    eprintln!(
+        "n = 2000, Rayleigh: coarse − fine {d:.2e} m, damped − undamped {effect:.2e} m, {stats:?}"
+    );
+    assert!(d < 1e-5, "{d:.2e}");
+    // The damping's effect: measured 1.6e-2 m; at least a hundred times the bound.
+    assert!(effect > 1e-3, "{effect:.2e}");
 }

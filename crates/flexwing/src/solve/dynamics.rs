@@ -16,6 +16,8 @@ use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
+pub use super::damping::Damping;
+use super::damping::DampingOperator;
 use super::energy_audit::{AuditLimits, EnergyBalance};
 use super::eom_newton::ChainNewton;
 use super::integrate::{NewtonSolver, OdeSystem};
@@ -76,69 +78,6 @@ impl Gyroscopic {
                 ))
             }
             _ => Ok(()),
-        }
-    }
-}
-
-/// Structural damping `C`.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub enum Damping {
-    /// No damping.
-    #[default]
-    None,
-    /// Rayleigh: `C = α M(0) + β K`.
-    Rayleigh {
-        /// Mass-proportional coefficient `α` (1/s).
-        alpha: f64,
-        /// Stiffness-proportional coefficient `β` (s).
-        beta: f64,
-    },
-    /// Modal damping ratios `ζ_k` of the first modes about the undeformed state:
-    /// `C = M₀ Φ diag(2 ζ_k ω_k) Φᵀ M₀` over the modes given (others undamped).
-    Modal {
-        /// Damping ratios of modes 1, 2, … (dimensionless).
-        ratios: Vec<f64>,
-    },
-}
-
-impl Damping {
-    /// Check the coefficients for a model of `n_dofs` coordinates; errors name
-    /// `{field}.alpha`, `{field}.ratios[k]`, ….
-    ///
-    /// # Errors
-    /// A coefficient or ratio that is not finite and non-negative, more ratios than modes.
-    pub fn validate(&self, field: &str, n_dofs: usize) -> Result<(), InputError> {
-        let check = |name: &str, v: f64| {
-            if v.is_finite() && v >= 0.0 {
-                crate::magnitude::check(&crate::field(field, name), "", v).map(|_| ())
-            } else {
-                Err(InputError::new(
-                    crate::field(field, name),
-                    format!("must be a finite non-negative number, got {}", short(v)),
-                ))
-            }
-        };
-        match self {
-            Damping::None => Ok(()),
-            Damping::Rayleigh { alpha, beta } => {
-                check("alpha", *alpha)?;
-                check("beta", *beta)
-            }
-            Damping::Modal { ratios } => {
-                if ratios.len() > n_dofs {
-                    return Err(InputError::new(
-                        crate::field(field, "ratios"),
-                        format!(
-                            "{} ratios given but the model has {n_dofs} modes",
-                            ratios.len()
-                        ),
-                    ));
-                }
-                for (i, z) in ratios.iter().enumerate() {
-                    check(&format!("ratios[{i}]"), *z)?;
-                }
-                Ok(())
-            }
         }
     }
 }
@@ -285,7 +224,10 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     k: DMatrix<f64>,
     /// The diagonal of `K` when `K` is diagonal (the full model): `K x` in O(n).
     k_diag: Option<Vec<f64>>,
-    c: Option<DMatrix<f64>>,
+    /// `v ↦ C v` (`damping.rs`): O(n) or O(n r) for the full model, never forming `C`.
+    c: DampingOperator<M>,
+    /// `C ẋ`, written by every right-hand side.
+    c_xdot: Vec<f64>,
     damping: Damping,
     ws: M::Workspace,
     n: usize,
@@ -319,8 +261,10 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     ///
     /// # Errors
     /// If the number of time functions differs from the number of loads (field `loads`), a
-    /// finite-difference step is not positive (field `gyroscopic.step`), or damping coefficients
-    /// are not finite and non-negative (fields `damping.*`, [`Damping::validate`]).
+    /// finite-difference step is not positive (field `gyroscopic.step`), damping coefficients
+    /// are not finite and non-negative (fields `damping.*`, [`Damping::validate`]), or modal
+    /// damping asks for modes that cannot be computed or that double precision does not resolve
+    /// (fields `damping`, `damping.ratios`).
     pub fn new(
         model: &'a M,
         loads: &'a AppliedLoads,
@@ -340,8 +284,8 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         }
         gyroscopic.validate("gyroscopic.step")?;
         let n = model.n_dofs();
-        let mut ws = model.workspace();
-        let c = damping_matrix(model, &mut ws, damping)?;
+        let ws = model.workspace();
+        let c = DampingOperator::new(model, damping, "damping")?;
         // The full model's K is diagonal: never form it (n² entries at large n).
         let (k, k_diag) = match model.as_full_model() {
             Some(full) => (DMatrix::zeros(0, 0), Some(full.stiffness().to_vec())),
@@ -363,6 +307,7 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             k,
             k_diag,
             c,
+            c_xdot: vec![0.0; n],
             damping: damping.clone(),
             ws,
             n,
@@ -490,6 +435,17 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     /// The model.
     pub fn model(&self) -> &M {
         self.model
+    }
+
+    /// The damping matrix `C` (`n_dofs × n_dofs`; `None` without damping), formed once from the
+    /// damping operator and kept with the dense Jacobian's buffers: for the linearizations of
+    /// small models, O(n²) (`damping.rs`).
+    pub(crate) fn damping_matrix(&mut self) -> Option<&DMatrix<f64>> {
+        let (model, c, n) = (self.model, &mut self.c, self.n);
+        self.dense
+            .get_or_insert_with(|| DenseBuffers::new(n, c.matrix(model)))
+            .c
+            .as_ref()
     }
 
     /// State `(x, p)` for coordinates `x` and velocities `ẋ`; with the energy audit, followed
@@ -680,38 +636,6 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     }
 }
 
-/// The damping matrix of `damping` for `model` (`None` without damping).
-fn damping_matrix<M: StructuralModel>(
-    model: &M,
-    ws: &mut M::Workspace,
-    damping: &Damping,
-) -> Result<Option<DMatrix<f64>>, InputError> {
-    if *damping == Damping::None {
-        return Ok(None);
-    }
-    let n = model.n_dofs();
-    let x0 = vec![0.0; n];
-    let mut m0 = DMatrix::zeros(n, n);
-    model.mass_matrix_into(&x0, ws, &mut m0);
-    damping.validate("damping", n)?;
-    match damping {
-        Damping::None => Ok(None),
-        Damping::Rayleigh { alpha, beta } => {
-            Ok(Some(&m0 * *alpha + model.stiffness_matrix() * *beta))
-        }
-        Damping::Modal { ratios } => {
-            let (lambda, phi) = super::generalized_symmetric_eigen(&model.stiffness_matrix(), &m0)
-                .map_err(|e| InputError::new("damping", e.to_string()))?;
-            let mut c = DMatrix::zeros(n, n);
-            for (k, z) in ratios.iter().enumerate() {
-                let u = &m0 * phi.column(k);
-                c += &u * u.transpose() * (2.0 * z * lambda[k].max(0.0).sqrt());
-            }
-            Ok(Some(c))
-        }
-    }
-}
-
 impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
     fn dim(&self) -> usize {
         2 * self.n + if self.audit.is_some() { 2 } else { 0 }
@@ -770,11 +694,14 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         let (dx, rest) = dy.split_at_mut(n);
         let (dp, quadrature) = rest.split_at_mut(n);
         dx.copy_from_slice(&self.xdot);
+        // C ẋ by the damping operator (zeros without damping).
+        self.c.apply(self.model, &self.xdot, &mut self.c_xdot);
         // The audit's rates: power of the loads ẋ·Q and of the damping ẋᵀ C ẋ.
         let (mut power, mut dissipation) = (0.0, 0.0);
         for i in 0..n {
-            let mut v = self.force[i] + self.gamma[i];
+            let mut v = self.force[i] + self.gamma[i] - self.c_xdot[i];
             power += self.xdot[i] * self.force[i];
+            dissipation += self.xdot[i] * self.c_xdot[i];
             match &self.k_diag {
                 Some(k) => v -= k[i] * x[i],
                 None => {
@@ -782,14 +709,6 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
                         v -= self.k[(i, j)] * x[j];
                     }
                 }
-            }
-            if let Some(c) = &self.c {
-                let mut cx = 0.0;
-                for j in 0..n {
-                    cx += c[(i, j)] * self.xdot[j];
-                }
-                v -= cx;
-                dissipation += self.xdot[i] * cx;
             }
             dp[i] = v;
         }
@@ -820,7 +739,10 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
             jac.fill(f64::NAN);
             return;
         }
-        let d = self.dense.get_or_insert_with(|| DenseBuffers::new(n));
+        let (model, c) = (self.model, &mut self.c);
+        let d = self
+            .dense
+            .get_or_insert_with(|| DenseBuffers::new(n, c.matrix(model)));
         let with_gamma = !matches!(self.gyroscopic, Gyroscopic::Neglected);
         // ∂ẋ/∂x = −M⁻¹ B and dγ/dx|_p = G_x + Bᵀ ∂ẋ/∂x: O(n²) for the full model (dual numbers
         // through the O(n) velocity solve), a few dense products for the reduced one.
@@ -852,7 +774,7 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         if with_gamma {
             dpdx += &d.dgamma;
         }
-        if let Some(c) = &self.c {
+        if let Some(c) = &d.c {
             dpdx.gemm(-1.0, c, &d.dxdx, 1.0);
         }
         // ∂ṗ/∂p = (Bᵀ − C) M⁻¹ with Bᵀ M⁻¹ = (M⁻¹ B)ᵀ = −(∂ẋ/∂x)ᵀ since M is symmetric.
@@ -863,7 +785,7 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
             dpdp.copy_from(&d.dxdx.transpose());
             dpdp.neg_mut();
         }
-        if let Some(c) = &self.c {
+        if let Some(c) = &d.c {
             dpdp.gemm(-1.0, c, &d.minv, 1.0);
         }
     }
@@ -881,8 +803,10 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
     }
 }
 
-/// Buffers of the dense Jacobian (`n_dofs × n_dofs` each).
+/// Buffers of the dense Jacobian (`n_dofs × n_dofs` each), and the damping matrix it needs.
 struct DenseBuffers {
+    /// `C`, formed once from the damping operator; `None` without damping.
+    c: Option<DMatrix<f64>>,
     dgamma: DMatrix<f64>,
     load_jac: DMatrix<f64>,
     identity: DMatrix<f64>,
@@ -891,9 +815,10 @@ struct DenseBuffers {
 }
 
 impl DenseBuffers {
-    fn new(n: usize) -> Self {
+    fn new(n: usize, c: Option<DMatrix<f64>>) -> Self {
         let z = || DMatrix::zeros(n, n);
         Self {
+            c,
             dgamma: z(),
             load_jac: z(),
             identity: DMatrix::identity(n, n),

@@ -17,7 +17,7 @@
 
 use nalgebra::Complex;
 
-use super::dynamics::Damping;
+use super::damping::Damping;
 use crate::model::{
     AppliedLoads, ChainFactor, ChainLinearization, FullModel, Shift, StructuralModel, Workspace,
 };

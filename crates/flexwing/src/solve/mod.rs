@@ -2,6 +2,7 @@
 
 pub mod aeroelastic;
 mod continuation;
+mod damping;
 mod dynamics;
 mod eigen;
 mod energy_audit;
