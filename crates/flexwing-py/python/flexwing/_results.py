@@ -223,7 +223,8 @@ class DynamicRun(_Result):
         dofs: number of coordinates.
         integrator: the integrator's case-file name (``"radau"``, ``"bdf"``, …).
         gyroscopic: ``"exact"``, ``"finite-difference"`` or ``"neglected"``.
-        stats: integrator counters: ``steps``, ``rejected_steps``, ``rhs_evaluations``,
+        stats: integrator counters: ``steps``, ``rejected_steps``, ``newton_failures`` (of the
+            rejected steps, those whose Newton iteration failed), ``rhs_evaluations``,
             ``jacobian_evaluations``, ``factorizations``, ``newton_iterations``.
         wall_time_s: wall time of the integration (s).
         status: ``"complete"``, ``"suspect"`` (every output time reached, but the energy

@@ -43,6 +43,7 @@ pub fn integrator_stats<'py>(py: Python<'py>, s: &IntegratorStats) -> PyResult<B
     let stats = PyDict::new(py);
     stats.set_item("steps", s.steps)?;
     stats.set_item("rejected_steps", s.rejected_steps)?;
+    stats.set_item("newton_failures", s.newton_failures)?;
     stats.set_item("rhs_evaluations", s.rhs_evaluations)?;
     stats.set_item("jacobian_evaluations", s.jacobian_evaluations)?;
     stats.set_item("factorizations", s.factorizations)?;

@@ -16,6 +16,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexwing::analysis::dynamics::{self, DynamicOutcome, Initial, ModelRun};
+use flexwing::analysis::ModelKind;
+use flexwing::solve::integrate::Method;
 use flexwing::Error;
 
 use super::{default_out_dir, model_line, overall_word, status_entry, Failure};
@@ -175,6 +177,11 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
         report::tables(&outcome, &written)
     };
     let printed = super::print_stdout(&text, args.json);
+    for r in &outcome.result.runs {
+        if let Some(note) = newton_note(r) {
+            eprintln!("note: {name}: {}: {note}", r.kind.label());
+        }
+    }
     if let Some(first) = outcome.incomplete.first() {
         let others: Vec<&str> = outcome.incomplete[1..]
             .iter()
@@ -194,6 +201,31 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
         )));
     }
     printed
+}
+
+/// A note when most of a run's steps failed Newton (at least 20, and at least half as many as
+/// were accepted): what makes a run slow that its status does not show. On long full models this
+/// is the chain's alternating highest mode (docs/model-choices.md, "Why case (b) needs more steps
+/// from n ≈ 3000 on"), which generalized-α at a fixed step damps.
+fn newton_note(r: &ModelRun) -> Option<String> {
+    let (failed, steps) = (r.stats.newton_failures, r.stats.steps);
+    if failed < 20 || 2 * failed < steps {
+        return None;
+    }
+    let advice = match (r.integrator, &r.kind) {
+        (Method::GeneralizedAlpha, ModelKind::Full | ModelKind::Simplified) => {
+            "a fixed `step` (dynamic.step) avoids this on long chains"
+        }
+        (_, ModelKind::Full | ModelKind::Simplified) => {
+            "on long chains integrator = \"generalized-alpha\" with a fixed `step` avoids this \
+             (docs/performance.md, \"O(n) Newton systems\")"
+        }
+        _ => "a smaller max_step or tighter tolerances may help",
+    };
+    Some(format!(
+        "{failed} step attempts failed Newton against {steps} accepted steps, which made the run \
+         slow; {advice}"
+    ))
 }
 
 /// The name of load `i` of the case, or `loads[i]`.

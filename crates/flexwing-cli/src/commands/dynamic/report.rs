@@ -155,6 +155,10 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
             Box::new(|r| r.stats.rejected_steps.to_string()),
         ),
         (
+            "  of which Newton failed",
+            Box::new(|r| r.stats.newton_failures.to_string()),
+        ),
+        (
             "RHS evaluations",
             Box::new(|r| r.stats.rhs_evaluations.to_string()),
         ),
@@ -382,6 +386,7 @@ pub(super) struct JsonAudit {
 struct JsonStats {
     steps: usize,
     rejected_steps: usize,
+    newton_failures: usize,
     rhs_evaluations: usize,
     jacobian_evaluations: usize,
     factorizations: usize,
@@ -440,6 +445,7 @@ fn json_model<'a>(outcome: &'a Outcome, r: &'a ModelRun) -> JsonModel<'a> {
         stats: JsonStats {
             steps: st.steps,
             rejected_steps: st.rejected_steps,
+            newton_failures: st.newton_failures,
             rhs_evaluations: st.rhs_evaluations,
             jacobian_evaluations: st.jacobian_evaluations,
             factorizations: st.factorizations,
