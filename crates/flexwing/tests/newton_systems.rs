@@ -270,7 +270,9 @@ fn coupled_beams_newton_failures_are_the_dense_paths() {
     let (dense, ds) = run(&model, &loads, tf.clone(), &t, method, NewtonSystems::Dense);
     let (chain, cs) = run(&model, &loads, tf, &t, method, NewtonSystems::Chain);
     let d = tip_difference(&model, &dense, &chain);
-    eprintln!("Table 1 beam, n = 24, rtol 1e-3: chain − dense {d:.2e} m; dense {ds:?}, chain {cs:?}");
+    eprintln!(
+        "Table 1 beam, n = 24, rtol 1e-3: chain − dense {d:.2e} m; dense {ds:?}, chain {cs:?}"
+    );
     assert_eq!(
         (ds.steps, ds.rejected_steps, ds.newton_failures),
         (cs.steps, cs.rejected_steps, cs.newton_failures)
