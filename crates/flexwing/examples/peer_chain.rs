@@ -7,6 +7,7 @@
 //! cargo run --release -p flexwing --example peer_chain -- chain N
 //! cargo run --release -p flexwing --example peer_chain -- static N FY SAMPLES
 //! cargo run --release -p flexwing --example peer_chain -- dynamic N RTOL ATOL SAMPLES
+//! cargo run --release -p flexwing --example peer_chain -- alpha N STEP RHO SAMPLES
 //! ```
 //!
 //! * `chain`: the chain's data (SI units).
@@ -15,6 +16,8 @@
 //! * `dynamic`: case (b) (`flexwing::paper::sine_case`: tip force `10 sin(20 t)` N, 1 s, from
 //!   rest), Radau IIA with `rtol`, `atol` (`IntegratorSettings`, the default Newton systems); the
 //!   tip position every 5 ms, the counters and the CPU time of one solve.
+//! * `alpha`: case (b) with generalized-α at the fixed step `STEP` s and spectral radius `RHO`
+//!   (the method and settings of Exudyn's run), the same output.
 //!
 //! CPU time is that of the thread (`benches/common`, `/proc/thread-self/schedstat`), around the
 //! solve only (the beam, its calibration and the loads are built before). Each of the `SAMPLES`
@@ -31,7 +34,10 @@ use std::hint::black_box;
 use std::time::Duration;
 
 fn usage() -> ! {
-    eprintln!("usage: peer_chain chain N | static N FY SAMPLES | dynamic N RTOL ATOL SAMPLES");
+    eprintln!(
+        "usage: peer_chain chain N | static N FY SAMPLES | dynamic N RTOL ATOL SAMPLES | \
+         alpha N STEP RHO SAMPLES"
+    );
     std::process::exit(2)
 }
 
@@ -103,65 +109,86 @@ fn main() {
             let rtol: f64 = arg(&args, 2);
             let atol: f64 = arg(&args, 3);
             let samples: usize = arg(&args, 4);
-            let case = flexwing::paper::sine_case(n).expect("case (b)");
-            let loads = case.model.apply(&case.loads, "loads").expect("loads");
-            let time: Vec<_> = case.time.iter().flatten().cloned().collect();
             let settings = IntegratorSettings {
                 rtol,
                 atol,
                 ..Default::default()
             };
-            let y0 = vec![0.0; 2 * n];
-            let run = || {
-                let mut eom = EquationsOfMotion::new(
-                    &case.model,
-                    &loads,
-                    time.clone(),
-                    Gyroscopic::Exact,
-                    &Damping::None,
-                )
-                .expect("equations of motion");
-                integrate(
-                    Method::Radau,
-                    &settings,
-                    &mut eom,
-                    0.0,
-                    &y0,
-                    &case.output_times,
-                    &mut |_| {},
-                )
-                .expect("integrates")
+            let head = format!("\"n\": {n}, \"rtol\": {rtol:?}, \"atol\": {atol:?}");
+            case_b(n, Method::Radau, &settings, samples, &head);
+        }
+        Some("alpha") => {
+            let step: f64 = arg(&args, 2);
+            let rho: f64 = arg(&args, 3);
+            let samples: usize = arg(&args, 4);
+            // The tolerances (the library's defaults) only scale the Newton test at a fixed step.
+            let settings = IntegratorSettings {
+                step: Some(step),
+                spectral_radius: rho,
+                ..Default::default()
             };
-            let (traj, stats) = run();
-            let (listed, median) = if samples == 0 {
-                (Vec::new(), f64::NAN)
-            } else {
-                cpu_samples(samples, || {
-                    black_box(run());
-                })
-            };
-            let tips: Vec<String> = traj
-                .y
-                .iter()
-                .map(|y| json_array(&tip(&case.model, &y[..n])))
-                .collect();
-            let median = if median.is_nan() {
-                "null".to_string()
-            } else {
-                format!("{median:?}")
-            };
-            println!(
-                "{{\"n\": {n}, \"rtol\": {rtol:?}, \"atol\": {atol:?}, \"t\": {}, \"tips\": [{}], \"steps\": {}, \"rejected\": {}, \"rhs\": {}, \"jacobians\": {}, \"factorizations\": {}, \"cpu_s\": {}, \"cpu_median_s\": {median}}}",
-                json_array(&traj.t),
-                tips.join(", "),
-                stats.steps,
-                stats.rejected_steps,
-                stats.rhs_evaluations,
-                stats.jacobian_evaluations,
-                stats.factorizations,
-                json_array(&listed),
-            );
+            let head = format!("\"n\": {n}, \"step\": {step:?}, \"spectral_radius\": {rho:?}");
+            case_b(n, Method::GeneralizedAlpha, &settings, samples, &head);
         }
         _ => usage(),
     }
+}
+
+/// Case (b) at `n` elements with `method` and `settings`: prints one JSON document that starts
+/// with the fields `head`, then the tips, the counters and the CPU samples.
+fn case_b(n: usize, method: Method, settings: &IntegratorSettings, samples: usize, head: &str) {
+    let case = flexwing::paper::sine_case(n).expect("case (b)");
+    let loads = case.model.apply(&case.loads, "loads").expect("loads");
+    let time: Vec<_> = case.time.iter().flatten().cloned().collect();
+    let y0 = vec![0.0; 2 * n];
+    let run = || {
+        let mut eom = EquationsOfMotion::new(
+            &case.model,
+            &loads,
+            time.clone(),
+            Gyroscopic::Exact,
+            &Damping::None,
+        )
+        .expect("equations of motion");
+        integrate(
+            method,
+            settings,
+            &mut eom,
+            0.0,
+            &y0,
+            &case.output_times,
+            &mut |_| {},
+        )
+        .expect("integrates")
+    };
+    let (traj, stats) = run();
+    let (listed, median) = if samples == 0 {
+        (Vec::new(), f64::NAN)
+    } else {
+        cpu_samples(samples, || {
+            black_box(run());
+        })
+    };
+    let tips: Vec<String> = traj
+        .y
+        .iter()
+        .map(|y| json_array(&tip(&case.model, &y[..n])))
+        .collect();
+    let median = if median.is_nan() {
+        "null".to_string()
+    } else {
+        format!("{median:?}")
+    };
+    println!(
+        "{{{head}, \"t\": {}, \"tips\": [{}], \"steps\": {}, \"rejected\": {}, \"newton_failures\": {}, \"rhs\": {}, \"jacobians\": {}, \"factorizations\": {}, \"cpu_s\": {}, \"cpu_median_s\": {median}}}",
+        json_array(&traj.t),
+        tips.join(", "),
+        stats.steps,
+        stats.rejected_steps,
+        stats.newton_failures,
+        stats.rhs_evaluations,
+        stats.jacobian_evaluations,
+        stats.factorizations,
+        json_array(&listed),
+    );
 }

@@ -274,7 +274,7 @@ def main():
     args = p.parse_args()
 
     binary = flexwing_binary(args)
-    record = {"machine": {}, "static": [], "step_study": [], "dynamic": []}
+    record = {"machine": {}, "static": [], "step_study": [], "dynamic": [], "dynamic_same_method": []}
     load = os.getloadavg()
     record["machine"] = {
         "platform": platform.platform(),
@@ -357,6 +357,7 @@ def main():
     print("| n | flexwing error (m) | Exudyn error (m) | flexwing steps | flexwing CPU | slope | Exudyn CPU | slope | Exudyn / flexwing |")
     print("|---|---|---|---|---|---|---|---|---|")
     prev_f = prev_e = None
+    exudyn_runs = {}
     for n in sizes:
         chain = flexwing(binary, "chain", n)
         fw = flexwing(binary, "dynamic", n, args.rtol, args.atol, args.samples)
@@ -384,7 +385,27 @@ def main():
                                       "error_m": ex_err, "skipped_predicted_s": predicted if ex_t is None else None}})
         if ex_t is not None:
             prev_e = (n, ex_t, 2.0 if prev_e is None else np.log(ex_t / prev_e[1]) / np.log(n / prev_e[0]))
+            exudyn_runs[n] = (ex_err, ex_t)
         prev_f = (n, fw_t)
+
+    # ---- case (b), the same method in both codes ----------------------------------------------
+    print(f"\n## Case (b), the same method and step in both codes\n")
+    print(f"Both generalized-α at h = {step:.4g} s, ρ∞ = {args.spectral_radius} (flexwing: first-order form, "
+          f"Newton systems by the chain sweeps from 40 coordinates; Exudyn: its run of the table above). "
+          f"Errors as above.\n")
+    print("| n | flexwing error (m) | Exudyn error (m) | flexwing steps | flexwing CPU | slope | Exudyn CPU | Exudyn / flexwing |")
+    print("|---|---|---|---|---|---|---|---|")
+    prev_a = None
+    for n in sizes:
+        fa = flexwing(binary, "alpha", n, step, args.spectral_radius, args.samples)
+        fa_err = max_distance(fa["tips"], reference(n))
+        fa_t = fa["cpu_median_s"]
+        ex_err, ex_t = exudyn_runs.get(n, (None, None))
+        print(f"| {n} | {fa_err:.1e} | {'–' if ex_err is None else f'{ex_err:.1e}'} | {fa['steps']} ({fa['rejected']}) | "
+              f"{fmt_time(fa_t)} | {slope(prev_a, n, fa_t)} | {fmt_time(ex_t) if ex_t else '–'} | {ratio(ex_t, fa_t)} |", flush=True)
+        record["dynamic_same_method"].append({"n": n, "flexwing": {k: v for k, v in fa.items() if k not in ("tips", "t")},
+                                              "flexwing_error_m": fa_err, "exudyn_error_m": ex_err, "exudyn_cpu_s": ex_t})
+        prev_a = (n, fa_t)
 
     load = os.getloadavg()
     record["machine"]["load_average_end"] = load
