@@ -787,20 +787,13 @@ impl PyStepper {
         Ok(d)
     }
     /// Counters summed over the calls: the integrator's (``steps``, ``rejected_steps``,
-    /// ``rhs_evaluations``, ``jacobian_evaluations``, ``factorizations``,
-    /// ``newton_iterations``), ``calls``, and ``rust_time_s``, the wall time spent in the
-    /// library (s: setting the load factors and integrating): a call's cost beyond it is the
-    /// binding's overhead.
+    /// ``newton_failures``, ``rhs_evaluations``, ``jacobian_evaluations``, ``factorizations``,
+    /// ``newton_iterations``: those of ``DynamicRun.stats``), ``calls``, and ``rust_time_s``, the
+    /// wall time spent in the library (s: setting the load factors and integrating): a call's
+    /// cost beyond it is the binding's overhead.
     #[getter]
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let s = &self.stats;
-        let d = PyDict::new(py);
-        d.set_item("steps", s.steps)?;
-        d.set_item("rejected_steps", s.rejected_steps)?;
-        d.set_item("rhs_evaluations", s.rhs_evaluations)?;
-        d.set_item("jacobian_evaluations", s.jacobian_evaluations)?;
-        d.set_item("factorizations", s.factorizations)?;
-        d.set_item("newton_iterations", s.newton_iterations)?;
+        let d = crate::convert::dynamics::integrator_stats(py, &self.stats)?;
         d.set_item("calls", self.calls)?;
         d.set_item("rust_time_s", self.rust_time_s)?;
         Ok(d)

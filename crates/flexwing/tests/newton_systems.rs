@@ -187,15 +187,9 @@ fn radau_on_case_b_gives_the_dense_paths_trajectory() {
     assert!(stats.steps < dense_stats.steps + 20, "{stats:?}");
 }
 
-#[test]
-fn coupled_torsion_beam_gives_the_dense_paths_trajectory() {
-    // The Table 1 beam (bending–torsion coupling through d0 = 0.267 m), n = 24 (48 coordinates),
-    // tip force 100 sin(2 t) N and tip torque 50 sin(3 t) N·m, 2 s, Radau at rtol 1e-8 with both
-    // Newton systems, and the dense path at rtol 1e-10 as reference. Measured (since the momenta's
-    // tolerances follow the diagonal of M(0)⁻¹): dense 6.5e-5 m and chain 1.00e-4 m from the
-    // reference (the integration error at rtol 1e-8, on a 16 m span; the chain's sits at 1.00e-4
-    // to within round-off of the tolerances), 3.5e-5 m apart. Bounds: 2e-4 m from the reference
-    // (twice the larger), 5e-5 m apart.
+/// The Table 1 beam (bending–torsion coupling through d0 = 0.267 m) with n = 24 (48
+/// coordinates) under the tip force `100 sin(2 t)` N and the tip torque `50 sin(3 t)` N·m.
+fn coupled_case() -> (FullModel, Vec<Load>, Vec<TimeFunction>) {
     let model = model(16.0, &table1_section(), 24, Calibration::TipLoad);
     let loads = vec![
         Load::PointForce {
@@ -217,6 +211,19 @@ fn coupled_torsion_beam_gives_the_dense_paths_trajectory() {
             phase: 0.0,
         },
     ];
+    (model, loads, tf)
+}
+
+#[test]
+fn coupled_torsion_beam_gives_the_dense_paths_trajectory() {
+    // The Table 1 beam (bending–torsion coupling through d0 = 0.267 m), n = 24 (48 coordinates),
+    // tip force 100 sin(2 t) N and tip torque 50 sin(3 t) N·m, 2 s, Radau at rtol 1e-8 with both
+    // Newton systems, and the dense path at rtol 1e-10 as reference. Measured (since the momenta's
+    // tolerances follow the diagonal of M(0)⁻¹): dense 6.5e-5 m and chain 1.00e-4 m from the
+    // reference (the integration error at rtol 1e-8, on a 16 m span; the chain's sits at 1.00e-4
+    // to within round-off of the tolerances), 3.5e-5 m apart. Bounds: 2e-4 m from the reference
+    // (twice the larger), 5e-5 m apart.
+    let (model, loads, tf) = coupled_case();
     let t = times(2.0, 0.02);
     let method = Method::Radau(1e-8, f64::INFINITY);
     let (dense, _) = run(&model, &loads, tf.clone(), &t, method, NewtonSystems::Dense);
@@ -244,27 +251,7 @@ fn coupled_beams_newton_failures_are_the_dense_paths() {
     // apart (round-off of two exact solves, grown over 122 loose steps), against the run's own
     // error of 8.1e-4 m (tip) and 3.4e-2 m (tip twist times span) from rtol 1e-10. Bounds: equal
     // counts; 1e-5 m, below a hundredth of the run's error.
-    let model = model(16.0, &table1_section(), 24, Calibration::TipLoad);
-    let loads = vec![
-        Load::PointForce {
-            span: 16.0,
-            force: Force::Dead { fx: 0.0, fy: 100.0 },
-        },
-        Load::Torque {
-            span: 16.0,
-            value: 50.0,
-        },
-    ];
-    let tf = vec![
-        TimeFunction::Sine {
-            omega: 2.0,
-            phase: 0.0,
-        },
-        TimeFunction::Sine {
-            omega: 3.0,
-            phase: 0.0,
-        },
-    ];
+    let (model, loads, tf) = coupled_case();
     let t = times(2.0, 0.02);
     let method = Method::RadauFresh(1e-3, 0.02);
     let (dense, ds) = run(&model, &loads, tf.clone(), &t, method, NewtonSystems::Dense);

@@ -331,7 +331,7 @@ class Stepper:
     @property
     def stats(self) -> Dict[str, Union[int, float]]:
         """Counters summed over the calls: the integrator's (``steps``, ``rejected_steps``,
-        ``rhs_evaluations``, ``jacobian_evaluations``, ``factorizations``,
+        ``newton_failures``, ``rhs_evaluations``, ``jacobian_evaluations``, ``factorizations``,
         ``newton_iterations``), ``calls``, and ``rust_time_s`` (s spent in the library: setting
         the load factors and integrating)."""
 
