@@ -4,12 +4,15 @@
 
 use flexwing::analysis::modes::ModesPlan;
 use flexwing::beam::{
-    Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties, TorsionProperties,
+    Beam, Calibration, Discretization, InertiaAxis, Profile, RotaryInertia, SectionProperties,
+    TorsionProperties,
 };
 use flexwing::model::FullModel;
 use flexwing::InputError;
 
-use super::spec::{BeamSpec, CalibrationSpec, Case, InertiaAxisSpec, SectionSpec};
+use super::spec::{
+    BeamSpec, CalibrationSpec, Case, ElementInertiaSpec, InertiaAxisSpec, SectionSpec,
+};
 use crate::CaseError;
 
 impl Case {
@@ -36,13 +39,21 @@ impl Case {
     pub(crate) fn to_beam(&self) -> Result<Beam, InputError> {
         let b = &self.beam;
         let section = section(&b.section)?;
-        Beam::named(
+        let beam = Beam::named(
             "beam",
             b.length,
             &section,
             &discretization(b)?,
             calibration(b.calibration),
-        )
+        )?;
+        let rotary = RotaryInertia {
+            elements: b.element_inertia == ElementInertiaSpec::Bar,
+            section: b.section.rotary_inertia.as_ref().map(|p| p.0.clone()),
+        };
+        if rotary == RotaryInertia::default() {
+            return Ok(beam);
+        }
+        beam.with_rotary_inertia("beam", &section, &rotary)
     }
 }
 

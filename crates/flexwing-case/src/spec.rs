@@ -57,6 +57,9 @@ pub struct BeamSpec {
     /// Bending spring calibration.
     #[serde(default)]
     pub calibration: CalibrationSpec,
+    /// What an element is in bending: a point mass (the paper's) or a rigid bar.
+    #[serde(default, skip_serializing_if = "is_default")]
+    pub element_inertia: ElementInertiaSpec,
     /// `[beam.section]`.
     pub section: SectionSpec,
 }
@@ -73,6 +76,23 @@ pub enum CalibrationSpec {
 }
 
 word_enum!(CalibrationSpec { TipLoad = "tip-load", Uniform = "uniform" });
+
+/// `beam.element_inertia`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ElementInertiaSpec {
+    /// The paper's point masses at the element midpoints: no rotary inertia in bending.
+    #[default]
+    PointMass,
+    /// Each element a rigid bar with its mass along its length: `m ℓ²/12` about its midpoint.
+    Bar,
+}
+
+word_enum!(ElementInertiaSpec { PointMass = "point-mass", Bar = "bar" });
+
+fn is_default<T: Default + PartialEq>(v: &T) -> bool {
+    *v == T::default()
+}
 
 /// `[beam.section]`: section properties, each a number or a table over the span.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -95,6 +115,10 @@ pub struct SectionSpec {
     /// Chordwise mass-centre offset from the elastic axis (m).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub d0: Option<Property>,
+    /// Rotary (flap) inertia of the section per length about the bending axis (kg·m): the
+    /// Rayleigh beam's term.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotary_inertia: Option<Property>,
 }
 
 /// `beam.section.polar_inertia_about`.

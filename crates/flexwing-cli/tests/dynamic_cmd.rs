@@ -1133,20 +1133,22 @@ fn ctrl_c_and_kill_keep_what_was_computed_marked_interrupted() {
 /// A long chain whose Radau steps mostly fail Newton (the alternating highest mode,
 /// docs/model-choices.md) completes, counts the failures in its JSON and CSV, and says on standard
 /// error that the run was slowed by them, with the advice; generalized-α at a fixed step runs the
-/// same case without a failure and without the note, and its tip agrees with Radau's.
+/// same case without a failure and without the note, and so does Radau on elements that are rigid
+/// bars (`beam.element_inertia = "bar"`); the tips agree.
 #[test]
 fn newton_failures_are_counted_and_a_long_chain_gets_a_note() {
     let dir = TempDir::new("newton-note");
-    let case = |integrator: &str| {
+    // `beam`: extra [beam] keys; `dynamic`: extra [dynamic] keys.
+    let case = |beam: &str, dynamic: &str| {
         format!(
-            "[beam]\nlength = 1.0\nelements = 4000\n[beam.section]\nEI = 50.0\n\
+            "[beam]\nlength = 1.0\nelements = 4000\n{beam}[beam.section]\nEI = 50.0\n\
              mass_per_length = 0.2\n[[loads]]\ntype = \"point-force\"\nnode = 4000\n\
              direction = \"dead\"\nfy = 10.0\ntime = {{ type = \"sine\", omega = 20.0, phase = 0.0 }}\n\
              [dynamic]\nend_time = 0.3\noutput_step = 0.005\nfull = true\nrtol = 1e-2\n\
-             atol = 5e-5\n{integrator}"
+             atol = 5e-5\n{dynamic}"
         )
     };
-    let radau = dir.write("radau.toml", &case("integrator = \"radau\"\n"));
+    let radau = dir.write("radau.toml", &case("", "integrator = \"radau\"\n"));
     let (o, out) = run_dynamic(&dir, &radau, &["--json"]);
     assert_success(&o);
     let doc = json(&o);
@@ -1159,6 +1161,7 @@ fn newton_failures_are_counted_and_a_long_chain_gets_a_note() {
     assert!(
         err.contains("note: ")
             && err.contains("failed Newton")
+            && err.contains("element_inertia = \"bar\"")
             && err.contains("generalized-alpha"),
         "{err}"
     );
@@ -1169,25 +1172,45 @@ fn newton_failures_are_counted_and_a_long_chain_gets_a_note() {
         .unwrap();
     assert_eq!(rows[0][column], failed.to_string());
     let radau_tip = numbers(&full["tip"]["y_m"]);
+    let largest_difference = |doc: &serde_json::Value| {
+        numbers(&model(doc, "full")["tip"]["y_m"])
+            .iter()
+            .zip(&radau_tip)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+    };
 
     let alpha = dir.write(
         "alpha.toml",
-        &case("integrator = \"generalized-alpha\"\nstep = 5e-4\n"),
+        &case("", "integrator = \"generalized-alpha\"\nstep = 5e-4\n"),
     );
     let (o, _) = run_dynamic(&dir, &alpha, &["--json"]);
     assert_success(&o);
     let doc = json(&o);
-    let full = model(&doc, "full");
-    assert_eq!(full["stats"]["newton_failures"], 0);
+    assert_eq!(model(&doc, "full")["stats"]["newton_failures"], 0);
     assert!(!String::from_utf8_lossy(&o.stderr).contains("note: "));
     // Both are within their integration errors of the converged tip (Radau at rtol 1e-2 ~7e-5 m,
     // generalized-α at 0.5 ms ~2e-4 m over 1 s, docs/performance.md): measured 7.8e-5 m apart over
     // 0.3 s; bound 3e-4 m.
-    let d = numbers(&full["tip"]["y_m"])
-        .iter()
-        .zip(&radau_tip)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max);
+    let d = largest_difference(&doc);
     eprintln!("Radau − generalized-α: {d:.2e} m");
+    assert!(d < 3e-4, "{d:.2e}");
+
+    // Rigid bars: the same Radau run without the failures. The bars' inertia m ℓ²/12 changes the
+    // model by O(1/n²) (the continuum limit is the same); at n = 4000 that is far below the
+    // integration error, so the bound is the integration error's, as above.
+    let bars = dir.write(
+        "bars.toml",
+        &case("element_inertia = \"bar\"\n", "integrator = \"radau\"\n"),
+    );
+    let (o, _) = run_dynamic(&dir, &bars, &["--json"]);
+    assert_success(&o);
+    let doc = json(&o);
+    let stats = &model(&doc, "full")["stats"];
+    eprintln!("bars: {stats}");
+    assert!(stats["newton_failures"].as_u64().unwrap() < 5, "{stats}");
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("note: "));
+    let d = largest_difference(&doc);
+    eprintln!("Radau on bars − Radau on point masses: {d:.2e} m");
     assert!(d < 3e-4, "{d:.2e}");
 }

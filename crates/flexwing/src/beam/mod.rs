@@ -56,6 +56,25 @@ pub enum Discretization {
     Stations(Vec<f64>),
 }
 
+/// Rotary inertia of the elements in bending, about `ẑ` through each element's midpoint. The
+/// paper's model has none (point masses at the midpoints, [`RotaryInertia::default`]).
+///
+/// With point masses the chain's highest bending pattern — element angles alternating from
+/// element to element, mass centres at rest — has almost no inertia: a near-null direction of
+/// the mass matrix that makes implicit integrators fail Newton on long chains
+/// (docs/model-choices.md, "Rotary inertia in bending"). Either term below gives it inertia.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RotaryInertia {
+    /// Each element is a rigid bar rather than a point mass: it turns with its mass spread
+    /// along its length, `∫ m(x) (x − x_mid)² dx` over the element (`m ℓ²/12` for uniform `m`).
+    /// A property of the cut, not of the beam: it falls as `1/n²`, so the continuum limit is
+    /// unchanged (Euler–Bernoulli).
+    pub elements: bool,
+    /// The section's own rotary (flap) inertia per unit length `ρI` (kg·m), about the bending
+    /// axis: the Rayleigh beam's term, integrated over each element.
+    pub section: Option<Profile>,
+}
+
 /// The lumped-mass beam: per-element data of the chain of rigid elements.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Beam {
@@ -65,6 +84,7 @@ pub struct Beam {
     masses: Vec<f64>,
     offsets: Vec<f64>,
     inertias: Vec<f64>,
+    bending_inertias: Vec<f64>,
     bending_stiffness: Vec<f64>,
     torsion_stiffness: Option<Vec<f64>>,
     calibration: Calibration,
@@ -209,10 +229,90 @@ impl Beam {
             masses,
             offsets,
             inertias,
+            bending_inertias: vec![0.0; n],
             bending_stiffness,
             torsion_stiffness,
             calibration,
         })
+    }
+
+    /// The same beam with rotary inertia in bending (zero before: the paper's point masses).
+    /// `section` is the continuous beam's, the one [`Beam::new`] was given (its mass per length
+    /// weighs the elements' bar inertia); errors are named as in [`Beam::named`], the section's
+    /// rotary inertia as `{prefix}.section.rotary_inertia`.
+    ///
+    /// ```
+    /// use flexwing::beam::{Beam, Calibration, Discretization, Profile, RotaryInertia, SectionProperties};
+    /// let section = SectionProperties {
+    ///     ei: Profile::Uniform(50.0),
+    ///     mass_per_length: Profile::Uniform(0.2),
+    ///     torsion: None,
+    /// };
+    /// let beam = Beam::new(1.0, &section, &Discretization::Uniform(10), Calibration::TipLoad)?;
+    /// let bars = RotaryInertia { elements: true, section: None };
+    /// let beam = beam.with_rotary_inertia("beam", &section, &bars)?;
+    /// // m ℓ² / 12 with m = 0.2 kg/m × 0.1 m and ℓ = 0.1 m.
+    /// assert!((beam.bending_inertias()[3] - 0.02 * 0.01 / 12.0).abs() < 1e-18);
+    /// # Ok::<(), flexwing::InputError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// A negative or non-finite section rotary inertia, or one so large that an element's
+    /// bending frequency leaves the range of [`Beam::new`].
+    pub fn with_rotary_inertia(
+        mut self,
+        prefix: &str,
+        section: &SectionProperties,
+        rotary: &RotaryInertia,
+    ) -> Result<Self, InputError> {
+        let field = |key: &str| crate::field(prefix, key);
+        if let Some(ri) = &rotary.section {
+            ri.validate(
+                &field("section.rotary_inertia"),
+                self.length,
+                Sign::NonNegative,
+            )?;
+        }
+        let n = self.n_elements();
+        let mut j = vec![0.0; n];
+        let nodes = self.nodes.clone();
+        let m = &section.mass_per_length;
+        let zero = Profile::Uniform(0.0);
+        let ri = rotary.section.as_ref().unwrap_or(&zero);
+        // ∫ m (x − x_mid)² and ∫ ρI per piece: polynomials of degree ≤ 3, exact by Simpson.
+        for_each_piece(&nodes, [m, ri], |i, p| {
+            let mid = 0.5 * (nodes[i] + nodes[i + 1]);
+            if rotary.elements {
+                // Simpson's rule in x needs the integrand at a, (a + b)/2 and b.
+                let (a, b) = (p.a, p.b);
+                let c = 0.5 * (a + b);
+                let (ma, mb) = (p.at_a[0], p.at_b[0]);
+                let mc = 0.5 * (ma + mb);
+                j[i] += (b - a) / 6.0
+                    * (ma * (a - mid).powi(2)
+                        + 4.0 * mc * (c - mid).powi(2)
+                        + mb * (b - mid).powi(2));
+            }
+            j[i] += p.simpson(|v| v[1]);
+        });
+        for i in 0..n {
+            let w2 = self.bending_stiffness[i] / (self.masses[i] * self.lengths[i].powi(2) + j[i]);
+            let (lo, _) = crate::magnitude::FREQUENCY_SQUARED;
+            if !(w2 >= lo) {
+                return Err(InputError::new(
+                    field("section.rotary_inertia"),
+                    format!(
+                        "element {} has a bending frequency squared K_θ/(m ℓ² + J_b) = {} (per \
+                         time unit squared), below {lo:e}: the rotary inertia is out of \
+                         proportion with the stiffness (docs/model-choices.md)",
+                        i + 1,
+                        crate::text::short(w2)
+                    ),
+                ));
+            }
+        }
+        self.bending_inertias = j;
+        Ok(self)
     }
 
     /// Span `L` (m).
@@ -242,6 +342,11 @@ impl Beam {
     /// Element polar inertias about their mass centres `J_i` (kg·m²).
     pub fn inertias(&self) -> &[f64] {
         &self.inertias
+    }
+    /// Element rotary inertias in bending `J_b,i` about `ẑ` through the element's midpoint
+    /// (kg·m²); zeros unless set by [`Beam::with_rotary_inertia`].
+    pub fn bending_inertias(&self) -> &[f64] {
+        &self.bending_inertias
     }
     /// Bending spring stiffnesses `K_θ,i` (N·m/rad), joint `i` at node `i − 1`.
     pub fn bending_stiffness(&self) -> &[f64] {

@@ -129,6 +129,8 @@ struct Element {
     m: f64,
     /// Polar inertia `J` (0 without torsion).
     inertia: f64,
+    /// Rotary inertia in bending `J_b` (0 in the paper's model).
+    rotary: f64,
     /// Joint springs `k_θ`, `k_ψ` (0 without torsion).
     k: [f64; 2],
     e: [f64; 2],
@@ -309,6 +311,7 @@ impl ChainLinearization {
                 el.inertia = 0.0;
                 el.k = [stiffness[i], 0.0];
             }
+            el.rotary = model.rotary[i];
             el.load = self.local[i];
             el.rate = self.rate[i];
             outboard[0] += m * gd[0];
@@ -457,11 +460,12 @@ impl<T: Field> ChainFactor<T> {
             let kt = kappa * el.k[0];
             let kp = kappa * el.k[1];
             // H = m B̂ᵀ B̃ + (c_p − g c_v) m D − g m E + (g ℓ θ̇ n·S + (g c_v − c_p) ℓ e·S) e_θ e_θᵀ
-            //     + c_p c_v J e_ψ e_ψᵀ + κ diag(k) + G_loc.
+            //     + c_p c_v (J_b e_θ e_θᵀ + J e_ψ e_ψᵀ) + κ diag(k) + G_loc.
             let mut h00 = (bh_t[0] * bt_t[0] + bh_t[1] * bt_t[1]) * m
                 + (cp - cv * g) * (m * el.d[0])
                 + T::from(-g * m * el.ee[0] + g * l * el.theta_dot * el.n_s + el.load[0])
                 + (cv * g - cp) * (l * el.e_s)
+                + cp * cv * el.rotary
                 + kt;
             let mut h01 = (bh_t[0] * bt_p[0] + bh_t[1] * bt_p[1]) * m
                 + (cp - cv * g) * (m * el.d[1])
@@ -692,7 +696,7 @@ impl ChainFactor<Complex<f64>> {
 mod tests {
     use super::*;
     use crate::beam::{
-        Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties,
+        Beam, Calibration, Discretization, InertiaAxis, Profile, RotaryInertia, SectionProperties,
         TorsionProperties,
     };
     use crate::model::{DistributedForce, Force, Load, StructuralModel};
@@ -715,6 +719,15 @@ mod tests {
                 offset: Profile::Uniform(0.1),
             }),
         };
+        // With rotary inertia in bending (bars and a section table), so that every sweep is
+        // checked with it; the paper's point masses are the special case J_b = 0.
+        let rotary = RotaryInertia {
+            elements: true,
+            section: Some(Profile::Table {
+                x: vec![0.0, 2.0],
+                value: vec![3e-3, 1e-3],
+            }),
+        };
         FullModel::new(
             Beam::new(
                 2.0,
@@ -722,6 +735,8 @@ mod tests {
                 &Discretization::Uniform(n),
                 Calibration::TipLoad,
             )
+            .unwrap()
+            .with_rotary_inertia("beam", &section, &rotary)
             .unwrap(),
         )
     }

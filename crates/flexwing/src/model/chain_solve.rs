@@ -18,7 +18,8 @@
 //! ```
 //!
 //! (`V` has no `ẑ` component; only `b_ψ` has one), so the kinetic energy is
-//! `T(u) = ½ Σ_i m_i |V_{i−1} + B_i u_i|² + ½ Σ_i J_i ψ̇_i² = ½ uᵀ M_abs u`. `M_abs` is symmetric
+//! `T(u) = ½ Σ_i m_i |V_{i−1} + B_i u_i|² + ½ Σ_i J_i ψ̇_i² + ½ Σ_i J_b,i θ̇_i² = ½ uᵀ M_abs u`
+//! (`J_b`, rotary inertia in bending, is zero in the paper's model). `M_abs` is symmetric
 //! positive definite, so `M_abs u = p_abs` is the minimum of `T(u) − p_absᵀ u`: a linear–quadratic
 //! control problem with state `V` and controls `u_i`, solved by dynamic programming from the tip.
 //! The cost to go from node `i`, `W_i(V) = ½ Vᵀ P_i V − w_iᵀ V + const` (`P_n = 0`, `w_n = 0`),
@@ -27,7 +28,7 @@
 //! ```text
 //! ½ m_i |V + B_i u|² + ½ J_i ψ̇² − p_iᵀ u + W_i(V + A_i u)
 //!     = ½ uᵀ H_i u + uᵀ (G_i V − g_i) + ½ Vᵀ (m_i I + P) V − wᵀ V
-//! H_i = m_i B_iᵀ B_i + diag(0, J_i) + A_iᵀ P A_i        (2 × 2)
+//! H_i = m_i B_iᵀ B_i + diag(J_b,i, J_i) + A_iᵀ P A_i    (2 × 2)
 //! G_i = m_i B_i,xyᵀ + A_iᵀ P                             (2 × 2, B_i,xy the in-plane rows)
 //! g_i = p_i + A_iᵀ w
 //! ```
@@ -177,7 +178,9 @@ impl FullModel {
                 (p00 * nv[0] + p01 * nv[1]) * l,
                 (p01 * nv[0] + p11 * nv[1]) * l,
             ];
-            let mut h00 = (bt[0] * bt[0] + bt[1] * bt[1]) * m + (pa[0] * nv[0] + pa[1] * nv[1]) * l;
+            let mut h00 = (bt[0] * bt[0] + bt[1] * bt[1]) * m
+                + (pa[0] * nv[0] + pa[1] * nv[1]) * l
+                + D::from(self.rotary[i]);
             let mut h01 = (bt[0] * bp[0] + bt[1] * bp[1]) * m;
             let mut h11 = h11;
             // G rows: m b_θ + P a, and m b_ψ.

@@ -23,9 +23,13 @@ pub struct FullModel {
     pub(super) d0: Vec<f64>,
     /// Polar inertias about the mass centre `J_i`.
     pub(super) inertia: Vec<f64>,
+    /// Rotary inertias in bending `J_b,i` about `ẑ` (zeros: the paper's point masses). They add
+    /// `½ Σ J_b,i θ̇_i²` to the kinetic energy: a constant diagonal in absolute angles, so no
+    /// gyroscopic term.
+    pub(super) rotary: Vec<f64>,
     /// `μ_k = m_k / 2 + Σ_{i>k} m_i`: `A_jk = ℓ_j ℓ_k μ_k` for `j < k`.
     pub(super) mu: Vec<f64>,
-    /// `A_kk = ℓ_k² (m_k / 4 + Σ_{i>k} m_i)`.
+    /// `A_kk = ℓ_k² (m_k / 4 + Σ_{i>k} m_i) + J_b,k`.
     pub(super) a_diag: Vec<f64>,
     /// Diagonal of `K`.
     pub(super) stiffness: Vec<f64>,
@@ -54,12 +58,13 @@ impl FullModel {
         let n = beam.n_elements();
         let mass = beam.masses().to_vec();
         let ell = beam.lengths().to_vec();
+        let rotary = beam.bending_inertias().to_vec();
         let mut outboard = 0.0; // Σ_{i>k} m_i
         let mut mu = vec![0.0; n];
         let mut a_diag = vec![0.0; n];
         for k in (0..n).rev() {
             mu[k] = 0.5 * mass[k] + outboard;
-            a_diag[k] = ell[k] * ell[k] * (0.25 * mass[k] + outboard);
+            a_diag[k] = ell[k] * ell[k] * (0.25 * mass[k] + outboard) + rotary[k];
             outboard += mass[k];
         }
         let mut stiffness = beam.bending_stiffness().to_vec();
@@ -73,6 +78,7 @@ impl FullModel {
             mass,
             d0: beam.offsets().to_vec(),
             inertia: beam.inertias().to_vec(),
+            rotary,
             mu,
             a_diag,
             stiffness,

@@ -256,7 +256,7 @@ impl FullModel {
             let g = sc.g_dot[j];
             if let Some(p) = p.as_deref_mut() {
                 let dgdthd = [nv[0] * h - e[0] * sp * d, nv[1] * h - e[1] * sp * d, zero];
-                p[j] = dot(&nv, &outboard) * l + dot(&g, &dgdthd) * m;
+                p[j] = dot(&nv, &outboard) * l + dot(&g, &dgdthd) * m + td * self.rotary[j];
                 if self.torsion {
                     let dgdpsd = [nv[0] * cp * d, nv[1] * cp * d, -(sp * d)];
                     p[n + j] = dot(&g, &dgdpsd) * m + pd * self.inertia[j];

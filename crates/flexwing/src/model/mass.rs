@@ -1,6 +1,7 @@
 //! The configuration-dependent mass matrix in O(n²).
 //!
-//! In absolute angles `(θ, ψ)` the kinetic energy `T = ½ Σ m_i |ġ_i|² + ½ Σ J_i ψ̇_i²` has the
+//! In absolute angles `(θ, ψ)` the kinetic energy `T = ½ Σ m_i |ġ_i|² + ½ Σ J_i ψ̇_i² + ½ Σ J_b,i θ̇_i²`
+//! (the last, rotary inertia in bending, zero in the paper's model) has the
 //! matrix (model.md, "Equations of motion"; `a_kj = ℓ_j` for `j < k`, `ℓ_k/2` for `j = k`):
 //!
 //! ```text
@@ -166,7 +167,7 @@ impl FullModel {
             first[1] += mass * d[1];
             let r = [centres[i][0] - nodes[i][0], centres[i][1] - nodes[i][1]];
             let m = self.mass[i];
-            inertia += m * (r[0] * r[0] + r[1] * r[1]);
+            inertia += m * (r[0] * r[0] + r[1] * r[1]) + self.rotary[i];
             first[0] += m * r[0];
             first[1] += m * r[1];
             mass += m;

@@ -27,8 +27,9 @@ pub struct ReducedModel {
     /// `Φ_abs = T Φ`: absolute angle rates per unit modal rate.
     phi_abs: DMatrix<f64>,
     /// The configuration-independent part of the reduced mass matrix: the polar inertias of
-    /// the structure and the fluid, `Σ_i (J_i + J_f,i) ψ̇_a,i ψ̇_b,i` per unit modal rates.
-    mass_torsion: DMatrix<f64>,
+    /// the structure and the fluid, `Σ_i (J_i + J_f,i) ψ̇_a,i ψ̇_b,i`, and the rotary inertias in
+    /// bending, `Σ_i J_b,i θ̇_a,i θ̇_b,i`, per unit modal rates.
+    mass_constant: DMatrix<f64>,
 }
 
 impl ReducedModel {
@@ -89,17 +90,27 @@ impl ReducedModel {
             }
         }
         let (n, r) = (full.n_elements(), indices.len());
-        let mut mass_torsion = DMatrix::zeros(r, r);
+        let mut mass_constant = DMatrix::zeros(r, r);
+        // Rotary inertia in bending: Σ J_b,i θ̇_i², constant like the polar inertias.
+        if full.rotary.iter().any(|&j| j != 0.0) {
+            for a in 0..r {
+                for b in 0..r {
+                    mass_constant[(a, b)] = (0..n)
+                        .map(|i| full.rotary[i] * phi_abs[(i, a)] * phi_abs[(i, b)])
+                        .sum();
+                }
+            }
+        }
         if full.torsion {
             let fluid = full.fluid.as_ref().map(|f| f.inertia.as_slice());
             for a in 0..r {
                 for b in 0..r {
-                    mass_torsion[(a, b)] = (0..n)
+                    mass_constant[(a, b)] += (0..n)
                         .map(|i| {
                             let j = full.inertia[i] + fluid.map_or(0.0, |f| f[i]);
                             j * phi_abs[(n + i, a)] * phi_abs[(n + i, b)]
                         })
-                        .sum();
+                        .sum::<f64>();
                 }
             }
         }
@@ -109,7 +120,7 @@ impl ReducedModel {
             indices: indices.to_vec(),
             k_r,
             phi_abs,
-            mass_torsion,
+            mass_constant,
         })
     }
 
@@ -256,14 +267,14 @@ impl ReducedModel {
         }
         // Slices rather than indexing: the bounds checks kept these O(n r²) loops from
         // vectorizing (they were a quarter of a reduced aeroelastic right-hand side). The polar
-        // inertias' part does not depend on the configuration (`mass_torsion`).
+        // and rotary inertias' part does not depend on the configuration (`mass_constant`).
         let fields = &ws.fields;
         let fluid_fields = &ws.fluid_fields;
         for a in 0..r {
             let fa = &fields[a * n..(a + 1) * n];
             for b in a..r {
                 let fb = &fields[b * n..(b + 1) * n];
-                let mut m: f64 = self.mass_torsion[(a, b)];
+                let mut m: f64 = self.mass_constant[(a, b)];
                 m += fa
                     .iter()
                     .zip(fb)

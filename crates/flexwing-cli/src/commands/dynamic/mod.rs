@@ -177,8 +177,9 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
         report::tables(&outcome, &written)
     };
     let printed = super::print_stdout(&text, args.json);
+    let point_masses = full.beam().bending_inertias().iter().all(|&j| j == 0.0);
     for r in &outcome.result.runs {
-        if let Some(note) = newton_note(r) {
+        if let Some(note) = newton_note(r, point_masses) {
             eprintln!("note: {name}: {}: {note}", r.kind.label());
         }
     }
@@ -204,20 +205,25 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
 }
 
 /// A note when most of a run's steps failed Newton (at least 20, and at least half as many as
-/// were accepted): what makes a run slow that its status does not show. On long full models this
-/// is the chain's alternating highest mode (docs/model-choices.md, "Why case (b) needs more steps
-/// from n ≈ 3000 on"), which generalized-α at a fixed step damps.
-fn newton_note(r: &ModelRun) -> Option<String> {
+/// were accepted): what makes a run slow that its status does not show. On long full models of
+/// point masses this is the chain's alternating highest pattern, which has almost no inertia
+/// (docs/model-choices.md, "Rotary inertia in bending"): elements as rigid bars give it inertia,
+/// and generalized-α at a fixed step damps it.
+fn newton_note(r: &ModelRun, point_masses: bool) -> Option<String> {
     let (failed, steps) = (r.stats.newton_failures, r.stats.steps);
     if failed < 20 || 2 * failed < steps {
         return None;
     }
-    let advice = match (r.integrator, &r.kind) {
-        (Method::GeneralizedAlpha, ModelKind::Full | ModelKind::Simplified) => {
-            "a fixed `step` (dynamic.step) avoids this on long chains"
+    let full = matches!(r.kind, ModelKind::Full | ModelKind::Simplified);
+    let advice = match (r.integrator, full, point_masses) {
+        (_, true, true) => {
+            "on long chains beam.element_inertia = \"bar\" avoids this (it gives the chain's \
+             highest pattern the inertia point masses lack; docs/model-choices.md, \"Rotary \
+             inertia in bending\"), as does integrator = \"generalized-alpha\" with a fixed `step`"
         }
-        (_, ModelKind::Full | ModelKind::Simplified) => {
-            "on long chains integrator = \"generalized-alpha\" with a fixed `step` avoids this \
+        (Method::GeneralizedAlpha, true, false) => "a fixed `step` (dynamic.step) may avoid this",
+        (_, true, false) => {
+            "integrator = \"generalized-alpha\" with a fixed `step` may avoid this \
              (docs/performance.md, \"O(n) Newton systems\")"
         }
         _ => "a smaller max_step or tighter tolerances may help",
