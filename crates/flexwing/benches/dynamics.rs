@@ -7,7 +7,9 @@
 //! Run: `cargo bench -p flexwing --bench dynamics` (add `-- --quick` for a short run, `--
 //! --scaling` for the tables against n only, `-- --mass-diagonal` for the diagonal of `M⁻¹`
 //! against n only, `-- --damping [--max-n N]` for case (b) with Rayleigh and modal damping
-//! against n only, `-- --alpha` for case (b) with generalized-α against n only).
+//! against n only, `-- --alpha` for case (b) with generalized-α against n only, `-- --bars`
+//! for case (b) and the Table 1 beam with Radau on elements that are rigid bars against point
+//! masses).
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -15,6 +17,7 @@ use std::time::Duration;
 mod common;
 use common::{fmt_time, measure};
 
+use flexwing::beam::{Beam, Calibration, Discretization, RotaryInertia, SectionProperties};
 use flexwing::model::{AppliedLoads, Force, FullModel, Load, ReducedModel, StructuralModel};
 use flexwing::solve::integrate::{
     integrate, GeneralizedAlpha, GeneralizedAlphaOptions, IntegrationResult, IntegratorSettings,
@@ -486,6 +489,204 @@ fn alpha_scaling(quick: bool) {
     }
 }
 
+/// A beam of `n` equal elements, tip-load springs; `bars`: the elements are rigid bars
+/// (`beam::RotaryInertia::elements`), else the paper's point masses.
+fn chain(length: f64, section: &SectionProperties, n: usize, bars: bool) -> FullModel {
+    let beam = Beam::new(
+        length,
+        section,
+        &Discretization::Uniform(n),
+        Calibration::TipLoad,
+    )
+    .expect("valid beam");
+    let rotary = RotaryInertia {
+        elements: bars,
+        section: None,
+    };
+    FullModel::new(
+        beam.with_rotary_inertia("beam", section, &rotary)
+            .expect("valid"),
+    )
+}
+
+/// Radau (chain Newton systems from 40 coordinates) from rest over `[0, t_end]` under `loads`
+/// with the time functions `tf`, at `rtol` and the coordinate atol `20 rtol / n`: tip positions
+/// every 5 ms (no twist), counters, wall time.
+fn radau_run(
+    full: &FullModel,
+    loads: &[Load],
+    tf: Vec<TimeFunction>,
+    t_end: f64,
+    rtol: f64,
+) -> FullRun {
+    let n = full.n_elements();
+    let applied = full.apply(loads, "loads").expect("loads");
+    let mut eom = EquationsOfMotion::new(full, &applied, tf, Gyroscopic::Exact, &Damping::None)
+        .expect("equations");
+    let t: Vec<f64> = (0..=(t_end / 0.005).round() as usize)
+        .map(|k| k as f64 * 0.005)
+        .collect();
+    let y0 = vec![0.0; 2 * full.n_dofs()];
+    let options = RadauOptions {
+        tolerances: Tolerances {
+            rtol,
+            atol: eom.state_atol(20.0 * rtol / n as f64),
+        },
+        ..Default::default()
+    };
+    let start = std::time::Instant::now();
+    let result = Radau { options }.integrate(&mut eom, 0.0, &y0, &t, &mut |_| {});
+    let seconds = start.elapsed().as_secs_f64();
+    let (traj, stats, failure) = match result {
+        Ok((traj, stats)) => (traj, stats, None),
+        Err(f) => (f.trajectory, f.stats, Some(f.error.to_string())),
+    };
+    let tips = traj
+        .y
+        .iter()
+        .map(|y| {
+            let p = full.node_positions(&full.kinematics(&y[..full.n_dofs()]))[n];
+            [p[0], p[1]]
+        })
+        .collect();
+    FullRun {
+        tips,
+        stats,
+        seconds,
+        setup_seconds: 0.0,
+        failure,
+    }
+}
+
+/// Radau at the library's default rtol 1e-3 on elements that are rigid bars against the
+/// paper's point masses, against n: case (b) (Table 4 beam, 1 s) and the coupled Table 1 beam
+/// (tip force 100 sin(2 t) N and tip torque 50 sin(3 t) N·m, 2 s). The point-mass chain's
+/// highest pattern has almost no inertia and fails Newton on long chains
+/// (docs/model-choices.md, "Rotary inertia in bending"). Tip error for case (b) against Radau at
+/// rtol 1e-8 on the same model (n ≤ 1000; above, on n = 1000: the O(1/n²) difference between
+/// the models and sizes is ~2e-6 m at n = 1000 and less above).
+fn bars_table(quick: bool) {
+    let rtol = 1e-3;
+    println!(
+        "\nRadau at rtol {rtol:.0e} (coordinate atol 20 rtol / n) on point masses and on rigid bars \
+         (beam.element_inertia = \"bar\") against n; per step = wall time / step attempts\n"
+    );
+    println!("| case | n | elements | steps | rejected | of which Newton failed | tip error (m) | wall time | per step | slope |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let case_b = (
+        vec![Load::PointForce {
+            span: 1.0,
+            force: Force::Dead { fx: 0.0, fy: 10.0 },
+        }],
+        vec![TimeFunction::Sine {
+            omega: 20.0,
+            phase: 0.0,
+        }],
+    );
+    let table1 = (
+        vec![
+            Load::PointForce {
+                span: 16.0,
+                force: Force::Dead { fx: 0.0, fy: 100.0 },
+            },
+            Load::Torque {
+                span: 16.0,
+                value: 50.0,
+            },
+        ],
+        vec![
+            TimeFunction::Sine {
+                omega: 2.0,
+                phase: 0.0,
+            },
+            TimeFunction::Sine {
+                omega: 3.0,
+                phase: 0.0,
+            },
+        ],
+    );
+    let b_sizes: &[usize] = if quick {
+        &[40, 1000, 10000]
+    } else {
+        &[40, 160, 1000, 3000, 10000]
+    };
+    let t1_sizes: &[usize] = if quick {
+        &[64, 1024]
+    } else {
+        &[64, 256, 1024, 4096]
+    };
+    let table4 = flexwing::paper::table4_section();
+    let table1_section = flexwing::paper::table1_section();
+    for bars in [false, true] {
+        let label = if bars { "bars" } else { "point masses" };
+        let mut prev = None;
+        let mut reference_1000: Option<Vec<[f64; 2]>> = None;
+        for &n in b_sizes {
+            // Point masses beyond 3000: minutes of Newton failures (docs/performance.md).
+            if !bars && n > 3000 {
+                println!("| case (b) | {n} | {label} | – | – | – | – | skipped (over a minute) | – | – |");
+                continue;
+            }
+            let full = chain(1.0, &table4, n, bars);
+            let run = radau_run(&full, &case_b.0, case_b.1.clone(), 1.0, rtol);
+            let reference = if n <= 1000 {
+                let r = radau_run(&full, &case_b.0, case_b.1.clone(), 1.0, 1e-8).tips;
+                if n == 1000 {
+                    reference_1000 = Some(r.clone());
+                }
+                r
+            } else {
+                reference_1000.clone().unwrap_or_else(|| {
+                    let small = chain(1.0, &table4, 1000, bars);
+                    radau_run(&small, &case_b.0, case_b.1.clone(), 1.0, 1e-8).tips
+                })
+            };
+            let error = if run.failure.is_none() && run.tips.len() == reference.len() {
+                format!("{:.1e}", max_diff(&run.tips, &reference))
+            } else {
+                "–".into()
+            };
+            let attempts = (run.stats.steps + run.stats.rejected_steps) as f64;
+            let per = run.seconds / attempts;
+            println!(
+                "| case (b) | {n} | {label} | {} | {} | {} | {error} | {} | {} | {} |{}",
+                run.stats.steps,
+                run.stats.rejected_steps,
+                run.stats.newton_failures,
+                fmt_time(run.seconds),
+                fmt_time(per),
+                slope(prev, n, per),
+                run.failure
+                    .as_ref()
+                    .map(|e| format!(" stopped: {e}"))
+                    .unwrap_or_default()
+            );
+            prev = Some((n, per));
+        }
+        let mut prev = None;
+        for &n in t1_sizes {
+            let full = chain(16.0, &table1_section, n, bars);
+            let run = radau_run(&full, &table1.0, table1.1.clone(), 2.0, rtol);
+            let attempts = (run.stats.steps + run.stats.rejected_steps) as f64;
+            let per = run.seconds / attempts;
+            println!(
+                "| Table 1 | {n} | {label} | {} | {} | {} | – | {} | {} | {} |{}",
+                run.stats.steps,
+                run.stats.rejected_steps,
+                run.stats.newton_failures,
+                fmt_time(run.seconds),
+                fmt_time(per),
+                slope(prev, n, per),
+                run.failure
+                    .as_ref()
+                    .map(|e| format!(" stopped: {e}"))
+                    .unwrap_or_default()
+            );
+            prev = Some((n, per));
+        }
+    }
+}
+
 /// The diagonal of `M(0)⁻¹` that gives the momenta their tolerances (once per run,
 /// `EquationsOfMotion::state_atol`): the O(n) covariance sweep against n unit solves (the O(n²)
 /// method it replaced, up to n = 3000), with the largest relative difference between the two.
@@ -671,6 +872,10 @@ fn main() {
     }
     if std::env::args().any(|a| a == "--alpha") {
         alpha_scaling(quick);
+        return;
+    }
+    if std::env::args().any(|a| a == "--bars") {
+        bars_table(quick);
         return;
     }
     let (budget, batches) = if quick {
