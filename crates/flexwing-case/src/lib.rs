@@ -208,6 +208,46 @@ mod tests {
     }
 
     #[test]
+    fn rotary_inertia_keys_reach_the_beam_and_bad_values_name_their_key() {
+        // Bars: m ℓ²/12 = 0.2 · 0.25 · 0.0625 / 12; plus ρI ℓ = 1e-3 · 0.25.
+        let text = BEAM.replace(
+            "elements = 4\n",
+            "elements = 4\nelement_inertia = \"bar\"\n",
+        );
+        let bars = Case::parse(&text, Some("x.toml"))
+            .unwrap()
+            .to_beam()
+            .unwrap();
+        let expected = 0.2 * 0.25 * 0.0625 / 12.0;
+        assert!((bars.bending_inertias()[2] - expected).abs() < 1e-15 * expected);
+        let text = format!("{text}rotary_inertia = 1e-3\n");
+        let both = Case::parse(&text, Some("x.toml"))
+            .unwrap()
+            .to_beam()
+            .unwrap();
+        let expected = expected + 1e-3 * 0.25;
+        assert!((both.bending_inertias()[0] - expected).abs() < 1e-15 * expected);
+        let point = Case::parse(BEAM, Some("x.toml"))
+            .unwrap()
+            .to_beam()
+            .unwrap();
+        assert!(point.bending_inertias().iter().all(|&j| j == 0.0));
+        let msg = error_of(&BEAM.replace(
+            "elements = 4\n",
+            "elements = 4\nelement_inertia = \"rod\"\n",
+        ));
+        assert!(
+            msg.contains("beam.element_inertia: must be one of \"point-mass\", \"bar\""),
+            "{msg}"
+        );
+        let e = Case::parse(&format!("{BEAM}rotary_inertia = -1\n"), Some("x.toml"))
+            .unwrap()
+            .modes_plan()
+            .unwrap_err();
+        assert_eq!(e.key.as_deref(), Some("beam.section.rotary_inertia"), "{e}");
+    }
+
+    #[test]
     fn integers_are_accepted_for_floats() {
         let case = Case::parse(BEAM, Some("x.toml")).unwrap();
         let beam = case.to_beam().unwrap();

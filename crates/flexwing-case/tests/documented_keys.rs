@@ -235,6 +235,15 @@ fn actual_defaults() -> BTreeMap<(&'static str, &'static str), String> {
         Calibration::Uniform => "uniform",
     };
     put("beam", "calibration", format!("\"{calibration}\""));
+    // Point masses: no element has rotary inertia in bending.
+    let point_masses = statics
+        .model
+        .beam()
+        .bending_inertias()
+        .iter()
+        .all(|&j| j == 0.0);
+    let element = if point_masses { "point-mass" } else { "bar" };
+    put("beam", "element_inertia", format!("\"{element}\""));
     // min(10, n_dofs): 4 here, 10 for a 20-element beam.
     let count = |elements: &str| {
         let text = BASE.replace("elements = 4", elements);

@@ -22,6 +22,7 @@ const BEAM_KEYS: &[&str] = &[
     "elements",
     "stations",
     "calibration",
+    "element_inertia",
     "x",
     "EI",
     "mass_per_length",
@@ -29,8 +30,16 @@ const BEAM_KEYS: &[&str] = &[
     "polar_inertia",
     "polar_inertia_about",
     "d0",
+    "rotary_inertia",
 ];
-const SECTION_KEYS: &[&str] = &["EI", "mass_per_length", "GJ", "polar_inertia", "d0"];
+const SECTION_KEYS: &[&str] = &[
+    "EI",
+    "mass_per_length",
+    "GJ",
+    "polar_inertia",
+    "d0",
+    "rotary_inertia",
+];
 
 /// The argument a case-file key of `[beam]` came from: `beam.section.EI` → `EI`.
 fn argument_of(key: &str) -> String {
@@ -73,7 +82,9 @@ fn beam_of(py: Python<'_>, spec: &Bound<'_, PyDict>) -> PyResult<(BeamSpec, Full
 /// and for torsion ``GJ`` (N·m²), ``polar_inertia`` (kg·m), ``polar_inertia_about``
 /// (``"mass-centre"`` or ``"elastic-axis"``) and ``d0`` (m, mass-centre offset); each property
 /// a number, or an array of values at the stations ``x`` (m, piecewise linear, covering the
-/// span); ``calibration`` (``"tip-load"``, the default, or ``"uniform"``).
+/// span); ``calibration`` (``"tip-load"``, the default, or ``"uniform"``); rotary inertia in
+/// bending: ``element_inertia`` (``"point-mass"``, the default, or ``"bar"``: each element a
+/// rigid bar, ``m ℓ²/12``) and ``rotary_inertia`` (kg·m, the section's ``ρI``, a property).
 #[pyclass(module = "flexwing", name = "Beam", frozen)]
 pub struct PyBeam {
     pub spec: BeamSpec,
@@ -101,6 +112,9 @@ impl PyBeam {
         }
         if let Some(c) = kw.get("calibration")? {
             beam.set_item("calibration", arrays::text(&c, "calibration")?)?;
+        }
+        if let Some(c) = kw.get("element_inertia")? {
+            beam.set_item("element_inertia", arrays::text(&c, "element_inertia")?)?;
         }
         let x = kw
             .get("x")?

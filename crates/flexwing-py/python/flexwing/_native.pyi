@@ -120,12 +120,17 @@ class Beam:
         polar_inertia_about: Optional[Literal["mass-centre", "elastic-axis"]] = None,
         d0: Union[float, ArrayLike, None] = None,
         calibration: Optional[Literal["tip-load", "uniform"]] = None,
+        element_inertia: Optional[Literal["point-mass", "bar"]] = None,
+        rotary_inertia: Union[float, ArrayLike, None] = None,
     ) -> None:
         """``length`` (m); ``elements`` (equal elements) or ``stations`` (node positions, m,
         0 … length); ``EI`` (N m²) and ``mass_per_length`` (kg/m); for torsion ``GJ`` (N m²),
         ``polar_inertia`` (kg m), ``polar_inertia_about``, ``d0`` (m, mass-centre offset). Each
         property a number or an array of values at the stations ``x`` (m, piecewise linear).
-        ``calibration``: ``"tip-load"`` (default) or ``"uniform"``."""
+        ``calibration``: ``"tip-load"`` (default) or ``"uniform"``. Rotary inertia in bending:
+        ``element_inertia`` ``"point-mass"`` (default, the paper's) or ``"bar"`` (each element a
+        rigid bar, m ℓ²/12: for long chains), and ``rotary_inertia`` (kg m, the section's ρI,
+        a property)."""
     @staticmethod
     def from_dict(table: Mapping[str, Any]) -> Beam:
         """A beam from a ``[beam]`` table (a dict with the case file's keys)."""
