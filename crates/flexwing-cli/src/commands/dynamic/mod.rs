@@ -178,8 +178,9 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
     };
     let printed = super::print_stdout(&text, args.json);
     let point_masses = full.beam().bending_inertias().iter().all(|&j| j == 0.0);
+    let offset = full.beam().offsets().iter().any(|&d| d != 0.0);
     for r in &outcome.result.runs {
-        if let Some(note) = newton_note(r, point_masses) {
+        if let Some(note) = newton_note(r, point_masses, offset) {
             eprintln!("note: {name}: {}: {note}", r.kind.label());
         }
     }
@@ -208,14 +209,21 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
 /// were accepted): what makes a run slow that its status does not show. On long full models of
 /// point masses this is the chain's alternating highest pattern, which has almost no inertia
 /// (docs/model-choices.md, "Rotary inertia in bending"): elements as rigid bars give it inertia,
-/// and generalized-α at a fixed step damps it.
-fn newton_note(r: &ModelRun, point_masses: bool) -> Option<String> {
+/// and generalized-α at a fixed step damps it. On bars with a mass offset, the twist-dependent
+/// in-plane inertia `m d0² sin²ψ` remains, which a section flap inertia outweighs
+/// (docs/model-choices.md, "The coupled beam's Newton failures").
+fn newton_note(r: &ModelRun, point_masses: bool, offset: bool) -> Option<String> {
     let (failed, steps) = (r.stats.newton_failures, r.stats.steps);
     if failed < 20 || 2 * failed < steps {
         return None;
     }
     let full = matches!(r.kind, ModelKind::Full | ModelKind::Simplified);
     let advice = match (r.integrator, full, point_masses) {
+        (_, true, false) if offset => {
+            "with a mass offset d0 the elements' bending inertia still varies with the twist; \
+             the section's flap inertia beam.section.rotary_inertia, when known, avoids this \
+             (docs/model-choices.md, \"The coupled beam's Newton failures\")"
+        }
         (_, true, true) => {
             "on long chains beam.element_inertia = \"bar\" avoids this (it gives the chain's \
              highest pattern the inertia point masses lack; docs/model-choices.md, \"Rotary \
