@@ -1196,9 +1196,11 @@ fn newton_failures_are_counted_and_a_long_chain_gets_a_note() {
     eprintln!("Radau − generalized-α: {d:.2e} m");
     assert!(d < 3e-4, "{d:.2e}");
 
-    // Rigid bars: the same Radau run without the failures. The bars' inertia m ℓ²/12 changes the
-    // model by O(1/n²) (the continuum limit is the same); at n = 4000 that is far below the
-    // integration error, so the bound is the integration error's, as above.
+    // Rigid bars: the same Radau run without the failures (measured: 34 steps, 6 rejected, none
+    // by Newton, against 107 steps and 79 Newton failures; bound: fewer than 5). The bars' inertia
+    // m ℓ²/12 changes the model by O(1/n²) (the continuum limit is the same); at n = 4000 that is
+    // far below the integration error, so the bound on the tips is the integration error's, as
+    // above (measured 8.6e-5 m apart).
     let bars = dir.write(
         "bars.toml",
         &case("element_inertia = \"bar\"\n", "integrator = \"radau\"\n"),
