@@ -479,3 +479,56 @@ fn rayleigh_damped_case_b_at_n_2000_converges_with_the_step() {
     // The damping's effect: measured 1.6e-2 m; at least a hundred times the bound.
     assert!(effect > 1e-3, "{effect:.2e}");
 }
+
+#[test]
+fn auto_takes_the_newton_systems_measured_faster_for_the_method() {
+    // `NewtonSystems::Auto` under `integrate()`: the crossovers of `chain_newton_min_dofs`
+    // (measured, docs/performance.md): Radau without a step cap on the chain from 16
+    // coordinates, fixed steps dense below 120, the rest from 40. Checked after a short run
+    // (10 ms of case (b)) of each, by the resolved choice.
+    use flexwing::solve::integrate::{integrate, IntegratorSettings, Method as M};
+    let (loads, tf) = case_b_load();
+    let uses_chain = |n: usize, method: M, settings: IntegratorSettings| {
+        let model = table4(n);
+        let applied = model.apply(&loads, "loads").unwrap();
+        let mut eom = EquationsOfMotion::new(
+            &model,
+            &applied,
+            tf.clone(),
+            Gyroscopic::Exact,
+            &Damping::None,
+        )
+        .unwrap();
+        let y0 = vec![0.0; 2 * n];
+        integrate(
+            method,
+            &settings,
+            &mut eom,
+            0.0,
+            &y0,
+            &[0.0, 0.01],
+            &mut |_| {},
+        )
+        .unwrap();
+        eom.uses_chain_newton()
+    };
+    let adaptive = IntegratorSettings::default();
+    let capped = IntegratorSettings {
+        max_step: Some(6e-3),
+        ..Default::default()
+    };
+    let fixed = IntegratorSettings {
+        step: Some(1e-3),
+        ..Default::default()
+    };
+    assert!(!uses_chain(10, M::Radau, adaptive.clone()));
+    assert!(uses_chain(16, M::Radau, adaptive.clone()));
+    assert!(!uses_chain(24, M::Radau, capped.clone()));
+    assert!(uses_chain(40, M::Radau, capped));
+    assert!(!uses_chain(24, M::Bdf, adaptive.clone()));
+    assert!(uses_chain(40, M::Bdf, adaptive.clone()));
+    assert!(uses_chain(40, M::GeneralizedAlpha, adaptive));
+    assert!(!uses_chain(80, M::GeneralizedAlpha, fixed.clone()));
+    assert!(!uses_chain(80, M::Midpoint, fixed.clone()));
+    assert!(uses_chain(120, M::GeneralizedAlpha, fixed));
+}

@@ -20,29 +20,56 @@ pub use super::damping::Damping;
 use super::damping::DampingOperator;
 use super::energy_audit::{AuditLimits, EnergyBalance};
 use super::eom_newton::ChainNewton;
-use super::integrate::{NewtonSolver, OdeSystem};
+use super::integrate::{IntegratorSettings, Method, NewtonSolver, OdeSystem};
 use crate::error::InputError;
 use crate::model::{AppliedLoads, StructuralModel};
 use crate::text::short;
 
 /// From this many coordinates on, [`NewtonSystems::Auto`] solves the full model's Newton systems
 /// by O(n) chain sweeps instead of dense LU factorizations of the exact Jacobian (measured on
-/// case (b), docs/performance.md, "O(n) Newton systems").
+/// case (b), docs/performance.md, "O(n) Newton systems"), unless [`integrate`] says which method
+/// will run ([`chain_newton_min_dofs`]).
+///
+/// [`integrate`]: super::integrate::integrate
 pub const CHAIN_NEWTON_MIN_DOFS: usize = 40;
+
+/// The number of coordinates from which [`NewtonSystems::Auto`] takes the chain sweeps, for the
+/// method and settings [`super::integrate::integrate`] runs with. The dense path factors the
+/// exact Jacobian and reuses it over steps; the chain relinearizes at every step, O(n). Measured
+/// crossovers (case (b), Table 4 beam, best of 3; docs/performance.md, "O(n) Newton systems"):
+///
+/// * Radau without a step cap: the step size changes from step to step, the dense LU pair is
+///   refactored often, and the chain is faster from 16 coordinates (n = 16: 2.0 against 3.3 ms
+///   at rtol 1e-3, 1.5 against 2.2 ms at rtol 1e-2; equal at 10).
+/// * A fixed step (midpoint rule, generalized-α): one dense factorization serves many steps;
+///   dense is faster up to 80 coordinates (gen-α h = 1/3000 s: 50 against 68 ms), the chain at
+///   160 (134 against 148 ms): from 120.
+/// * Otherwise (Radau with a step cap, BDF, adaptive midpoint and generalized-α) the crossover
+///   lies between 24 and 40: [`CHAIN_NEWTON_MIN_DOFS`].
+pub fn chain_newton_min_dofs(method: Method, settings: &IntegratorSettings) -> usize {
+    match (method, settings.step, settings.max_step) {
+        (Method::Midpoint | Method::GeneralizedAlpha, Some(_), _) => 120,
+        (Method::Radau, _, None) => 16,
+        _ => CHAIN_NEWTON_MIN_DOFS,
+    }
+}
 
 /// How the implicit integrators solve the Newton systems `(c I − J) Δ = r` of the equations of
 /// motion.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum NewtonSystems {
-    /// [`NewtonSystems::Chain`] for the full model from [`CHAIN_NEWTON_MIN_DOFS`] coordinates on,
-    /// [`NewtonSystems::Dense`] otherwise. The default.
+    /// [`NewtonSystems::Chain`] for the full model in vacuo from [`CHAIN_NEWTON_MIN_DOFS`]
+    /// coordinates on ([`chain_newton_min_dofs`] for the method when run by
+    /// [`super::integrate::integrate`]), [`NewtonSystems::Dense`] otherwise. The default.
     #[default]
     Auto,
     /// The exact Jacobian, formed (O(n²)) and factored densely (O(n³)).
     Dense,
-    /// Full model only: O(n) sweeps along the chain with the Jacobian's structural part (mass,
-    /// stiffness, load stiffness, Rayleigh damping); the velocity-dependent terms are left to a
-    /// simplified Newton iteration (`eom_newton.rs`). Never forms the Jacobian.
+    /// Full model in vacuo only (not a wet model, whose fluid inertia the sweeps do not carry):
+    /// O(n) sweeps along the chain's linearized equations, the exact Jacobian's Newton system
+    /// without damping (velocity terms included); damping makes it a simplified Newton
+    /// iteration (Rayleigh approximated, modal left out; `eom_newton.rs`). Never forms the
+    /// Jacobian.
     Chain,
 }
 
@@ -241,6 +268,8 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     dense: Option<DenseBuffers>,
     newton: NewtonSystems,
     chain: Option<ChainNewton>,
+    /// Where [`NewtonSystems::Auto`] switches to the chain (coordinates).
+    auto_chain_min_dofs: usize,
     /// `state_atol(1.0)`, computed once (O(n²) for the full model).
     unit_atol: Option<Vec<f64>>,
     /// The energy audit, if on: its limits and what it found since the last [`Self::state`].
@@ -319,6 +348,7 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             dense: None,
             newton: NewtonSystems::Auto,
             chain: None,
+            auto_chain_min_dofs: CHAIN_NEWTON_MIN_DOFS,
             unit_atol: None,
             audit: None,
             halt: None,
@@ -332,12 +362,25 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     /// [`NewtonSystems::Auto`]).
     ///
     /// # Errors
-    /// [`NewtonSystems::Chain`] for a model other than the full model (field `newton_systems`).
+    /// [`NewtonSystems::Chain`] for a model other than the full model, or for a wet one (with
+    /// the fluid's inertia, which the chain sweeps do not carry) (field `newton_systems`).
     pub fn set_newton_systems(&mut self, choice: NewtonSystems) -> Result<(), InputError> {
         if choice == NewtonSystems::Chain && self.model.as_full_model().is_none() {
             return Err(InputError::new(
                 "newton_systems",
                 "the chain solves need the full model; a reduced model has dense Newton systems",
+            ));
+        }
+        if choice == NewtonSystems::Chain
+            && self
+                .model
+                .as_full_model()
+                .is_some_and(|full| full.has_fluid_inertia())
+        {
+            return Err(InputError::new(
+                "newton_systems",
+                "the chain solves do not carry the fluid's inertia; a wet model has dense Newton \
+                 systems",
             ));
         }
         self.newton = choice;
@@ -347,9 +390,14 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
 
     /// Whether the Newton systems are solved by chain sweeps (the resolved choice).
     pub fn uses_chain_newton(&self) -> bool {
-        self.model.as_full_model().is_some()
+        // The chain sweeps do not carry the fluid's inertia (`model::aero::fluid`): on a wet
+        // model they would solve another system, and Newton would fail (a wet Patil wing at
+        // 16 coordinates stopped with "step size too small"), so a wet model stays dense.
+        self.model
+            .as_full_model()
+            .is_some_and(|full| !full.has_fluid_inertia())
             && match self.newton {
-                NewtonSystems::Auto => self.n >= CHAIN_NEWTON_MIN_DOFS,
+                NewtonSystems::Auto => self.n >= self.auto_chain_min_dofs,
                 NewtonSystems::Dense => false,
                 NewtonSystems::Chain => true,
             }
@@ -800,6 +848,10 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
             self.chain = Some(ChainNewton::new(full, &self.damping, gyroscopic));
         }
         Some(self)
+    }
+
+    fn integrating_with(&mut self, method: Method, settings: &IntegratorSettings) {
+        self.auto_chain_min_dofs = chain_newton_min_dofs(method, settings);
     }
 }
 

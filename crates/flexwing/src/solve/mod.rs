@@ -16,7 +16,8 @@ mod tangent;
 
 pub use continuation::{arc_length_static, ArcLengthOptions, PathError, PathPoint, StaticPath};
 pub use dynamics::{
-    Damping, EquationsOfMotion, Gyroscopic, NewtonSystems, TimeFunction, CHAIN_NEWTON_MIN_DOFS,
+    chain_newton_min_dofs, Damping, EquationsOfMotion, Gyroscopic, NewtonSystems, TimeFunction,
+    CHAIN_NEWTON_MIN_DOFS,
 };
 pub use eigen::generalized_symmetric_eigen;
 pub use energy_audit::{AuditLimits, EnergyBalance};

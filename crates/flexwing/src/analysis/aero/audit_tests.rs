@@ -235,7 +235,7 @@ fn at_zero_speed_the_audit_is_the_structural_audit_of_the_wet_beam() {
         let out = dynamics::run(&st, &mut NoProgress).unwrap();
         let b = &out.runs[0];
         assert_eq!(a.status, Status::Complete);
-        assert!(b.status.is_complete());
+        assert!(b.status.is_complete(), "{:?}", b.status);
         let (ea, eb) = (a.energy.as_ref().unwrap(), b.energy.as_ref().unwrap());
         assert!(ea.max_error < 1e-6 && eb.max_error < 1e-6, "{ea:?} {eb:?}");
         let scale = eb.reference;

@@ -51,6 +51,10 @@ mod tests {
     use super::FluidInertia;
 
     fn wet(torsion: bool) -> FullModel {
+        wet_n(torsion, 6)
+    }
+
+    fn wet_n(torsion: bool, n: usize) -> FullModel {
         let section = SectionProperties {
             ei: Profile::Uniform(10.0),
             mass_per_length: Profile::Table {
@@ -67,11 +71,10 @@ mod tests {
         let beam = Beam::new(
             2.0,
             &section,
-            &Discretization::Uniform(6),
+            &Discretization::Uniform(n),
             Calibration::TipLoad,
         )
         .unwrap();
-        let n = 6;
         let fluid = FluidInertia {
             mass: (0..n).map(|i| 0.05 + 0.01 * i as f64).collect(),
             station: (0..n).map(|i| -0.04 + 0.015 * i as f64).collect(),
@@ -164,6 +167,42 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The chain's Newton sweeps do not carry the fluid's inertia: a wet model refuses them, and
+    /// `Auto` keeps it on the dense path at any size and for any method (48 coordinates here,
+    /// above every crossover of `chain_newton_min_dofs` but the fixed step's).
+    #[test]
+    fn a_wet_model_keeps_dense_newton_systems() {
+        use crate::solve::integrate::{integrate, IntegratorSettings, Method};
+        use crate::solve::{Damping, EquationsOfMotion, Gyroscopic, NewtonSystems};
+        let model = wet_n(true, 24);
+        let loads = model.apply(&[], "loads").unwrap();
+        let mut eom =
+            EquationsOfMotion::new(&model, &loads, vec![], Gyroscopic::Exact, &Damping::None)
+                .unwrap();
+        let e = eom.set_newton_systems(NewtonSystems::Chain).unwrap_err();
+        assert_eq!(e.field, "newton_systems");
+        let dry = FullModel::new(model.beam().clone());
+        let dry_loads = dry.apply(&[], "loads").unwrap();
+        let mut dry_eom =
+            EquationsOfMotion::new(&dry, &dry_loads, vec![], Gyroscopic::Exact, &Damping::None)
+                .unwrap();
+        let y0 = vec![0.0; 2 * model.n_dofs()];
+        let settings = IntegratorSettings::default();
+        for e in [&mut eom, &mut dry_eom] {
+            integrate(
+                Method::Radau,
+                &settings,
+                e,
+                0.0,
+                &y0,
+                &[0.0, 1e-3],
+                &mut |_| {},
+            )
+            .unwrap();
+        }
+        assert!(!eom.uses_chain_newton() && dry_eom.uses_chain_newton());
     }
 
     /// The reduced model of a wet full model: `M_r = Φᵀ M Φ` and `γ_r = Φᵀ γ(Φη, Φη̇)` with the

@@ -223,6 +223,7 @@ pub fn integrate<S: OdeSystem>(
     t_out: &[f64],
     progress: &mut dyn FnMut(f64),
 ) -> IntegrationResult {
+    system.integrating_with(method, settings);
     let tolerances = settings.tolerances(system);
     let max_step = settings.max_step.unwrap_or(f64::INFINITY);
     let max_steps = settings.max_steps;

@@ -73,6 +73,14 @@ pub trait OdeSystem {
     fn newton_solver(&mut self) -> Option<&mut dyn NewtonSolver> {
         None
     }
+
+    /// Told by [`integrate`] before it runs which method and settings will solve the system, so
+    /// that a system with several ways to solve its Newton systems can take the faster one for
+    /// them (the equations of motion: `NewtonSystems::Auto`, whose dense/chain crossover depends
+    /// on the method and the step control). Default: nothing.
+    fn integrating_with(&mut self, method: Method, settings: &IntegratorSettings) {
+        let _ = (method, settings);
+    }
 }
 
 /// Solves the Newton systems `(c I − J̃) x = b` of the implicit integrators for real and complex
