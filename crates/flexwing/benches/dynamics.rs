@@ -194,7 +194,6 @@ fn case_b_run(
     t_end: f64,
     integrate: impl FnOnce(&mut EquationsOfMotion<'_, FullModel>, &[f64], &[f64]) -> IntegrationResult,
 ) -> FullRun {
-    let n = full.n_elements();
     let tf = vec![TimeFunction::Sine {
         omega: 20.0,
         phase: 0.0,
@@ -222,6 +221,17 @@ fn case_b_run(
     let start = std::time::Instant::now();
     let result = integrate(&mut eom, &y0, &t);
     let seconds = start.elapsed().as_secs_f64();
+    full_run(full, result, seconds, setup_seconds)
+}
+
+/// The tips of a run's outputs, its counters and times; where and why it stopped, if it did.
+fn full_run(
+    full: &FullModel,
+    result: IntegrationResult,
+    seconds: f64,
+    setup_seconds: f64,
+) -> FullRun {
+    let n = full.n_elements();
     let (traj, stats, failure) = match result {
         Ok((traj, stats)) => (traj, stats, None),
         Err(f) => (f.trajectory, f.stats, Some(f.error.to_string())),
@@ -552,26 +562,7 @@ fn radau_run(
     };
     let start = std::time::Instant::now();
     let result = Radau { options }.integrate(&mut eom, 0.0, &y0, &t, &mut |_| {});
-    let seconds = start.elapsed().as_secs_f64();
-    let (traj, stats, failure) = match result {
-        Ok((traj, stats)) => (traj, stats, None),
-        Err(f) => (f.trajectory, f.stats, Some(f.error.to_string())),
-    };
-    let tips = traj
-        .y
-        .iter()
-        .map(|y| {
-            let p = full.node_positions(&full.kinematics(&y[..full.n_dofs()]))[n];
-            [p[0], p[1]]
-        })
-        .collect();
-    FullRun {
-        tips,
-        stats,
-        seconds,
-        setup_seconds: 0.0,
-        failure,
-    }
+    full_run(full, result, start.elapsed().as_secs_f64(), 0.0)
 }
 
 /// Radau at the library's default rtol 1e-3 on elements that are rigid bars against the

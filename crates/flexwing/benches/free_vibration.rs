@@ -235,69 +235,80 @@ fn modal_content(case: &Case, shown: usize) {
     }
 }
 
-/// The free vibration on rigid bars at n = 20 and 80 (module documentation).
+/// One table row per method (tip error against `reference`, energy kept, counters, CPU time);
+/// the fastest complete run within 1e-4 m, if any, with its CPU time.
+fn table_rows(
+    case: &Case,
+    methods: &[Method],
+    reference: &[[f64; 2]],
+    budget: Duration,
+) -> Option<(f64, String)> {
+    let mut best_1e4: Option<(f64, String)> = None;
+    for &method in methods {
+        let (tips, energy, stats, complete) = case.run(method);
+        let err = max_distance(&tips, reference);
+        let cpu = cpu_per_call(budget, || {
+            std::hint::black_box(case.run(method));
+        });
+        let (name, setting) = method.label();
+        println!(
+            "| {name} | {setting} | {}{:.1e} | {energy:.6} | {} ({}) | {} / {} / {} | {} |",
+            if complete { "" } else { "stopped: " },
+            err,
+            stats.steps,
+            stats.rejected_steps,
+            stats.rhs_evaluations,
+            stats.jacobian_evaluations,
+            stats.factorizations,
+            fmt_time(cpu)
+        );
+        if complete && err <= 1e-4 && best_1e4.as_ref().is_none_or(|(c, _)| cpu < *c) {
+            best_1e4 = Some((cpu, format!("{name}, {setting}")));
+        }
+    }
+    best_1e4
+}
+
+/// The free vibration on rigid bars at n = 20 (module documentation).
 fn bars(quick: bool, budget: Duration) {
     println!(
         "Free vibration from the 150 N static deflection on rigid bars (element_inertia = \"bar\"), \
          Table 4 beam, 1 s, tip every 5 ms; tip error against Dormand–Prince at rtol 1e-11 on the \
          same model.\n"
     );
-    for n in [20] {
-        let point = Modes::undeformed(&Case::new(n).full).expect("modes");
-        let case = Case::bars(n);
-        let modes = Modes::undeformed(&case.full).expect("modes");
-        let (reference, ..) = case.run(Method::Dopri5(1e-11, 1e-13));
-        let (radau, ..) = case.run(Method::Radau(1e-11, 1e-13));
-        println!(
-            "n = {n}: highest mode {:.1e} rad/s on bars ({:.1e} on point masses); reference \
-             against Radau at rtol 1e-11: {:.1e} m\n",
-            modes.omega().last().expect("modes"),
-            point.omega().last().expect("modes"),
-            max_distance(&reference, &radau)
-        );
-        println!("| integrator | setting | tip error (m) | H(1 s)/H(0) | steps (rejected) | f / J / LU | CPU |");
-        println!("|---|---|---|---|---|---|---|");
-        let tolerances: Vec<(f64, f64)> = if quick {
-            vec![(1e-4, 1e-6), (1e-6, 1e-8)]
-        } else {
-            vec![(1e-4, 1e-6), (1e-5, 1e-7), (1e-6, 1e-8), (1e-7, 1e-9)]
-        };
-        let mut methods: Vec<Method> = tolerances
-            .iter()
-            .map(|&(r, a)| Method::Radau(r, a))
-            .collect();
-        methods.extend(tolerances.iter().map(|&(r, a)| Method::Dopri5(r, a)));
-        methods.extend([2.5e-4, 1.25e-4, 6.25e-5].map(|h| Method::AlphaFixed(0.5, h)));
-        let mut best_1e4: Option<(f64, String)> = None;
-        for method in methods {
-            let (tips, energy, stats, complete) = case.run(method);
-            let err = max_distance(&tips, &reference);
-            let cpu = cpu_per_call(budget, || {
-                std::hint::black_box(case.run(method));
-            });
-            let (name, setting) = method.label();
-            println!(
-                "| {name} | {setting} | {}{:.1e} | {energy:.6} | {} ({}) | {} / {} / {} | {} |",
-                if complete { "" } else { "stopped: " },
-                err,
-                stats.steps,
-                stats.rejected_steps,
-                stats.rhs_evaluations,
-                stats.jacobian_evaluations,
-                stats.factorizations,
-                fmt_time(cpu)
-            );
-            if complete && err <= 1e-4 && best_1e4.as_ref().is_none_or(|(c, _)| cpu < *c) {
-                best_1e4 = Some((cpu, format!("{name}, {setting}")));
-            }
-        }
-        match best_1e4 {
-            Some((cpu, what)) => println!(
-                "\nn = {n}, fastest run within 1e-4 m: {what}, {}.\n",
-                fmt_time(cpu)
-            ),
-            None => println!("\nn = {n}: no run reached 1e-4 m.\n"),
-        }
+    let n = 20;
+    let point = Modes::undeformed(&Case::new(n).full).expect("modes");
+    let case = Case::bars(n);
+    let modes = Modes::undeformed(&case.full).expect("modes");
+    let (reference, ..) = case.run(Method::Dopri5(1e-11, 1e-13));
+    let (radau, ..) = case.run(Method::Radau(1e-11, 1e-13));
+    println!(
+        "n = {n}: highest mode {:.1e} rad/s on bars ({:.1e} on point masses); reference \
+         against Radau at rtol 1e-11: {:.1e} m\n",
+        modes.omega().last().expect("modes"),
+        point.omega().last().expect("modes"),
+        max_distance(&reference, &radau)
+    );
+    println!("| integrator | setting | tip error (m) | H(1 s)/H(0) | steps (rejected) | f / J / LU | CPU |");
+    println!("|---|---|---|---|---|---|---|");
+    let tolerances: Vec<(f64, f64)> = if quick {
+        vec![(1e-4, 1e-6), (1e-6, 1e-8)]
+    } else {
+        vec![(1e-4, 1e-6), (1e-5, 1e-7), (1e-6, 1e-8), (1e-7, 1e-9)]
+    };
+    let mut methods: Vec<Method> = tolerances
+        .iter()
+        .map(|&(r, a)| Method::Radau(r, a))
+        .collect();
+    methods.extend(tolerances.iter().map(|&(r, a)| Method::Dopri5(r, a)));
+    methods.extend([2.5e-4, 1.25e-4, 6.25e-5].map(|h| Method::AlphaFixed(0.5, h)));
+    let best_1e4 = table_rows(&case, &methods, &reference, budget);
+    match best_1e4 {
+        Some((cpu, what)) => println!(
+            "\nn = {n}, fastest run within 1e-4 m: {what}, {}.\n",
+            fmt_time(cpu)
+        ),
+        None => println!("\nn = {n}: no run reached 1e-4 m.\n"),
     }
 }
 
@@ -359,30 +370,7 @@ fn main() {
     println!("\nn = 20: tip error against Dormand–Prince at rtol 1e-10 (max over the outputs)\n");
     println!("| integrator | setting | tip error (m) | H(1 s)/H(0) | steps (rejected) | f / J / LU | CPU |");
     println!("|---|---|---|---|---|---|---|");
-    let mut best_1e4: Option<(f64, String)> = None;
-    for method in methods {
-        let (tips, energy, stats, complete) = case.run(method);
-        let err = max_distance(&tips, &reference);
-        let cpu = cpu_per_call(budget, || {
-            std::hint::black_box(case.run(method));
-        });
-        let (name, setting) = method.label();
-        println!(
-            "| {name} | {setting} | {}{:.1e} | {energy:.6} | {} ({}) | {} / {} / {} | {} |",
-            if complete { "" } else { "stopped: " },
-            err,
-            stats.steps,
-            stats.rejected_steps,
-            stats.rhs_evaluations,
-            stats.jacobian_evaluations,
-            stats.factorizations,
-            fmt_time(cpu)
-        );
-        if err <= 1e-4 && best_1e4.as_ref().is_none_or(|(c, _)| cpu < *c) {
-            best_1e4 = Some((cpu, format!("{name}, {setting}")));
-        }
-    }
-    match best_1e4 {
+    match table_rows(&case, &methods, &reference, budget) {
         Some((cpu, what)) => println!(
             "\nFastest run within 1e-4 m: {what}, {} (goal: under 10 ms).",
             fmt_time(cpu)
