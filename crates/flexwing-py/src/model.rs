@@ -216,6 +216,12 @@ impl PyBeam {
     fn inertias<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray1<f64>> {
         out1(py, self.model.beam().inertias().to_vec())
     }
+    /// Element rotary inertias in bending about their midpoints (kg·m²), ``(n,)``; zeros for
+    /// point masses.
+    #[getter]
+    fn bending_inertias<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray1<f64>> {
+        out1(py, self.model.beam().bending_inertias().to_vec())
+    }
     /// Bending spring stiffnesses (N·m/rad), ``(n,)``, joint ``i`` at node ``i``.
     #[getter]
     fn bending_stiffness<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray1<f64>> {

@@ -122,12 +122,12 @@ def test_rotary_inertia_in_bending():
     falling as 1/n^2; bound 2e-5."""
     n, m, length = 8, 0.2, 1.0
     point = flexwing.FullModel(flexwing.Beam(length=length, elements=n, EI=50.0, mass_per_length=m))
-    bars = flexwing.FullModel(
-        flexwing.Beam(length=length, elements=n, EI=50.0, mass_per_length=m, element_inertia="bar")
-    )
+    bars_beam = flexwing.Beam(length=length, elements=n, EI=50.0, mass_per_length=m, element_inertia="bar")
+    bars = flexwing.FullModel(bars_beam)
+    ell = length / n
+    assert np.allclose(bars_beam.bending_inertias, m * ell**3 / 12.0, rtol=1e-14, atol=0.0)
     q = np.linspace(-0.2, 0.3, n)
     T = np.tril(np.ones((n, n)))
-    ell = length / n
     expected = point.mass_matrix(q) + T.T @ (m * ell * ell**2 / 12.0 * np.eye(n)) @ T
     assert np.abs(bars.mass_matrix(q) - expected).max() <= 1e-12 * np.abs(expected).max()
 

@@ -161,6 +161,10 @@ class Beam:
     def inertias(self) -> Vector:
         """Element polar inertias about their mass centres (kg m²), ``(n,)``."""
     @property
+    def bending_inertias(self) -> Vector:
+        """Element rotary inertias in bending about their midpoints (kg m²), ``(n,)``; zeros for
+        point masses."""
+    @property
     def bending_stiffness(self) -> Vector:
         """Bending spring stiffnesses (N m/rad), ``(n,)``, joint i at node i."""
     @property
