@@ -501,27 +501,8 @@ fn alpha_scaling(quick: bool) {
     }
 }
 
-/// A beam of `n` equal elements, tip-load springs; `bars`: the elements are rigid bars
-/// (`beam::RotaryInertia::elements`), else the paper's point masses.
-fn chain(length: f64, section: &SectionProperties, n: usize, bars: bool) -> FullModel {
-    chain_with(
-        length,
-        section,
-        n,
-        RotaryInertia {
-            elements: bars,
-            section: None,
-        },
-    )
-}
-
 /// A beam of `n` equal elements, tip-load springs, with the rotary inertia `rotary` in bending.
-fn chain_with(
-    length: f64,
-    section: &SectionProperties,
-    n: usize,
-    rotary: RotaryInertia,
-) -> FullModel {
+fn chain(length: f64, section: &SectionProperties, n: usize, rotary: RotaryInertia) -> FullModel {
     let beam = Beam::new(
         length,
         section,
@@ -624,46 +605,29 @@ fn bars_table(quick: bool) {
     };
     let table4 = flexwing::paper::table4_section();
     let table1_section = flexwing::paper::table1_section();
-    // The Table 1 beam's elements: point masses, bars, and bars with a section flap inertia
-    // ρI = 0.005 kg·m (0.09 m d0²; not the paper's data): the failures that remain with bars are
-    // the twist-dependent part m d0² sin²ψ of the elements' bending inertia, which ρI bounds
-    // at every n (docs/model-choices.md, "The coupled beam's Newton failures").
-    let flap = 0.005;
-    for (bars, with_flap) in [(false, false), (true, false), (true, true)] {
-        let label = match (bars, with_flap) {
-            (_, true) => "bars + ρI 0.005 kg·m",
-            (true, false) => "bars",
-            (false, false) => "point masses",
-        };
+    // Point masses, bars, and (Table 1 only) bars with a section flap inertia ρI = 0.005 kg·m
+    // (0.09 m d0²; not the paper's data): the failures that remain with bars are the
+    // twist-dependent part m d0² sin²ψ of the elements' bending inertia, which ρI bounds at every
+    // n (docs/model-choices.md, "The coupled beam's Newton failures").
+    let rotary = |elements: bool, flap: Option<f64>| RotaryInertia {
+        elements,
+        section: flap.map(Profile::Uniform),
+    };
+    let kinds = [
+        ("point masses", rotary(false, None), true),
+        ("bars", rotary(true, None), true),
+        ("bars + ρI 0.005 kg·m", rotary(true, Some(0.005)), false),
+    ];
+    for (label, inertia, with_case_b) in kinds {
         let mut prev = None;
-        for &n in t1_sizes.iter().filter(|_| with_flap) {
-            let full = chain_with(
-                16.0,
-                &table1_section,
-                n,
-                RotaryInertia {
-                    elements: true,
-                    section: Some(Profile::Uniform(flap)),
-                },
-            );
-            let run = radau_run(&full, &table1.0, table1.1.clone(), 2.0, rtol);
-            print_table1_row(n, label, &run, prev);
-            prev = Some((
-                n,
-                run.seconds / (run.stats.steps + run.stats.rejected_steps) as f64,
-            ));
-        }
-        if with_flap {
-            continue;
-        }
         let mut reference_1000: Option<Vec<[f64; 2]>> = None;
-        for &n in b_sizes {
+        for &n in b_sizes.iter().filter(|_| with_case_b) {
             // Point masses beyond 3000: minutes of Newton failures (docs/performance.md).
-            if !bars && n > 3000 {
+            if !inertia.elements && n > 3000 {
                 println!("| case (b) | {n} | {label} | – | – | – | – | skipped (over a minute) | – | – |");
                 continue;
             }
-            let full = chain(1.0, &table4, n, bars);
+            let full = chain(1.0, &table4, n, inertia.clone());
             let run = radau_run(&full, &case_b.0, case_b.1.clone(), 1.0, rtol);
             let reference = if n <= 1000 {
                 let r = radau_run(&full, &case_b.0, case_b.1.clone(), 1.0, 1e-8).tips;
@@ -673,7 +637,7 @@ fn bars_table(quick: bool) {
                 r
             } else {
                 reference_1000.clone().unwrap_or_else(|| {
-                    let small = chain(1.0, &table4, 1000, bars);
+                    let small = chain(1.0, &table4, 1000, inertia.clone());
                     radau_run(&small, &case_b.0, case_b.1.clone(), 1.0, 1e-8).tips
                 })
             };
@@ -682,42 +646,31 @@ fn bars_table(quick: bool) {
             } else {
                 "–".into()
             };
-            let attempts = (run.stats.steps + run.stats.rejected_steps) as f64;
-            let per = run.seconds / attempts;
-            println!(
-                "| case (b) | {n} | {label} | {} | {} | {} | {error} | {} | {} | {} |{}",
-                run.stats.steps,
-                run.stats.rejected_steps,
-                run.stats.newton_failures,
-                fmt_time(run.seconds),
-                fmt_time(per),
-                slope(prev, n, per),
-                run.failure
-                    .as_ref()
-                    .map(|e| format!(" stopped: {e}"))
-                    .unwrap_or_default()
-            );
-            prev = Some((n, per));
+            prev = Some(print_row("case (b)", n, label, &run, &error, prev));
         }
         let mut prev = None;
         for &n in t1_sizes {
-            let full = chain(16.0, &table1_section, n, bars);
+            let full = chain(16.0, &table1_section, n, inertia.clone());
             let run = radau_run(&full, &table1.0, table1.1.clone(), 2.0, rtol);
-            print_table1_row(n, label, &run, prev);
-            prev = Some((
-                n,
-                run.seconds / (run.stats.steps + run.stats.rejected_steps) as f64,
-            ));
+            prev = Some(print_row("Table 1", n, label, &run, "–", prev));
         }
     }
 }
 
-/// One Table 1 row of [`bars_table`]; `prev`: the previous row's size and time per attempt.
-fn print_table1_row(n: usize, label: &str, run: &FullRun, prev: Option<(usize, f64)>) {
+/// One row of [`bars_table`] (`prev`: the previous row's size and time per step attempt, for
+/// the slope); returns this row's.
+fn print_row(
+    case: &str,
+    n: usize,
+    label: &str,
+    run: &FullRun,
+    error: &str,
+    prev: Option<(usize, f64)>,
+) -> (usize, f64) {
     let attempts = (run.stats.steps + run.stats.rejected_steps) as f64;
     let per = run.seconds / attempts;
     println!(
-        "| Table 1 | {n} | {label} | {} | {} | {} | – | {} | {} | {} |{}",
+        "| {case} | {n} | {label} | {} | {} | {} | {error} | {} | {} | {} |{}",
         run.stats.steps,
         run.stats.rejected_steps,
         run.stats.newton_failures,
@@ -729,6 +682,7 @@ fn print_table1_row(n: usize, label: &str, run: &FullRun, prev: Option<(usize, f
             .map(|e| format!(" stopped: {e}"))
             .unwrap_or_default()
     );
+    (n, per)
 }
 
 /// The diagonal of `M(0)⁻¹` that gives the momenta their tolerances (once per run,

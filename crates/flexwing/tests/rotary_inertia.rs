@@ -119,6 +119,24 @@ fn bad_rotary_inertia_is_an_input_error_naming_the_field() {
             .unwrap_err();
         assert_eq!(e.field, "wing.section.rotary_inertia", "{e}");
     }
+    // A rotary inertia that puts an element's bending frequency squared below 1e-60 (the range
+    // of `magnitude::FREQUENCY_SQUARED`): one element of 1000 m, EI = m = 1e-30, ρI = 1e30 gives
+    // K_θ/(m ℓ² + J_b) ≈ 3e-66.
+    let tiny = bending_only(Profile::Uniform(1e-30), Profile::Uniform(1e-30));
+    let b = Beam::new(
+        1000.0,
+        &tiny,
+        &Discretization::Uniform(1),
+        Calibration::TipLoad,
+    )
+    .unwrap();
+    let r = RotaryInertia {
+        elements: false,
+        section: Some(Profile::Uniform(1e30)),
+    };
+    let e = b.with_rotary_inertia("wing", &tiny, &r).unwrap_err();
+    assert_eq!(e.field, "wing.section.rotary_inertia", "{e}");
+    assert!(e.reason.contains("K_θ/(m ℓ² + J_b)"), "{e}");
 }
 
 /// `½ Σ J_b,i θ̇_i²`, `θ̇` the running sums of the bending rates.

@@ -213,16 +213,7 @@ impl Beam {
                 (masses, offsets, inertias, Some(k))
             }
         };
-        check_frequencies(
-            prefix,
-            &lengths,
-            &masses,
-            &offsets,
-            &inertias,
-            &bending_stiffness,
-            torsion_stiffness.as_deref(),
-        )?;
-        Ok(Self {
+        let beam = Self {
             length,
             nodes,
             lengths,
@@ -233,7 +224,9 @@ impl Beam {
             bending_stiffness,
             torsion_stiffness,
             calibration,
-        })
+        };
+        beam.check_frequencies(prefix, "section.EI")?;
+        Ok(beam)
     }
 
     /// The same beam with rotary inertia in bending (zero before: the paper's point masses).
@@ -273,14 +266,13 @@ impl Beam {
                 Sign::NonNegative,
             )?;
         }
-        let n = self.n_elements();
-        let mut j = vec![0.0; n];
-        let nodes = self.nodes.clone();
+        let mut j = vec![0.0; self.n_elements()];
+        let nodes = &self.nodes;
         let m = &section.mass_per_length;
         let zero = Profile::Uniform(0.0);
         let ri = rotary.section.as_ref().unwrap_or(&zero);
         // ∫ m (x − x_mid)² and ∫ ρI per piece: polynomials of degree ≤ 3, exact by Simpson.
-        for_each_piece(&nodes, [m, ri], |i, p| {
+        for_each_piece(nodes, [m, ri], |i, p| {
             let mid = 0.5 * (nodes[i] + nodes[i + 1]);
             if rotary.elements {
                 // Simpson's rule in x needs the integrand at a, (a + b)/2 and b.
@@ -295,23 +287,9 @@ impl Beam {
             }
             j[i] += p.simpson(|v| v[1]);
         });
-        for i in 0..n {
-            let w2 = self.bending_stiffness[i] / (self.masses[i] * self.lengths[i].powi(2) + j[i]);
-            let (lo, _) = crate::magnitude::FREQUENCY_SQUARED;
-            if !(w2 >= lo) {
-                return Err(InputError::new(
-                    field("section.rotary_inertia"),
-                    format!(
-                        "element {} has a bending frequency squared K_θ/(m ℓ² + J_b) = {} (per \
-                         time unit squared), below {lo:e}: the rotary inertia is out of \
-                         proportion with the stiffness (docs/model-choices.md)",
-                        i + 1,
-                        crate::text::short(w2)
-                    ),
-                ));
-            }
-        }
         self.bending_inertias = j;
+        // The rotary inertia only lowers the bending frequencies: out of range, it is to blame.
+        self.check_frequencies(prefix, "section.rotary_inertia")?;
         Ok(self)
     }
 
@@ -347,6 +325,47 @@ impl Beam {
     /// (kg·m²); zeros unless set by [`Beam::with_rotary_inertia`].
     pub fn bending_inertias(&self) -> &[f64] {
         &self.bending_inertias
+    }
+
+    /// The second rule of [`crate::magnitude`]: every element's frequency squared, its joint
+    /// spring against its own inertia (`K_θ,i / (m_i ℓ_i² + J_b,i)` in bending, `K_ψ,i / (J_i +
+    /// m_i d0_i²)` in torsion), lies within
+    /// [`FREQUENCY_SQUARED`](crate::magnitude::FREQUENCY_SQUARED), so that the stiffness and mass
+    /// matrices the solvers combine are within 120 decades of each other. A bending frequency
+    /// outside names `{prefix}.{bending_key}`, a torsion one `{prefix}.section.GJ`.
+    fn check_frequencies(&self, prefix: &str, bending_key: &str) -> Result<(), InputError> {
+        let (lo, hi) = crate::magnitude::FREQUENCY_SQUARED;
+        let check = |key: &str, i: usize, w2: f64, formula: &str| {
+            if (lo..=hi).contains(&w2) {
+                return Ok(());
+            }
+            Err(InputError::new(
+                crate::field(prefix, key),
+                format!(
+                    "with the mass and length given, element {} has a frequency squared \
+                     {formula} = {} (per time unit squared), outside [{lo:e}, {hi:e}]: \
+                     stiffness, mass and length are out of proportion (the range accepted, \
+                     docs/model-choices.md)",
+                    i + 1,
+                    crate::text::short(w2)
+                ),
+            ))
+        };
+        for i in 0..self.n_elements() {
+            let (m, l, j_b) = (self.masses[i], self.lengths[i], self.bending_inertias[i]);
+            let w2 = self.bending_stiffness[i] / (m * l * l + j_b);
+            let formula = if j_b == 0.0 {
+                "K_θ/(m ℓ²)"
+            } else {
+                "K_θ/(m ℓ² + J_b)"
+            };
+            check(bending_key, i, w2, formula)?;
+            if let Some(k) = &self.torsion_stiffness {
+                let w2 = k[i] / (self.inertias[i] + m * self.offsets[i] * self.offsets[i]);
+                check("section.GJ", i, w2, "K_ψ/(J + m d0²)")?;
+            }
+        }
+        Ok(())
     }
     /// Bending spring stiffnesses `K_θ,i` (N·m/rad), joint `i` at node `i − 1`.
     pub fn bending_stiffness(&self) -> &[f64] {
@@ -443,45 +462,6 @@ fn stations(prefix: &str, length: f64, d: &Discretization) -> Result<Vec<f64>, I
             Ok(out)
         }
     }
-}
-
-/// The second rule of [`crate::magnitude`]: every element's frequency squared, its joint spring
-/// against its own inertia (`K_θ,i / (m_i ℓ_i²)` in bending, `K_ψ,i / (J_i + m_i d0_i²)` in
-/// torsion), lies within [`FREQUENCY_SQUARED`](crate::magnitude::FREQUENCY_SQUARED), so that the
-/// stiffness and mass matrices the solvers combine are within 120 decades of each other.
-fn check_frequencies(
-    prefix: &str,
-    lengths: &[f64],
-    masses: &[f64],
-    offsets: &[f64],
-    inertias: &[f64],
-    bending: &[f64],
-    torsion: Option<&[f64]>,
-) -> Result<(), InputError> {
-    let (lo, hi) = crate::magnitude::FREQUENCY_SQUARED;
-    let short = crate::text::short;
-    let check = |key: &str, i: usize, w2: f64, formula: &str| {
-        if (lo..=hi).contains(&w2) {
-            return Ok(());
-        }
-        Err(InputError::new(
-            crate::field(prefix, key),
-            format!(
-                "with the mass and length given, element {} has a frequency squared {formula} =                  {} (per time unit squared), outside [{lo:e}, {hi:e}]: stiffness, mass and length                  are out of proportion (the range accepted, docs/model-choices.md)",
-                i + 1,
-                short(w2)
-            ),
-        ))
-    };
-    for i in 0..lengths.len() {
-        let w2 = bending[i] / (masses[i] * lengths[i] * lengths[i]);
-        check("section.EI", i, w2, "K_θ/(m ℓ²)")?;
-        if let Some(k) = torsion {
-            let w2 = k[i] / (inertias[i] + masses[i] * offsets[i] * offsets[i]);
-            check("section.GJ", i, w2, "K_ψ/(J + m d0²)")?;
-        }
-    }
-    Ok(())
 }
 
 /// With the inertia given about the elastic axis, `I_cg = I_ea − m d0²` must not be negative.

@@ -89,31 +89,23 @@ impl ReducedModel {
                 }
             }
         }
-        let (n, r) = (full.n_elements(), indices.len());
-        let mut mass_constant = DMatrix::zeros(r, r);
-        // Rotary inertia in bending: Σ J_b,i θ̇_i², constant like the polar inertias.
-        if full.rotary.iter().any(|&j| j != 0.0) {
-            for a in 0..r {
-                for b in 0..r {
-                    mass_constant[(a, b)] = (0..n)
-                        .map(|i| full.rotary[i] * phi_abs[(i, a)] * phi_abs[(i, b)])
-                        .sum();
-                }
-            }
-        }
-        if full.torsion {
-            let fluid = full.fluid.as_ref().map(|f| f.inertia.as_slice());
-            for a in 0..r {
-                for b in 0..r {
-                    mass_constant[(a, b)] += (0..n)
-                        .map(|i| {
-                            let j = full.inertia[i] + fluid.map_or(0.0, |f| f[i]);
-                            j * phi_abs[(n + i, a)] * phi_abs[(n + i, b)]
-                        })
-                        .sum::<f64>();
-                }
-            }
-        }
+        // The configuration-independent inertias per absolute rate: rotary inertias in bending
+        // (θ̇ rows), polar inertias of the structure and the fluid (ψ̇ rows); then
+        // `mass_constant = Φ_absᵀ diag(w) Φ_abs`.
+        let n = full.n_elements();
+        let fluid = full.fluid.as_ref().map(|f| f.inertia.as_slice());
+        let w: Vec<f64> = (0..full.n_dofs())
+            .map(|k| match k.checked_sub(n) {
+                None => full.rotary[k],
+                Some(i) => full.inertia[i] + fluid.map_or(0.0, |f| f[i]),
+            })
+            .collect();
+        let r = indices.len();
+        let mass_constant = DMatrix::from_fn(r, r, |a, b| {
+            (0..w.len())
+                .map(|k| w[k] * phi_abs[(k, a)] * phi_abs[(k, b)])
+                .sum::<f64>()
+        });
         Ok(Self {
             full: full.clone(),
             phi,
