@@ -160,7 +160,7 @@ pub struct StaticSolution {
 /// inside an element is not assessed ([`StaticSolution::stable`] is `None`): its test, the sign
 /// of the tangent's determinant, takes a dense LU there, O(n³) — about 0.05 s at 600
 /// coordinates, an hour at 20 000 (measured 12 min for the two n = 10 000 solves of
-/// tests/statics_elastica.rs). Followers at nodes and element midpoints (a tip follower force,
+/// tests/suite/statics_elastica.rs). Followers at nodes and element midpoints (a tip follower force,
 /// distributed followers) take the sign from the pivots of the O(n) chain factorization of the
 /// full model, exact for them, at any size.
 pub const FOLLOWER_STABILITY_MAX_DOFS: usize = 600;
