@@ -15,7 +15,7 @@
 //! `φ = 0`), by their Taylor series for `θ² < 4` and the closed forms beyond, so that dual numbers
 //! get exact derivatives everywhere, the undeformed state included.
 
-use super::algebra::{add, cross, dot, hat, identity, madd, mscale, Real, M3, V3};
+use super::algebra::{cross, dot, hat, identity, madd, mscale, Real, M3, V3};
 
 /// `θ²` below which the coefficients are summed from their series (at `θ² = 4` the terms of
 /// [`SERIES`] fall below 1e-28; the closed forms lose at most ~20 ε beyond).
@@ -150,7 +150,7 @@ pub(crate) fn tangent_left_derivative<D: Real>(
 pub(crate) fn tangent_left_times<D: Real>(phi: &V3<D>, v: &V3<D>, c: &Coefficients<D>) -> V3<D> {
     let pv = cross(phi, v);
     let ppv = cross(phi, &pv);
-    add(
+    super::algebra::add(
         v,
         &add(
             &super::algebra::scale(c.a, &pv),
