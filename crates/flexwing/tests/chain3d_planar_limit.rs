@@ -4,14 +4,16 @@
 //! parametrization. Both models' equations are compared at the same states (to round-off), and
 //! a static solve and a dynamic run of each are compared (to the solvers' tolerances).
 
-use flexwing::beam::{Beam, Calibration, Discretization, Profile, RotaryInertia, SectionProperties};
+use flexwing::beam::{
+    Beam, Calibration, Discretization, Profile, RotaryInertia, SectionProperties,
+};
 use flexwing::model::chain3d::{
     Beam3d, Chain3d, Geometry3d, JointCalibration, SectionInertia, SectionStiffness,
 };
 use flexwing::model::{DistributedForce, Force, FullModel, Load, StructuralModel};
 use flexwing::solve::integrate::{ImplicitMidpoint, MidpointOptions, Tolerances};
-use flexwing::solve::{solve_static, Damping, EquationsOfMotion, Gyroscopic, StaticOptions};
 use flexwing::solve::TimeFunction;
+use flexwing::solve::{solve_static, Damping, EquationsOfMotion, Gyroscopic, StaticOptions};
 use nalgebra::DVector;
 
 const L: f64 = 1.5;
@@ -31,17 +33,22 @@ fn models(n: usize) -> (FullModel, Chain3d) {
         mass_per_length: m.clone(),
         torsion: None,
     };
-    let beam = Beam::new(L, &section, &Discretization::Uniform(n), Calibration::TipLoad)
-        .unwrap()
-        .with_rotary_inertia(
-            "beam",
-            &section,
-            &RotaryInertia {
-                elements: true,
-                section: None,
-            },
-        )
-        .unwrap();
+    let beam = Beam::new(
+        L,
+        &section,
+        &Discretization::Uniform(n),
+        Calibration::TipLoad,
+    )
+    .unwrap()
+    .with_rotary_inertia(
+        "beam",
+        &section,
+        &RotaryInertia {
+            elements: true,
+            section: None,
+        },
+    )
+    .unwrap();
     let planar = FullModel::new(beam);
     let stiffness = SectionStiffness {
         gj: Profile::Uniform(40.0),
@@ -113,7 +120,9 @@ fn the_equations_are_the_planar_chains_at_every_in_plane_state() {
         let q: Vec<f64> = (0..n)
             .map(|i| 0.15 * (k as f64 + 1.0) * (0.9 * i as f64 + k as f64).sin())
             .collect();
-        let qd: Vec<f64> = (0..n).map(|i| 2.0 * (1.7 * i as f64 - k as f64).cos()).collect();
+        let qd: Vec<f64> = (0..n)
+            .map(|i| 2.0 * (1.7 * i as f64 - k as f64).cos())
+            .collect();
         let x = lift(&q);
         let xd = lift(&qd);
         // Positions.
@@ -149,7 +158,10 @@ fn the_equations_are_the_planar_chains_at_every_in_plane_state() {
             assert!((vc[3 * i + 2] - vp[i]).abs() < 1e-11 * sv, "ẋ[{i}]");
             for a in 0..2 {
                 // Out of plane: exact zeros.
-                assert_eq!((qc[3 * i + a], mc[3 * i + a], gc[3 * i + a]), (0.0, 0.0, 0.0));
+                assert_eq!(
+                    (qc[3 * i + a], mc[3 * i + a], gc[3 * i + a]),
+                    (0.0, 0.0, 0.0)
+                );
                 assert_eq!(vc[3 * i + a], 0.0);
             }
         }
@@ -213,7 +225,10 @@ fn static_and_dynamic_runs_match_the_planar_chains() {
         let x: Vec<f64> = yc[..3 * n].to_vec();
         let a = planar.node_positions(&planar.kinematics(&q))[n];
         let b = chain.node_positions(&x)[n];
-        worst = worst.max((a[0] - b[0]).abs()).max((a[1] - b[1]).abs()).max(b[2].abs());
+        worst = worst
+            .max((a[0] - b[0]).abs())
+            .max((a[1] - b[1]).abs())
+            .max(b[2].abs());
         amplitude = amplitude.max(a[1].abs());
         for i in 0..n {
             assert_eq!((x[3 * i], x[3 * i + 1]), (0.0, 0.0), "out-of-plane motion");

@@ -128,7 +128,11 @@ fn an_end_moment_inclined_to_the_axis_makes_a_helix() {
     // |M| L / EI = 5 rad, 50° from the axis; GJ ≠ EI (the centreline does not depend on GJ).
     let (ei, gj) = (2.0, 0.7);
     let (mag, angle) = (10.0, 50f64.to_radians());
-    let m = [mag * angle.cos(), mag * angle.sin() * 0.6, mag * angle.sin() * 0.8];
+    let m = [
+        mag * angle.cos(),
+        mag * angle.sin() * 0.6,
+        mag * angle.sin() * 0.8,
+    ];
     let ns = [8, 16, 32, 64];
     let (mut errors, mut frame_errors) = (Vec::new(), Vec::new());
     for n in ns {
@@ -234,5 +238,8 @@ fn lateral_torsional_buckling_turns_the_stability_flag_at_prandtls_load() {
          (Prandtl {prandtl})"
     );
     assert!((ratio / 10.0 - 1.0).abs() < 0.02, "{ratio}");
-    assert!((linear_limit / prandtl - 1.0).abs() < 5e-5, "{linear_limit}");
+    assert!(
+        (linear_limit / prandtl - 1.0).abs() < 5e-5,
+        "{linear_limit}"
+    );
 }
