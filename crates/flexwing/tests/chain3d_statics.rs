@@ -207,8 +207,8 @@ fn lateral_torsional_buckling_turns_the_stability_flag_at_prandtls_load() {
     // (EI_lag + GJ)/(2 EI_flap) (the Kirchhoff–Michell correction for pre-buckling curvature,
     // exact for a uniform moment; Trahair, *Flexural–Torsional Buckling of Structures*, 1993,
     // §3.8): +1e-3 for EI_flap = 1000, +1e-4 for 10 000.
-    let (gj, ei_lag) = (1.0, 1.0);
-    let prandtl = 4.0126_f64 * (ei_lag * gj as f64).sqrt();
+    let (gj, ei_lag): (f64, f64) = (1.0, 1.0);
+    let prandtl = 4.0126_f64 * (ei_lag * gj).sqrt();
     let p_try = 1.5 * prandtl;
     let mut loads = Vec::new();
     for ei_flap in [1e3, 1e4] {

@@ -152,7 +152,7 @@ pub(crate) fn tangent_left_times<D: Real>(phi: &V3<D>, v: &V3<D>, c: &Coefficien
     let ppv = cross(phi, &pv);
     super::algebra::add(
         v,
-        &add(
+        &super::algebra::add(
             &super::algebra::scale(c.a, &pv),
             &super::algebra::scale(c.b, &ppv),
         ),
