@@ -388,3 +388,48 @@ fn an_in_plane_state_keeps_exact_zeros_out_of_plane() {
         }
     }
 }
+
+#[test]
+fn bad_loads_name_their_field() {
+    let model = general_chain(3);
+    let e = model
+        .apply(
+            &[SpatialLoad::PointForce {
+                span: 2.5,
+                force: SpatialVector::Dead([0.0, 1.0, 0.0]),
+            }],
+            "loads",
+        )
+        .unwrap_err();
+    assert_eq!(e.field, "loads[0].span");
+    let e = model
+        .apply(
+            &[
+                SpatialLoad::Gravity {
+                    acceleration: [0.0, -9.81, 0.0],
+                },
+                SpatialLoad::PointMoment {
+                    span: 1.0,
+                    moment: SpatialVector::Follower([0.0, f64::NAN, 0.0]),
+                },
+            ],
+            "loads",
+        )
+        .unwrap_err();
+    assert_eq!(e.field, "loads[1].moment");
+    assert!(e.reason.contains("component 1"), "{e}");
+    let e = model
+        .apply(
+            &[SpatialLoad::Distributed(SpatialDistributed::Dead([
+                Profile::Uniform(0.0),
+                Profile::Table {
+                    x: vec![0.0, 1.0],
+                    value: vec![1.0, 2.0],
+                },
+                Profile::Uniform(0.0),
+            ]))],
+            "loads",
+        )
+        .unwrap_err();
+    assert_eq!(e.field, "loads[0].force[1]");
+}
