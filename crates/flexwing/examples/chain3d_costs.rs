@@ -14,8 +14,8 @@
 mod common;
 
 use flexwing::model::chain3d::{
-    Beam3d, Chain3d, Geometry3d, JointCalibration, SectionInertia, SectionStiffness,
-    SpatialLoad, SpatialVector,
+    Beam3d, Chain3d, Geometry3d, JointCalibration, SectionInertia, SectionStiffness, SpatialLoad,
+    SpatialVector,
 };
 use flexwing::model::StructuralModel;
 use flexwing::solve::integrate::OdeSystem;
