@@ -134,6 +134,20 @@ impl Chain3d {
         mo.omega
     }
 
+    /// Node velocities `Ṗ_0 … Ṗ_n` (m/s) at `x` for the rates `xdot`. With a mode shape (or any
+    /// increment `δx`) for `xdot`, the linearized nodal displacements `δP_k = (∂P_k/∂x) δx` of a
+    /// mode plot; [`Chain3d::angular_velocities`] gives the elements' rotations likewise.
+    pub fn node_velocities(&self, x: &[f64], xdot: &[f64]) -> Vec<[f64; 3]> {
+        let fr = self.frames(x);
+        let mut mo = Motion::new(self.n);
+        self.motion(&fr, xdot, &mut mo);
+        let mut out = mo.v;
+        let last = self.n - 1;
+        let tip = super::algebra::add(&out[last], &cross(&mo.omega[last], &fr.d[last]));
+        out.push(tip);
+        out
+    }
+
     /// Kinetic energy `T(x, ẋ)` (J).
     pub fn kinetic_energy(&self, x: &[f64], xdot: &[f64]) -> f64 {
         let fr = self.frames(x);

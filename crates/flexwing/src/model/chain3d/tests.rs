@@ -433,3 +433,22 @@ fn bad_loads_name_their_field() {
         .unwrap_err();
     assert_eq!(e.field, "loads[0].force[1]");
 }
+
+#[test]
+fn node_velocities_are_the_point_jacobians_times_the_rates() {
+    let n = 4;
+    let model = general_chain(n);
+    let (x, xd) = state(n);
+    let v = model.node_velocities(&x, &xd);
+    let nodes = model.beam().nodes().to_vec();
+    for (k, s) in nodes.iter().enumerate() {
+        let j = model.point_jacobian(&x, *s);
+        let want = j * DVector::from_column_slice(&xd);
+        for a in 0..3 {
+            assert!(
+                (v[k][a] - want[a]).abs() < 1e-13 * want.amax().max(1.0),
+                "node {k}"
+            );
+        }
+    }
+}
