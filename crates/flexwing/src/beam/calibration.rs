@@ -88,7 +88,7 @@ fn piece_moments(p: &Piece<1>) -> (f64, f64, [f64; 5]) {
 }
 
 /// `∫ dx/EI` over each interval `[bounds[i], bounds[i + 1]]`, exactly, in O(intervals + stations).
-fn flexibilities(ei: &Profile, bounds: &[f64]) -> Vec<f64> {
+pub(crate) fn flexibilities(ei: &Profile, bounds: &[f64]) -> Vec<f64> {
     let mut out = vec![0.0; bounds.len() - 1];
     for_each_piece(bounds, [ei], |i, p| {
         let (_, h_over_e, m) = piece_moments(&p);

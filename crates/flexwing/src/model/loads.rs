@@ -98,6 +98,9 @@ pub enum Load {
 pub struct AppliedLoads {
     items: Vec<Item>,
     n_loads: usize,
+    /// Items resolved against a 3-D chain (`model::chain3d`, [`super::Chain3d::apply`]); empty
+    /// for the planar models, and `items` empty for the 3-D chain.
+    pub(crate) spatial: Vec<super::chain3d::SpatialItem>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -162,7 +165,10 @@ impl AppliedLoads {
                 scales[it.load] == 0.0 || (ft == 0.0 && fn_ == 0.0)
             }
             _ => true,
-        })
+        }) && self
+            .spatial
+            .iter()
+            .all(|it| scales[it.load] == 0.0 || it.is_conservative())
     }
 
     /// No loads at all.
@@ -170,7 +176,22 @@ impl AppliedLoads {
         Self {
             items: Vec::new(),
             n_loads: 0,
+            spatial: Vec::new(),
         }
+    }
+
+    /// Loads resolved against a 3-D chain.
+    pub(crate) fn from_spatial(spatial: Vec<super::chain3d::SpatialItem>, n_loads: usize) -> Self {
+        Self {
+            items: Vec::new(),
+            n_loads,
+            spatial,
+        }
+    }
+
+    /// Whether these loads were resolved against a planar model (or are empty).
+    pub(crate) fn has_planar_items(&self) -> bool {
+        !self.items.is_empty()
     }
 }
 
@@ -282,6 +303,7 @@ impl FullModel {
         Ok(AppliedLoads {
             items,
             n_loads: loads.len(),
+            spatial: Vec::new(),
         })
     }
 

@@ -590,19 +590,13 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
 /// `dx` (the map `x ↦ q` is linear, so for a difference of two states this is the largest
 /// change of an element's rotation between them).
 pub(super) fn max_rotation<M: StructuralModel>(model: &M, dx: &[f64]) -> f64 {
-    let q = model.full_coordinates(dx);
-    let n = model.full_model().n_elements();
     let mut worst = 0.0_f64;
-    for block in q.chunks(n) {
-        let mut angle = 0.0;
-        for dq in block {
-            angle += dq;
-            if angle.is_nan() {
-                // A non-finite state is infinitely far.
-                return f64::INFINITY;
-            }
-            worst = worst.max(angle.abs());
+    for angle in model.element_rotations(dx) {
+        if angle.is_nan() {
+            // A non-finite state is infinitely far.
+            return f64::INFINITY;
         }
+        worst = worst.max(angle.abs());
     }
     worst
 }

@@ -9,6 +9,7 @@ use flexwing::solve::TimeFunction;
 use std::path::PathBuf;
 
 pub mod aero_reference;
+pub mod chain3d;
 pub mod elastica;
 pub mod typical_section;
 
