@@ -18,8 +18,8 @@ use flexwing::beam::Profile;
 use flexwing::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCondition};
 use flexwing::model::{AppliedLoads, ReducedModel, StructuralModel};
 use flexwing::solve::aeroelastic::{
-    flutter, response, AeroelasticEquations, FlightHistory, FlutterPlan, Gust, GustShape,
-    ResponseOutcome, ResponsePlan,
+    flutter, response, AeroelasticEquations, FlightHistory, FlutterOptions, Gust, GustShape,
+    ResponseOptions, ResponseSolution,
 };
 use flexwing::solve::integrate::{IntegratorStats, Radau, RadauOptions, Tolerances};
 use flexwing::solve::{AuditLimits, Damping};
@@ -30,8 +30,8 @@ fn patil(n: usize) -> Aeroelastic {
 
 /// The flutter-speed plan: `modes` branches through `speeds` equal steps to 40 m/s, flutter
 /// speed to 1e-6.
-fn flutter_plan(modes: usize, speeds: usize) -> FlutterPlan {
-    FlutterPlan::new(
+fn flutter_plan(modes: usize, speeds: usize) -> FlutterOptions {
+    FlutterOptions::new(
         (1..=speeds)
             .map(|k| 40.0 * k as f64 / speeds as f64)
             .collect(),
@@ -39,7 +39,7 @@ fn flutter_plan(modes: usize, speeds: usize) -> FlutterPlan {
     )
 }
 
-fn gust_plan(rtol: f64) -> ResponsePlan {
+fn gust_plan(rtol: f64) -> ResponseOptions {
     let flight = FlightHistory {
         initial: FlightCondition::at_speed(25.0),
         speed_change: None,
@@ -51,7 +51,7 @@ fn gust_plan(rtol: f64) -> ResponsePlan {
             spanwise: Profile::Uniform(1.0),
         }),
     };
-    let mut plan = ResponsePlan::new(flight, 2.0, 0.02);
+    let mut plan = ResponseOptions::new(flight, 2.0, 0.02);
     plan.rtol = rtol;
     plan
 }
@@ -66,7 +66,7 @@ fn slope(t: f64, prev: Option<(usize, f64)>, n: usize) -> String {
 /// Flutter speed, its time and its spread for `aero` with `plan`.
 fn time_flutter<M: AeroStructure>(
     aero: &Aeroelastic<M>,
-    plan: &FlutterPlan,
+    plan: &FlutterOptions,
     budget: Duration,
     batches: usize,
 ) -> (f64, f64, f64, f64, usize) {
@@ -206,7 +206,7 @@ fn gust_table(
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     let reference = response(wing, &gust_plan(1e-9), "response", &mut |_| {}).expect("plan");
     let reference_rom = response(rom6, &gust_plan(1e-9), "response", &mut |_| {}).expect("plan");
-    let tip_error = |a: &ResponseOutcome, b: &ResponseOutcome| {
+    let tip_error = |a: &ResponseSolution, b: &ResponseSolution| {
         a.samples
             .iter()
             .zip(&b.samples)

@@ -1,4 +1,4 @@
-//! The Newton systems of the equations of motion (`dynamics.rs`) solved in O(n) for the full
+//! The Newton systems of the equations of motion (`dynamics/`) solved in O(n) for the full
 //! model: the implicit integrators' `(c I − J) Δ = r` on the Hamiltonian state `(q, p)`.
 //!
 //! With `δq̇ = c Δq − r_q` (the first block row) and `Δp = M δq̇ + B Δq` (`B = ∂(M q̇)/∂q`), the
@@ -34,7 +34,7 @@ pub(crate) struct ChainNewton {
     /// Rayleigh `(α, β)`; `(0, 0)` for other damping (left out of the approximation).
     rayleigh: (f64, f64),
     gyroscopic: bool,
-    /// Newton stopping tolerance the joint-momentum scale asks for (`dynamics.rs`).
+    /// Newton stopping tolerance the joint-momentum scale asks for (`dynamics/newton_systems.rs`).
     tolerance: f64,
     /// Scratch of length `n_dofs`.
     qdot: Vec<f64>,
@@ -79,7 +79,7 @@ impl ChainNewton {
     }
 
     /// The Newton stopping tolerance the joint momenta's scale asks for: `1e5 M_nn(0)/M_11(0)`
-    /// (bending joints; `dynamics.rs`).
+    /// (bending joints; `dynamics/`).
     pub(crate) fn newton_tolerance(&self) -> f64 {
         self.tolerance
     }

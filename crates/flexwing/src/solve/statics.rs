@@ -254,15 +254,7 @@ fn follow<M: StructuralModel>(
     let mut stable = None;
     // The previous equilibrium, at μ_p < 0 on the same line of loads if the load keeps its
     // direction.
-    let mut x_prev: Option<(f64, DVector<f64>)> = before.and_then(|(xb, sb)| {
-        let d_old: Vec<f64> = s_start.iter().zip(sb).map(|(a, b)| a - b).collect();
-        let d_new: Vec<f64> = scales.iter().zip(s_start).map(|(a, b)| a - b).collect();
-        let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
-        let dot: f64 = d_old.iter().zip(&d_new).map(|(a, b)| a * b).sum();
-        let (n_old, n_new) = (norm(&d_old), norm(&d_new));
-        (n_old > 0.0 && n_new > 0.0 && dot >= (1.0 - 1e-9) * n_old * n_new)
-            .then(|| (-n_old / n_new, DVector::from_column_slice(xb)))
-    });
+    let mut x_prev = previous_on_line(before, s_start, scales);
     let mut step = options.initial_step.clamp(options.min_step, 1.0);
     while mu < 1.0 {
         let target = (mu + step).min(1.0);
@@ -291,24 +283,7 @@ fn follow<M: StructuralModel>(
                         stable = stability;
                         x_prev = Some((mu, std::mem::replace(&mut x, x_new)));
                         mu = target;
-                        // Grow or shrink with the rotation of this step (aim at 0.8 of the
-                        // limit) and with the Newton iteration count.
-                        let by_rotation = if rotation > 0.0 {
-                            0.8 * limit / rotation
-                        } else {
-                            2.0
-                        };
-                        let by_iterations = if iterations <= options.max_iterations / 4 {
-                            2.0
-                        } else if iterations > options.max_iterations / 2 {
-                            0.5
-                        } else {
-                            1.0
-                        };
-                        if dmu >= step * (1.0 - 1e-12) {
-                            step = (step * by_rotation.min(by_iterations).min(2.0)).min(1.0);
-                        }
-                        step = step.max(options.min_step);
+                        step = next_increment(step, dmu, rotation, iterations, options);
                         continue;
                     }
                 }
@@ -345,33 +320,7 @@ fn follow<M: StructuralModel>(
             Refusal::Newton { .. } => 0.25 * dmu,
         };
         if step < options.min_step {
-            return Err(match refusal {
-                Refusal::Unstable => SolveError::StaticUnstable {
-                    load_factor: mu,
-                    attempted: target,
-                },
-                Refusal::Newton {
-                    iterations,
-                    residual,
-                } => SolveError::StaticDiverged {
-                    load_factor: mu,
-                    attempted: target,
-                    iterations,
-                    residual_norm: residual,
-                    cause: StaticFailure::Newton,
-                },
-                Refusal::TooFar {
-                    iterations,
-                    residual,
-                    rotation,
-                } => SolveError::StaticDiverged {
-                    load_factor: mu,
-                    attempted: target,
-                    iterations,
-                    residual_norm: residual,
-                    cause: StaticFailure::TooFar { rotation, limit },
-                },
-            });
+            return Err(refusal.error(mu, target, limit));
         }
     }
     let final_scales = s_at(1.0);
@@ -386,6 +335,88 @@ fn follow<M: StructuralModel>(
         stable,
         stats: ws.stats,
     })
+}
+
+/// The equilibrium `before` as the previous point of the path, at `μ_p < 0` on the line of loads
+/// from `s_start` to `scales`, if the load keeps its direction.
+fn previous_on_line(
+    before: Option<(&[f64], &[f64])>,
+    s_start: &[f64],
+    scales: &[f64],
+) -> Option<(f64, DVector<f64>)> {
+    before.and_then(|(xb, sb)| {
+        let d_old: Vec<f64> = s_start.iter().zip(sb).map(|(a, b)| a - b).collect();
+        let d_new: Vec<f64> = scales.iter().zip(s_start).map(|(a, b)| a - b).collect();
+        let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let dot: f64 = d_old.iter().zip(&d_new).map(|(a, b)| a * b).sum();
+        let (n_old, n_new) = (norm(&d_old), norm(&d_new));
+        (n_old > 0.0 && n_new > 0.0 && dot >= (1.0 - 1e-9) * n_old * n_new)
+            .then(|| (-n_old / n_new, DVector::from_column_slice(xb)))
+    })
+}
+
+/// The increment after an accepted step of `dmu` (the increment tried was `step`) that rotated
+/// the elements by `rotation` in `iterations` Newton iterations: grown or shrunk with the
+/// rotation (aim at 0.8 of the limit) and with the iteration count.
+fn next_increment(
+    step: f64,
+    dmu: f64,
+    rotation: f64,
+    iterations: usize,
+    options: &StaticOptions,
+) -> f64 {
+    let limit = options.max_rotation_step;
+    let by_rotation = if rotation > 0.0 {
+        0.8 * limit / rotation
+    } else {
+        2.0
+    };
+    let by_iterations = if iterations <= options.max_iterations / 4 {
+        2.0
+    } else if iterations > options.max_iterations / 2 {
+        0.5
+    } else {
+        1.0
+    };
+    let mut step = step;
+    if dmu >= step * (1.0 - 1e-12) {
+        step = (step * by_rotation.min(by_iterations).min(2.0)).min(1.0);
+    }
+    step.max(options.min_step)
+}
+
+impl Refusal {
+    /// The error of a path that stopped at `μ = mu` when the increment to `attempted` was
+    /// refused for this reason and could not be cut further.
+    fn error(self, mu: f64, attempted: f64, limit: f64) -> SolveError {
+        match self {
+            Refusal::Unstable => SolveError::StaticUnstable {
+                load_factor: mu,
+                attempted,
+            },
+            Refusal::Newton {
+                iterations,
+                residual,
+            } => SolveError::StaticDiverged {
+                load_factor: mu,
+                attempted,
+                iterations,
+                residual_norm: residual,
+                cause: StaticFailure::Newton,
+            },
+            Refusal::TooFar {
+                iterations,
+                residual,
+                rotation,
+            } => SolveError::StaticDiverged {
+                load_factor: mu,
+                attempted,
+                iterations,
+                residual_norm: residual,
+                cause: StaticFailure::TooFar { rotation, limit },
+            },
+        }
+    }
 }
 
 /// Result of one Newton solve.

@@ -16,7 +16,7 @@
 use crate::common;
 use common::aero_reference::{chain_mp_point, chain_note, chain_point};
 use flexwing::model::aero::{Aerodynamics, Aeroelastic};
-use flexwing::solve::aeroelastic::{flutter, FlutterMethod, FlutterOutcome, FlutterPlan};
+use flexwing::solve::aeroelastic::{flutter, FlutterMethod, FlutterOptions, FlutterSolution};
 
 /// Relative tolerance of the flutter speed refinement asked of flexwing.
 const TOL: f64 = 1e-12;
@@ -36,8 +36,8 @@ fn speeds(case: &str) -> Vec<f64> {
     (1..=9).map(|k| step * k as f64).collect()
 }
 
-fn run(case: &str, n: usize, aerodynamics: Aerodynamics, method: FlutterMethod) -> FlutterOutcome {
-    let mut plan = FlutterPlan::new(speeds(case), 6);
+fn run(case: &str, n: usize, aerodynamics: Aerodynamics, method: FlutterMethod) -> FlutterSolution {
+    let mut plan = FlutterOptions::new(speeds(case), 6);
     plan.tolerance = TOL;
     plan.method = method;
     let out = flutter(&wing(case, n, aerodynamics), &plan, "flutter", &mut |_| {}).unwrap();
@@ -148,7 +148,7 @@ fn quasi_steady_model_against_the_reference_chain() {
             .map(common::aero_reference::parse)
             .expect("the note prints Re p");
         assert!(note.contains("at U = 0.5"), "{note}");
-        let mut plan = FlutterPlan::new(vec![0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 30.0], 6);
+        let mut plan = FlutterOptions::new(vec![0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 30.0], 6);
         plan.tolerance = TOL;
         let aero = wing("patil", n, Aerodynamics::QuasiSteady);
         let out = flutter(&aero, &plan, "flutter", &mut |_| {}).unwrap();

@@ -8,7 +8,7 @@ use crate::common;
 use common::aero_reference::{beam_point, chain_point};
 use flexwing::model::aero::{Aerodynamics, Aeroelastic};
 use flexwing::solve::aeroelastic::{
-    flutter, static_sweep, FlutterMethod, FlutterPlan, StaticAeroPlan,
+    flutter, static_sweep, AeroStaticOptions, FlutterMethod, FlutterOptions,
 };
 use flexwing::solve::StaticOptions;
 
@@ -23,7 +23,7 @@ fn wing(case: &str, n: usize, am: Aerodynamics) -> Aeroelastic {
 /// Theodorsen p-k flutter point (speed, frequency) of the chain with `n` elements.
 fn pk_flutter(case: &str, n: usize) -> (f64, f64) {
     let step = if case == "patil" { 4.0 } else { 20.0 };
-    let mut plan = FlutterPlan::new((1..=9).map(|k| step * k as f64).collect(), 6);
+    let mut plan = FlutterOptions::new((1..=9).map(|k| step * k as f64).collect(), 6);
     plan.tolerance = 1e-12;
     plan.method = FlutterMethod::PkTheodorsen;
     let am = Aerodynamics::Peters { states: 6 };
@@ -33,7 +33,7 @@ fn pk_flutter(case: &str, n: usize) -> (f64, f64) {
 }
 
 fn divergence(case: &str, n: usize) -> f64 {
-    let plan = StaticAeroPlan {
+    let plan = AeroStaticOptions {
         speeds: vec![10.0],
         root_angle: 0.0,
         gravity: None,

@@ -3,7 +3,7 @@
 
 use crate::common;
 use flexwing::model::aero::{Aerodynamics, FlightCondition};
-use flexwing::solve::aeroelastic::{flutter, stability_eigenvalues, FlutterPlan};
+use flexwing::solve::aeroelastic::{flutter, stability_eigenvalues, FlutterOptions};
 use flexwing::solve::{Damping, StaticOptions};
 
 /// The tracked branches are eigenvalues of the exact Jacobian of the whole first-order system
@@ -13,7 +13,7 @@ use flexwing::solve::{Damping, StaticOptions};
 fn tracked_branches_are_eigenvalues_of_the_exact_jacobian() {
     for am in [Aerodynamics::Wagner, Aerodynamics::Peters { states: 4 }] {
         let wing = common::patil_wing(8, am);
-        let plan = FlutterPlan::new(vec![10.0, 20.0, 25.0], 6);
+        let plan = FlutterOptions::new(vec![10.0, 20.0, 25.0], 6);
         let out = flutter(&wing, &plan, "flutter", &mut |_| {}).unwrap();
         assert!(out.stopped.is_none(), "{:?}", out.stopped);
         let dense = stability_eigenvalues(
@@ -55,7 +55,13 @@ fn patil_wing_flutter_converges_in_n() {
     for n in [8, 16, 32] {
         let wing = common::patil_wing(n, Aerodynamics::Peters { states: 6 });
         let speeds: Vec<f64> = (1..=10).map(|k| 4.0 * k as f64).collect();
-        let out = flutter(&wing, &FlutterPlan::new(speeds, 6), "flutter", &mut |_| {}).unwrap();
+        let out = flutter(
+            &wing,
+            &FlutterOptions::new(speeds, 6),
+            "flutter",
+            &mut |_| {},
+        )
+        .unwrap();
         assert!(out.unstable_at_start.is_empty() && out.stopped.is_none());
         let f = out.flutter.expect("flutters");
         println!(
@@ -77,7 +83,7 @@ fn patil_wing_flutter_converges_in_n() {
 fn scaled_and_direct_linearizations_agree() {
     use flexwing::model::{Force, Load};
     let wing = common::patil_wing(8, Aerodynamics::Peters { states: 6 });
-    let mut plan = FlutterPlan::new((1..=10).map(|k| 4.0 * k as f64).collect(), 4);
+    let mut plan = FlutterOptions::new((1..=10).map(|k| 4.0 * k as f64).collect(), 4);
     plan.tolerance = 1e-8;
     let fast = flutter(&wing, &plan, "flutter", &mut |_| {}).unwrap();
     assert_eq!(
@@ -102,7 +108,7 @@ fn scaled_and_direct_linearizations_agree() {
 #[test]
 fn quasi_steady_model_on_a_mid_chord_elastic_axis() {
     let wing = common::patil_wing(16, Aerodynamics::QuasiSteady);
-    let plan = FlutterPlan::new(vec![0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 40.0], 6);
+    let plan = FlutterOptions::new(vec![0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 40.0], 6);
     let out = flutter(&wing, &plan, "flutter", &mut |_| {}).unwrap();
     // The torsion branches (wet frequencies 30.7 and 91.8 rad/s) are unstable at 0.5 m/s already
     // (measured Re s = 1.3e-5 and 1.5e-6 1/s, growing like U²).
@@ -155,7 +161,7 @@ fn p_k_theodorsen_validates_the_finite_state_flutter_points() {
             (1..=10).map(|k| 20.0 * k as f64).collect::<Vec<_>>(),
         ),
     ] {
-        let mut plan = FlutterPlan::new(speeds, 6);
+        let mut plan = FlutterOptions::new(speeds, 6);
         let peters = flutter(&wing, &plan, "flutter", &mut |_| {})
             .unwrap()
             .flutter
@@ -197,7 +203,7 @@ fn coarse_sweep_work_is_bounded_and_its_flutter_point_matches_a_fine_sweep() {
     let wing = common::patil_wing(8, Aerodynamics::Peters { states: 6 });
     for method in [FlutterMethod::Eigenvalues, FlutterMethod::PkTheodorsen] {
         let run = |speeds: Vec<f64>| {
-            let mut plan = FlutterPlan::new(speeds, 4);
+            let mut plan = FlutterOptions::new(speeds, 4);
             plan.tolerance = 1e-7;
             plan.method = method;
             flutter(&wing, &plan, "flutter", &mut |_| {}).unwrap()
@@ -246,7 +252,7 @@ fn coarse_sweep_work_is_bounded_and_its_flutter_point_matches_a_fine_sweep() {
 fn a_cancelled_flutter_analysis_stops_at_once() {
     use flexwing::solve::aeroelastic::{flutter_polled, FlutterMethod, FlutterStop};
     let wing = common::patil_wing(8, Aerodynamics::Peters { states: 6 });
-    let mut plan = FlutterPlan::new(vec![2.0, 501.0, 1000.0], 4);
+    let mut plan = FlutterOptions::new(vec![2.0, 501.0, 1000.0], 4);
     plan.method = FlutterMethod::PkTheodorsen;
     let mut calls = 0;
     let out = flutter_polled(&wing, &plan, "flutter", &mut |_| {

@@ -6,11 +6,11 @@ use crate::common;
 use flexwing::beam::Profile;
 use flexwing::model::aero::{Aerodynamics, FlightCondition};
 use flexwing::solve::aeroelastic::{
-    flutter, response, FlightHistory, FlutterPlan, Gust, GustShape, ResponsePlan,
+    flutter, response, FlightHistory, FlutterOptions, Gust, GustShape, ResponseOptions,
 };
 
-fn plan() -> FlutterPlan {
-    FlutterPlan::new((1..=10).map(|k| 4.0 * k as f64).collect(), 4)
+fn plan() -> FlutterOptions {
+    FlutterOptions::new((1..=10).map(|k| 4.0 * k as f64).collect(), 4)
 }
 
 /// With all 2n modes the reduced model is the full model in other coordinates: the same flutter
@@ -82,7 +82,7 @@ fn gust_response_of_reduced_models() {
             spanwise: Profile::Uniform(1.0),
         }),
     };
-    let mut plan = ResponsePlan::new(flight, 2.0, 0.02);
+    let mut plan = ResponseOptions::new(flight, 2.0, 0.02);
     plan.rtol = 1e-9;
     let reference = response(&full, &plan, "response", &mut |_| {}).unwrap();
     assert!(reference.stopped.is_none());

@@ -8,8 +8,8 @@ use flexwing::beam::{
 use flexwing::model::aero::{AeroSection, Aerodynamics, Aeroelastic, FlightCondition};
 use flexwing::model::FullModel;
 use flexwing::solve::aeroelastic::{
-    response, static_sweep, AeroNewtonSystems, FlightHistory, Gust, GustShape, ResponsePlan,
-    StaticAeroPlan,
+    response, static_sweep, AeroNewtonSystems, AeroStaticOptions, FlightHistory, Gust, GustShape,
+    ResponseOptions,
 };
 use flexwing::solve::{StaticOptions, TimeFunction};
 
@@ -60,7 +60,7 @@ fn lift_after_a_sharp_edged_gust_follows_wagner() {
             spanwise: Profile::Uniform(1.0),
         }),
     };
-    let mut plan = ResponsePlan::new(flight, 1.0, 0.01);
+    let mut plan = ResponseOptions::new(flight, 1.0, 0.01);
     plan.rtol = 1e-8;
     plan.max_step = 0.005;
     let out = response(&wing, &plan, "response", &mut |_| {}).unwrap();
@@ -102,7 +102,7 @@ fn a_root_angle_ramp_settles_on_the_static_equilibrium() {
     };
     let out = response(
         &wing,
-        &ResponsePlan::new(flight, 6.0, 0.5),
+        &ResponseOptions::new(flight, 6.0, 0.5),
         "response",
         &mut |_| {},
     )
@@ -111,7 +111,7 @@ fn a_root_angle_ramp_settles_on_the_static_equilibrium() {
     let end = out.samples.last().unwrap();
     let statics = static_sweep(
         &wing,
-        &StaticAeroPlan {
+        &AeroStaticOptions {
             speeds: vec![100.0],
             root_angle: angle,
             gravity: None,
@@ -152,7 +152,7 @@ fn regression_gust_response_with_eliminated_lag_states_matches_dense_newton() {
             spanwise: Profile::Uniform(1.0),
         }),
     };
-    let mut plan = ResponsePlan::new(flight, 1.0, 0.02);
+    let mut plan = ResponseOptions::new(flight, 1.0, 0.02);
     let schur = response(&wing, &plan, "response", &mut |_| {}).unwrap();
     plan.newton_systems = AeroNewtonSystems::Dense;
     let dense = response(&wing, &plan, "response", &mut |_| {}).unwrap();
@@ -203,11 +203,11 @@ fn gust_response_errors_follow_the_tolerance_against_a_tight_reference() {
                 spanwise: Profile::Uniform(1.0),
             }),
         };
-        let mut p = ResponsePlan::new(flight, 2.0, 0.02);
+        let mut p = ResponseOptions::new(flight, 2.0, 0.02);
         p.rtol = rtol;
         p
     };
-    let errors = |run: &dyn Fn(f64) -> flexwing::solve::aeroelastic::ResponseOutcome| {
+    let errors = |run: &dyn Fn(f64) -> flexwing::solve::aeroelastic::ResponseSolution| {
         let reference = run(1e-9);
         let peak = reference
             .samples

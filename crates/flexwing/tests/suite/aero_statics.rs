@@ -3,11 +3,11 @@
 
 use crate::common;
 use flexwing::model::aero::Aerodynamics;
-use flexwing::solve::aeroelastic::{static_sweep, DivergenceBasis, StaticAeroPlan};
+use flexwing::solve::aeroelastic::{static_sweep, AeroStaticOptions, DivergenceBasis};
 use flexwing::solve::StaticOptions;
 
-fn plan(speeds: Vec<f64>, root_angle: f64) -> StaticAeroPlan {
-    StaticAeroPlan {
+fn plan(speeds: Vec<f64>, root_angle: f64) -> AeroStaticOptions {
+    AeroStaticOptions {
         speeds,
         root_angle,
         gravity: None,

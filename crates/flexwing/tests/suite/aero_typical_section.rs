@@ -14,7 +14,7 @@ use flexwing::beam::{
 };
 use flexwing::model::aero::{theodorsen, AeroSection, Aerodynamics, Aeroelastic};
 use flexwing::model::FullModel;
-use flexwing::solve::aeroelastic::{flutter, FlutterMethod, FlutterPlan};
+use flexwing::solve::aeroelastic::{flutter, FlutterMethod, FlutterOptions};
 
 use common::typical_section::TypicalSection;
 
@@ -85,7 +85,7 @@ fn theodorsen_flutter(u: f64, w: f64) -> (f64, f64) {
 
 fn chain_flutter(aerodynamics: Aerodynamics, method: FlutterMethod) -> (f64, f64) {
     let wing = chain(aerodynamics);
-    let mut plan = FlutterPlan::new((1..=40).map(|k| k as f64).collect(), 2);
+    let mut plan = FlutterOptions::new((1..=40).map(|k| k as f64).collect(), 2);
     plan.method = method;
     plan.tolerance = 1e-10;
     let out = flutter(&wing, &plan, "flutter", &mut |_| {}).unwrap();
@@ -153,7 +153,7 @@ fn every_model_matches_the_reference_typical_section() {
     };
     let run = |am: Aerodynamics, method: FlutterMethod| -> (f64, f64) {
         let wing = chain(am);
-        let mut plan = FlutterPlan::new((1..=40).map(|k| k as f64).collect(), 2);
+        let mut plan = FlutterOptions::new((1..=40).map(|k| k as f64).collect(), 2);
         plan.method = method;
         plan.tolerance = 1e-12;
         let out = flutter(&wing, &plan, "flutter", &mut |_| {}).unwrap();
@@ -200,8 +200,8 @@ fn every_model_matches_the_reference_typical_section() {
     }
     // Divergence: the steady model's static analysis against √(μ r²/(1 + 2a)) = √8 (undeformed
     // wing: the frozen divergence pressure is exact; measured 1.6e-16, bound 1e-12).
-    use flexwing::solve::aeroelastic::{static_sweep, StaticAeroPlan};
-    let plan = StaticAeroPlan {
+    use flexwing::solve::aeroelastic::{static_sweep, AeroStaticOptions};
+    let plan = AeroStaticOptions {
         speeds: vec![10.0, 20.0],
         root_angle: 0.0,
         gravity: None,

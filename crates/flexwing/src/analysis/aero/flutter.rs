@@ -20,8 +20,8 @@ use crate::error::{Error, InputError};
 use crate::model::aero::{AeroStructure, Aeroelastic, FlightCondition};
 use crate::model::{FullModel, Load};
 use crate::solve::aeroelastic::{
-    flutter_polled, Branch, Crossing, Divergence, FlutterMethod, FlutterOutcome as SolverOutcome,
-    FlutterPlan as SolverPlan, FlutterStats, FlutterStop, StaticAeroPlan,
+    flutter_polled, AeroStaticOptions, Branch, Crossing, Divergence, FlutterMethod, FlutterOptions,
+    FlutterSolution, FlutterStats, FlutterStop,
 };
 use crate::solve::{Damping, StaticOptions};
 
@@ -244,7 +244,7 @@ impl Stability {
         }
     }
 
-    fn of(out: SolverOutcome, wall_time_s: f64, points: usize) -> (Self, Option<Stop>) {
+    fn of(out: FlutterSolution, wall_time_s: f64, points: usize) -> (Self, Option<Stop>) {
         let done = out.speeds.len();
         let stop = out.stopped.map(|s| match s {
             FlutterStop::Cancelled { .. } => Stop::SweepInterrupted { done, points },
@@ -344,7 +344,7 @@ pub fn run(plan: &FlutterPlan, progress: &mut dyn Progress) -> Result<FlutterOut
     let full = plan.aero.wing(&plan.model, fields.aero)?;
     let kinds = plan.models()?;
     let speeds = plan.speeds().to_vec();
-    let statics = StaticAeroPlan {
+    let statics = AeroStaticOptions {
         speeds: speeds.clone(),
         root_angle: plan.flight.root_angle,
         gravity: plan.flight.gravity,
@@ -367,8 +367,8 @@ pub fn run(plan: &FlutterPlan, progress: &mut dyn Progress) -> Result<FlutterOut
 }
 
 /// The solver's plan for a model of `dofs` coordinates with `method`.
-fn solver_plan(plan: &FlutterPlan, dofs: usize, method: FlutterMethod) -> SolverPlan {
-    SolverPlan {
+fn solver_plan(plan: &FlutterPlan, dofs: usize, method: FlutterMethod) -> FlutterOptions {
+    FlutterOptions {
         speeds: plan.speeds().to_vec(),
         root_angle: plan.flight.root_angle,
         gravity: plan.flight.gravity,
@@ -387,7 +387,7 @@ fn analyse<M: AeroStructure>(
     kind: &ModelKind,
     aero: &Aeroelastic<M>,
     plan: &FlutterPlan,
-    statics: &StaticAeroPlan,
+    statics: &AeroStaticOptions,
     progress: &mut dyn Progress,
 ) -> Result<FlutterRun, InputError> {
     let start = Instant::now();

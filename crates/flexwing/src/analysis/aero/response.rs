@@ -463,7 +463,7 @@ mod tests {
     use crate::analysis::NoProgress;
     use crate::beam::Profile;
     use crate::model::aero::FlightCondition;
-    use crate::solve::aeroelastic::{response, Gust, GustShape, ResponsePlan};
+    use crate::solve::aeroelastic::{response, Gust, GustShape, ResponseOptions};
 
     fn gust() -> FlightHistory {
         FlightHistory {
@@ -501,7 +501,7 @@ mod tests {
         let p = plan(Aerodynamics::Wagner);
         let out = run(&p, &mut NoProgress).unwrap();
         assert!(out.is_complete(), "{:?}", out.runs[0].status);
-        let mut direct = ResponsePlan::new(gust(), 1.0, 0.05);
+        let mut direct = ResponseOptions::new(gust(), 1.0, 0.05);
         direct.rtol = 1e-8;
         let wing = p.aero.wing(&p.structure.model, "aero").unwrap();
         let reference = response(&wing, &direct, "r", &mut |_| {}).unwrap();

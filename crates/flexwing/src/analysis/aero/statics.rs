@@ -11,7 +11,7 @@ use crate::analysis::{ModelKind, Progress, Status, Stop};
 use crate::error::{Error, InputError};
 use crate::model::aero::{AeroStructure, Aeroelastic, FlightCondition};
 use crate::model::{FullModel, Load, Shape};
-use crate::solve::aeroelastic::{static_sweep_polled, Divergence, StaticAeroPlan};
+use crate::solve::aeroelastic::{static_sweep_polled, AeroStaticOptions, Divergence};
 use crate::solve::{StaticOptions, StaticStats};
 
 /// Relative tolerance of the divergence dynamic pressure when a sweep brackets it.
@@ -170,7 +170,7 @@ pub struct AeroStaticRun {
     /// The equilibria found, in speed order from the first.
     pub points: Vec<AeroPoint>,
     /// The divergence speed, where the sweep finds it (see
-    /// [`crate::solve::aeroelastic::StaticAeroOutcome::divergence`]).
+    /// [`crate::solve::aeroelastic::AeroStaticSolution::divergence`]).
     pub divergence: Option<Divergence>,
     /// Whether every speed was reached, or where and why the sweep stopped
     /// ([`Stop::SpeedPoint`]).
@@ -226,7 +226,7 @@ pub fn run(plan: &AeroStaticPlan, progress: &mut dyn Progress) -> Result<AeroSta
     plan.validate(&fields)?;
     let full = plan.aero.wing(&plan.model, fields.aero)?;
     let kinds = plan.models()?;
-    let sweep = StaticAeroPlan {
+    let sweep = AeroStaticOptions {
         speeds: plan.speeds(),
         root_angle: plan.flight.root_angle,
         gravity: plan.flight.gravity,
@@ -253,7 +253,7 @@ pub fn run(plan: &AeroStaticPlan, progress: &mut dyn Progress) -> Result<AeroSta
 pub(crate) fn sweep_model<M: AeroStructure>(
     kind: &ModelKind,
     aero: &Aeroelastic<M>,
-    sweep: &StaticAeroPlan,
+    sweep: &AeroStaticOptions,
     progress: &mut dyn Progress,
 ) -> Result<AeroStaticRun, InputError> {
     let start = Instant::now();
@@ -346,7 +346,7 @@ mod tests {
         assert!(out.is_complete());
         let direct = crate::solve::aeroelastic::static_sweep(
             &p.aero.wing(&p.model, "aero").unwrap(),
-            &StaticAeroPlan {
+            &AeroStaticOptions {
                 speeds: p.speeds(),
                 root_angle: 0.03,
                 gravity: Some(9.80665),

@@ -15,21 +15,20 @@
 //! pressure, continued from the previous speed), so deflected wings are linearized about their
 //! deflected shape.
 
-use nalgebra::{Complex, DMatrix, DVector};
+use nalgebra::{Complex, DMatrix};
 
 use super::equations::AeroelasticEquations;
 use super::flight::FlightHistory;
-use super::linear::{mac, Linearization, NewtonWorkspace, Transfer};
+use super::linear::NewtonWorkspace;
 use super::statics::SteadyAeroModel;
+use super::tracking::{find_crossings, seed_branches, EquilibriumPath, Linearizer, Tracker};
 use crate::error::{InputError, SolveError};
 use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCondition};
-use crate::model::{AppliedLoads, Load, StructuralModel};
+use crate::model::{Load, StructuralModel};
 use crate::solve::integrate::OdeSystem;
 use crate::solve::{continue_static, Damping, StaticOptions};
 
 type C64 = Complex<f64>;
-/// The tracked eigenpairs of every branch at one accepted speed.
-type Step = (f64, Vec<(C64, DVector<C64>)>);
 
 /// Smallest modal assurance criterion between a branch's eigenvectors at consecutive accepted
 /// steps.
@@ -64,7 +63,7 @@ pub enum FlutterMethod {
 
 /// A flutter analysis, validated.
 #[derive(Debug, Clone, PartialEq)]
-pub struct FlutterPlan {
+pub struct FlutterOptions {
     /// Speeds of the V-g data (m/s), positive and strictly increasing. Branches are continued
     /// from `U = 0` through them (with smaller steps where needed).
     pub speeds: Vec<f64>,
@@ -86,7 +85,7 @@ pub struct FlutterPlan {
     pub method: FlutterMethod,
 }
 
-impl FlutterPlan {
+impl FlutterOptions {
     /// A plan with no root angle, gravity, loads or damping, tracking `modes` branches through
     /// `speeds`, flutter speeds to 1e-6.
     pub fn new(speeds: Vec<f64>, modes: usize) -> Self {
@@ -193,7 +192,7 @@ pub enum CrossingKind {
 /// A crossing of the imaginary axis, refined.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Crossing {
-    /// Branch index (into [`FlutterOutcome::branches`]).
+    /// Branch index (into [`FlutterSolution::branches`]).
     pub branch: usize,
     /// Onset or offset.
     pub kind: CrossingKind,
@@ -293,7 +292,7 @@ impl std::fmt::Display for FlutterStop {
 
 /// What a flutter analysis produced.
 #[derive(Debug, Clone, PartialEq)]
-pub struct FlutterOutcome {
+pub struct FlutterSolution {
     /// The plan's speeds reached (m/s).
     pub speeds: Vec<f64>,
     /// The tracked branches (V-g / V-ω data).
@@ -312,62 +311,19 @@ pub struct FlutterOutcome {
     pub stats: FlutterStats,
 }
 
-/// The steady equilibrium along the speeds: continued from the closest speed solved below.
-struct EquilibriumPath<'a, M: AeroStructure> {
-    model: SteadyAeroModel<'a, M>,
-    loads: AppliedLoads,
-    options: StaticOptions,
-    rho: f64,
-    solved: Vec<(f64, Vec<f64>)>,
-}
-
-impl<M: AeroStructure> EquilibriumPath<'_, M> {
-    fn at(&mut self, u: f64, stats: &mut FlutterStats) -> Result<Vec<f64>, SolveError> {
-        let k = self.loads.n_loads();
-        let scales = |u: f64| {
-            let mut s = vec![1.0; k];
-            s.push(0.5 * self.rho * u * u);
-            s
-        };
-        // A speed already solved (a refinement may ask again) is not solved twice.
-        if let Some((_, x)) = self.solved.iter().find(|(v, _)| *v == u) {
-            return Ok(x.clone());
-        }
-        let from = self
-            .solved
-            .iter()
-            .filter(|(v, _)| *v <= u)
-            .max_by(|a, b| a.0.total_cmp(&b.0));
-        let (x0, s0) = match from {
-            Some((v, x)) => (x.clone(), scales(*v)),
-            None => (vec![0.0; self.model.n_dofs()], vec![0.0; k + 1]),
-        };
-        stats.static_solves += 1;
-        let sol = continue_static(
-            &self.model,
-            &self.loads,
-            (&x0, &s0),
-            &scales(u),
-            &self.options,
-        )?;
-        self.solved.push((u, sol.x.clone()));
-        Ok(sol.x)
-    }
-}
-
 /// The flutter analysis of `aero` (any aerodynamic model; `Steady` gives coupled-mode flutter
 /// without aerodynamic damping) along `plan.speeds`. `progress` is called with the fraction of
 /// the speed range covered.
 ///
 /// # Errors
 /// An invalid plan or loads. Failures of the analysis itself are reported in
-/// [`FlutterOutcome::stopped`] with the data up to there.
+/// [`FlutterSolution::stopped`] with the data up to there.
 pub fn flutter<M: AeroStructure>(
     aero: &Aeroelastic<M>,
-    plan: &FlutterPlan,
+    plan: &FlutterOptions,
     field: &str,
     progress: &mut dyn FnMut(f64),
-) -> Result<FlutterOutcome, InputError> {
+) -> Result<FlutterSolution, InputError> {
     flutter_polled(aero, plan, field, &mut |f| {
         progress(f);
         true
@@ -384,10 +340,10 @@ pub fn flutter<M: AeroStructure>(
 /// As [`flutter`].
 pub fn flutter_polled<M: AeroStructure>(
     aero: &Aeroelastic<M>,
-    plan: &FlutterPlan,
+    plan: &FlutterOptions,
     field: &str,
     keep_going: &mut dyn FnMut(f64) -> bool,
-) -> Result<FlutterOutcome, InputError> {
+) -> Result<FlutterSolution, InputError> {
     let n = aero.structure().n_dofs();
     plan.validate(field, n)?;
     if plan.method == FlutterMethod::PkTheodorsen && !aero.aerodynamics().is_unsteady() {
@@ -397,7 +353,6 @@ pub fn flutter_polled<M: AeroStructure>(
              a quasi-steady, Wagner or Peters model",
         ));
     }
-    let method = plan.method;
     let steady = aero.with_aerodynamics(Aerodynamics::Steady, field)?;
     let mut loads = plan.loads.clone();
     if let Some(g) = plan.gravity {
@@ -405,87 +360,36 @@ pub fn flutter_polled<M: AeroStructure>(
             g: g * plan.root_angle.cos(),
         });
     }
-    let applied = aero.full().apply(&loads, &format!("{field}.loads"))?;
-    let mut path = EquilibriumPath {
-        model: SteadyAeroModel::new(&steady, plan.root_angle),
-        loads: applied,
-        options: plan.static_options.clone(),
-        rho: aero.density(),
-        solved: Vec::new(),
-    };
     // The equations carry the other loads only through the linearization's K̃, which comes from
     // the structural Jacobian: give them the same loads (gravity is handled by the flight).
     let other = aero.full().apply(&plan.loads, &format!("{field}.loads"))?;
-    let condition = |u: f64| FlightCondition {
-        speed: u,
+    let mut lin = Linearizer {
+        path: EquilibriumPath {
+            model: SteadyAeroModel::new(&steady, plan.root_angle),
+            loads: aero.full().apply(&loads, &format!("{field}.loads"))?,
+            options: plan.static_options.clone(),
+            rho: aero.density(),
+            solved: Vec::new(),
+        },
+        eqs: AeroelasticEquations::new(
+            aero,
+            &other,
+            vec![crate::solve::TimeFunction::Constant; plan.loads.len()],
+            FlightHistory::steady(FlightCondition {
+                speed: 0.0,
+                root_angle: plan.root_angle,
+                gravity: plan.gravity,
+            }),
+            &plan.damping,
+            field,
+        )?,
         root_angle: plan.root_angle,
         gravity: plan.gravity,
+        scaled: None,
     };
-    let mut eqs = AeroelasticEquations::new(
-        aero,
-        &other,
-        vec![crate::solve::TimeFunction::Constant; plan.loads.len()],
-        FlightHistory::steady(condition(0.0)),
-        &plan.damping,
-        field,
-    )?;
     let mut stats = FlutterStats::default();
-    let linearize = |u: f64,
-                     path: &mut EquilibriumPath<'_, M>,
-                     eqs: &mut AeroelasticEquations<'_, M>,
-                     stats: &mut FlutterStats|
-     -> Result<Linearization, SolveError> {
-        let x = path.at(u, stats)?;
-        eqs.set_flight(FlightHistory::steady(condition(u)));
-        let a = eqs.steady_states(0.0, &x);
-        stats.linearizations += 1;
-        Ok(eqs.linearize(&x, &a))
-    };
-    // A wing that stays undeformed at every speed (no root angle, gravity or loads, and no
-    // aerodynamic load at rest: a symmetric section with c_m0 = 0) has a linearization
-    // polynomial in U: two linearizations serve every speed, once checked against a third.
-    let mut scaled: Option<(Linearization, Linearization)> = None;
-    if plan.loads.is_empty() && plan.gravity.is_none() && plan.root_angle == 0.0 {
-        let model = SteadyAeroModel::new(&steady, 0.0);
-        let mut ws = model.workspace();
-        let mut f = DVector::zeros(n);
-        model.generalized_forces_into(
-            &vec![0.0; n],
-            &AppliedLoads::none(),
-            &[1.0],
-            &mut ws,
-            &mut f,
-        );
-        if f.amax() == 0.0 {
-            let u_max = *plan.speeds.last().expect("validated");
-            let lin = |u: f64, eqs: &mut AeroelasticEquations<'_, M>, stats: &mut FlutterStats| {
-                eqs.set_flight(FlightHistory::steady(condition(u)));
-                let x = vec![0.0; n];
-                let a = eqs.steady_states(0.0, &x);
-                stats.linearizations += 1;
-                eqs.linearize(&x, &a)
-            };
-            let (l0, l1) = (
-                lin(0.0, &mut eqs, &mut stats),
-                lin(1.0, &mut eqs, &mut stats),
-            );
-            let check = lin(0.61 * u_max, &mut eqs, &mut stats);
-            if Linearization::scaled(&l0, &l1, 0.61 * u_max).distance(&check) < 1e-9 {
-                scaled = Some((l0, l1));
-            }
-        }
-    }
-    let linearize = |u: f64,
-                     path: &mut EquilibriumPath<'_, M>,
-                     eqs: &mut AeroelasticEquations<'_, M>,
-                     stats: &mut FlutterStats|
-     -> Result<Linearization, SolveError> {
-        match &scaled {
-            Some((l0, l1)) => Ok(Linearization::scaled(l0, l1, u)),
-            None => linearize(u, path, eqs, stats),
-        }
-    };
-    let mut outcome = FlutterOutcome {
+    lin.check_polynomial(plan, &mut stats);
+    let mut out = FlutterSolution {
         speeds: vec![],
         branches: vec![],
         crossings: vec![],
@@ -494,340 +398,65 @@ pub fn flutter_polled<M: AeroStructure>(
         stopped: None,
         stats,
     };
-    // Seeds: the wet modes at U = 0.
-    let lin0 = match linearize(0.0, &mut path, &mut eqs, &mut stats) {
+    let lin0 = match lin.at(0.0, &mut stats) {
         Ok(l) => l,
         Err(error) => {
-            outcome.stopped = Some(FlutterStop::Equilibrium { speed: 0.0, error });
-            outcome.stats = stats;
-            return Ok(outcome);
+            out.stopped = Some(FlutterStop::Equilibrium { speed: 0.0, error });
+            out.stats = stats;
+            return Ok(out);
         }
     };
-    let seeds = wet_modes(&lin0, plan.modes);
     let mut nws = NewtonWorkspace::new(n);
-    let tol = 1e-11;
-    let mut current: Vec<(C64, DVector<C64>)> = Vec::with_capacity(plan.modes);
-    for (k, (s, v)) in seeds.iter().enumerate() {
-        let pair = solve_branch(&lin0, *s, v, method, tol, 30, &mut nws);
-        stats.newton_iterations += pair.as_ref().map_or(30, |p| p.iterations);
-        let (s, v) = pair.map_or((*s, v.clone()), |p| (p.s, p.v));
-        current.push((s, v));
-        outcome.branches.push(Branch {
-            mode: k,
-            wet_frequency: seeds[k].0.im,
-            eigenvalues: vec![],
-            uncertain: false,
-        });
-    }
-    // March in speed. `history` keeps every accepted step for the crossing refinement.
+    let seeds = seed_branches(
+        &lin0,
+        plan.modes,
+        plan.method,
+        &mut nws,
+        &mut stats,
+        &mut out,
+    );
     let u_max = *plan.speeds.last().expect("validated");
-    let h_min = 1e-7 * u_max;
-    let mut history: Vec<Step> = vec![(0.0, current.clone())];
-    let mut u_prev = 0.0;
-    let mut slope: Option<Vec<C64>> = None; // ds/dU of the last step
-                                            // Consecutive steps accepted at the smallest step with two branches on one root.
-    let mut merged_run = 0;
-    'speeds: for &target in &plan.speeds {
-        let from = u_prev;
-        let mut substeps = 0;
-        // The first trial of an interval is the whole interval (a well-resolved sweep takes one
-        // step per speed); after a halving, a step at most twice the last accepted one.
-        let mut h_next = target - u_prev;
-        while u_prev < target {
-            if substeps == MAX_SUBSTEPS {
-                outcome.stopped = Some(FlutterStop::BranchLost {
-                    branch: None,
-                    from,
-                    speed: target,
-                    substeps,
-                });
-                break 'speeds;
-            }
-            let mut h = h_next.min(target - u_prev);
-            let accepted = loop {
-                if !keep_going(u_prev / u_max) {
-                    outcome.stopped = Some(FlutterStop::Cancelled { speed: u_prev });
-                    break 'speeds;
-                }
-                // The whole remainder lands on the plan's speed exactly.
-                let u = if h == target - u_prev {
-                    target
-                } else {
-                    u_prev + h
-                };
-                stats.trials += 1;
-                let lin = match linearize(u, &mut path, &mut eqs, &mut stats) {
-                    Ok(l) => l,
-                    Err(error) => {
-                        if h > h_min {
-                            h *= 0.5;
-                            stats.halvings += 1;
-                            continue;
-                        }
-                        outcome.stopped = Some(FlutterStop::Equilibrium { speed: u, error });
-                        break 'speeds;
-                    }
-                };
-                let mut next = Vec::with_capacity(current.len());
-                let mut ok = true;
-                let mut lost = None;
-                for (b, (s, v)) in current.iter().enumerate() {
-                    let pred = *s + slope.as_ref().map_or(C64::new(0.0, 0.0), |d| d[b] * h);
-                    match solve_branch(&lin, pred, v, method, tol, 12, &mut nws) {
-                        Some(p) => {
-                            stats.newton_iterations += p.iterations;
-                            if mac(&p.v, v) < MAC_MIN {
-                                ok = false;
-                            }
-                            next.push((p.s, p.v));
-                        }
-                        None => {
-                            stats.newton_iterations += 12;
-                            ok = false;
-                            lost = Some(b);
-                            next.push((*s, v.clone()));
-                        }
-                    }
-                }
-                // Two branches converged to the same root?
-                let mut merged = None;
-                for a in 0..next.len() {
-                    for b in 0..a {
-                        if (next[a].0 - next[b].0).norm() <= 1e-7 * next[a].0.norm().max(1e-6) {
-                            ok = false;
-                            merged = Some(a);
-                        }
-                    }
-                }
-                if ok {
-                    merged_run = 0;
-                    break (u, next);
-                }
-                if h > h_min {
-                    h *= 0.5;
-                    stats.halvings += 1;
-                    continue;
-                }
-                if let Some(b) = lost {
-                    outcome.stopped = Some(FlutterStop::BranchLost {
-                        branch: Some(b),
-                        from,
-                        speed: u,
-                        substeps,
-                    });
-                    break 'speeds;
-                }
-                // Accepted at the smallest step: a coalescence is passed in a step or two; two
-                // branches that stay on one root have lost one of them.
-                if let Some(b) = merged {
-                    merged_run += 1;
-                    if merged_run > MAX_MERGED_STEPS {
-                        outcome.stopped = Some(FlutterStop::BranchLost {
-                            branch: Some(b),
-                            from,
-                            speed: u,
-                            substeps,
-                        });
-                        break 'speeds;
-                    }
-                } else {
-                    merged_run = 0;
-                }
-                for br in outcome.branches.iter_mut() {
-                    br.uncertain = true;
-                }
-                break (u, next);
-            };
-            let (u, next) = accepted;
-            substeps += 1;
-            h_next = 2.0 * (u - u_prev);
-            slope = Some(
-                next.iter()
-                    .zip(&current)
-                    .map(|(a, b)| (a.0 - b.0) / (u - u_prev))
-                    .collect(),
-            );
-            current = next;
-            u_prev = u;
-            history.push((u, current.clone()));
-            keep_going(u / u_max);
+    let mut tracker = Tracker::new(seeds, plan.method, u_max);
+    for &target in &plan.speeds {
+        let marched = tracker.interval(
+            target,
+            &mut lin,
+            &mut nws,
+            &mut stats,
+            &mut out.branches,
+            keep_going,
+        );
+        if let Err(stop) = marched {
+            out.stopped = Some(stop);
+            break;
         }
-        outcome.speeds.push(target);
-        for (br, (s, _)) in outcome.branches.iter_mut().zip(&current) {
-            br.eigenvalues.push(*s);
+        out.speeds.push(target);
+        for (br, s) in out.branches.iter_mut().zip(tracker.eigenvalues()) {
+            br.eigenvalues.push(s);
         }
     }
-    // Branches unstable at the first speed of the plan.
-    outcome.unstable_at_start = outcome
+    out.unstable_at_start = out
         .branches
         .iter()
         .enumerate()
         .filter(|(_, b)| b.eigenvalues.first().is_some_and(|s| s.re > 0.0))
         .map(|(i, _)| i)
         .collect();
-    // Crossings after the first speed of the plan.
-    let first = plan.speeds[0];
-    'crossings: for w in history.windows(2) {
-        let ((ua, sa), (ub, sb)) = (&w[0], &w[1]);
-        if *ub <= first {
-            continue;
-        }
-        for b in 0..sa.len() {
-            let (ra, rb) = (sa[b].0.re, sb[b].0.re);
-            if (ra < 0.0) == (rb < 0.0) {
-                continue;
-            }
-            if !keep_going(u_prev / u_max) {
-                outcome
-                    .stopped
-                    .get_or_insert(FlutterStop::Cancelled { speed: u_prev });
-                break 'crossings;
-            }
-            let kind = if ra < 0.0 {
-                CrossingKind::Onset
-            } else {
-                CrossingKind::Offset
-            };
-            let (speed, frequency) = refine(
-                (*ua, &sa[b]),
-                (*ub, &sb[b]),
-                plan.tolerance,
-                &mut |u| linearize(u, &mut path, &mut eqs, &mut stats),
-                method,
-                &mut nws,
-            );
-            outcome.crossings.push(Crossing {
-                branch: b,
-                kind,
-                speed,
-                // A real root (divergence) has no frequency; below 1e-9 |s| it is round-off.
-                frequency: if frequency.abs() <= 1e-9 * sb[b].0.norm() {
-                    0.0
-                } else {
-                    frequency.abs()
-                },
-            });
-        }
-    }
-    outcome
-        .crossings
-        .sort_by(|a, b| a.speed.total_cmp(&b.speed));
+    find_crossings(
+        &tracker, plan, &mut lin, &mut nws, &mut stats, &mut out, keep_going,
+    );
     // A branch unstable from the first speed means the wing is unstable below any onset found:
     // no flutter speed then (the caller reads `unstable_at_start`).
-    outcome.flutter = if outcome.unstable_at_start.is_empty() {
-        outcome
-            .crossings
+    out.flutter = if out.unstable_at_start.is_empty() {
+        out.crossings
             .iter()
             .find(|c| c.kind == CrossingKind::Onset)
             .copied()
     } else {
         None
     };
-    outcome.stats = stats;
-    Ok(outcome)
-}
-
-/// The root of `Re s(U)` between `a` and `b` (opposite signs): secant steps on the two latest
-/// points, kept inside the bracket (bisection otherwise), each trial speed linearized by
-/// `linearize` and its eigenvalue found by Newton from the linear interpolation of the latest two.
-/// Returns `(U, Im s)`.
-fn refine(
-    a: (f64, &(C64, DVector<C64>)),
-    b: (f64, &(C64, DVector<C64>)),
-    tolerance: f64,
-    linearize: &mut dyn FnMut(f64) -> Result<Linearization, SolveError>,
-    method: FlutterMethod,
-    ws: &mut NewtonWorkspace,
-) -> (f64, f64) {
-    let (mut lo, mut hi) = (a.0, b.0);
-    let f_lo_negative = a.1 .0.re < 0.0;
-    let mut p1 = (a.0, a.1 .0);
-    let mut p2 = (b.0, b.1 .0);
-    let mut v = b.1 .1.clone();
-    let mut best = (b.0, b.1 .0.im);
-    for _ in 0..60 {
-        let (u1, s1) = p1;
-        let (u2, s2) = p2;
-        let mut u = u2 - s2.re * (u2 - u1) / (s2.re - s1.re);
-        if !(u.is_finite() && u > lo && u < hi) {
-            u = 0.5 * (lo + hi);
-        }
-        let Ok(lin) = linearize(u) else { break };
-        let guess = s1 + (s2 - s1) * ((u - u1) / (u2 - u1));
-        let Some(p) = solve_branch(&lin, guess, &v, method, 1e-12, 20, ws) else {
-            break;
-        };
-        best = (u, p.s.im);
-        let step = (u - u2).abs();
-        if (p.s.re < 0.0) == f_lo_negative {
-            lo = u;
-        } else {
-            hi = u;
-        }
-        v = p.v;
-        p1 = p2;
-        p2 = (u, p.s);
-        if step <= tolerance * u || hi - lo <= tolerance * u || p.s.re == 0.0 {
-            break;
-        }
-    }
-    best
-}
-
-/// One eigenpair near `(s, v)`: Newton on the model's rational eigenproblem, or the p-k fixed
-/// point (Newton at `C(k)` frozen at the current frequency, then the frequency updated, until it
-/// stops moving).
-fn solve_branch(
-    lin: &Linearization,
-    s: C64,
-    v: &DVector<C64>,
-    method: FlutterMethod,
-    tol: f64,
-    max_iterations: usize,
-    ws: &mut NewtonWorkspace,
-) -> Option<super::linear::EigenPair> {
-    match method {
-        FlutterMethod::Eigenvalues => lin.newton(s, v, Transfer::Model, tol, max_iterations, ws),
-        FlutterMethod::PkTheodorsen => {
-            let (mut s, mut v) = (s, v.clone());
-            let mut iterations = 0;
-            for _ in 0..50 {
-                let omega = s.im.abs();
-                let p = lin.newton(
-                    s,
-                    &v,
-                    Transfer::Theodorsen { omega },
-                    tol,
-                    max_iterations,
-                    ws,
-                )?;
-                iterations += p.iterations;
-                let moved = (p.s.im.abs() - omega).abs();
-                s = p.s;
-                v = p.v;
-                if moved <= tol * s.norm().max(1e-3) {
-                    return Some(super::linear::EigenPair { s, v, iterations });
-                }
-            }
-            None
-        }
-    }
-}
-
-/// The `count` lowest wet modes of the linearization at `U = 0`: `(iω_k, φ_k)`, from the
-/// symmetric part of `K̃` and `M` (exact when the other loads are conservative; Newton then
-/// refines the seeds with the damping and any non-symmetric load).
-fn wet_modes(lin: &Linearization, count: usize) -> Vec<(C64, DVector<C64>)> {
-    let k = (&lin.stiffness + lin.stiffness.transpose()) * 0.5;
-    match crate::solve::generalized_symmetric_eigen(&k, &lin.mass) {
-        Ok((lambda, phi)) => (0..count)
-            .map(|i| {
-                let w = lambda[i].max(0.0).sqrt();
-                (C64::new(0.0, w), phi.column(i).map(|x| C64::new(x, 0.0)))
-            })
-            .collect(),
-        Err(_) => Vec::new(),
-    }
+    out.stats = stats;
+    Ok(out)
 }
 
 /// Eigenvalues of the exact Jacobian of the first-order aeroelastic system `(x, p, a)` at the

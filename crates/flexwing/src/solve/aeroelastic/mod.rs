@@ -17,16 +17,17 @@ pub use schur::AeroNewtonSystems;
 mod statics;
 
 pub use statics::{
-    static_sweep, static_sweep_polled, AeroEquilibrium, Divergence, DivergenceBasis,
-    StaticAeroOutcome, StaticAeroPlan, SteadyAeroModel, SteadyAeroWorkspace,
+    static_sweep, static_sweep_polled, AeroEquilibrium, AeroStaticOptions, AeroStaticSolution,
+    Divergence, DivergenceBasis, SteadyAeroModel, SteadyAeroWorkspace,
 };
 mod flutter;
+mod tracking;
 
 pub use flutter::{
     flutter, flutter_polled, stability_eigenvalues, Branch, Crossing, CrossingKind, FlutterMethod,
-    FlutterOutcome, FlutterPlan, FlutterStats, FlutterStop, MAC_MIN, MAX_MERGED_STEPS,
+    FlutterOptions, FlutterSolution, FlutterStats, FlutterStop, MAC_MIN, MAX_MERGED_STEPS,
     MAX_SUBSTEPS,
 };
 mod response;
 
-pub use response::{response, ResponseOutcome, ResponsePlan, ResponseSample};
+pub use response::{response, ResponseOptions, ResponseSample, ResponseSolution};

@@ -16,7 +16,7 @@ use crate::solve::{continue_static, Damping, StaticOptions, TimeFunction};
 
 /// A time response, validated.
 #[derive(Debug, Clone, PartialEq)]
-pub struct ResponsePlan {
+pub struct ResponseOptions {
     /// The flight condition over time (initial condition, changes, gust).
     pub flight: FlightHistory,
     /// Other loads, each scaled by its time function.
@@ -40,7 +40,7 @@ pub struct ResponsePlan {
     pub newton_systems: AeroNewtonSystems,
 }
 
-impl ResponsePlan {
+impl ResponseOptions {
     /// A response of `duration` s in the flight `flight`, output every `output_step` s, rtol 1e-6,
     /// no other loads, no damping.
     pub fn new(flight: FlightHistory, duration: f64, output_step: f64) -> Self {
@@ -122,7 +122,7 @@ pub struct ResponseSample {
 
 /// What a time response produced.
 #[derive(Debug, Clone, PartialEq)]
-pub struct ResponseOutcome {
+pub struct ResponseSolution {
     /// Outputs at the output times reached.
     pub samples: Vec<ResponseSample>,
     /// States `(x, p, a)` at the output times reached.
@@ -140,10 +140,10 @@ pub struct ResponseOutcome {
 /// `{field}.flight`: the initial condition is past divergence or the loads too large).
 pub fn response<M: AeroStructure>(
     aero: &Aeroelastic<M>,
-    plan: &ResponsePlan,
+    plan: &ResponseOptions,
     field: &str,
     progress: &mut dyn FnMut(f64),
-) -> Result<ResponseOutcome, InputError> {
+) -> Result<ResponseSolution, InputError> {
     plan.validate(field, aero.full().beam().length())?;
     let init = plan.flight.initial;
     // Initial equilibrium: the steady model with the loads at t = 0 and gravity.
@@ -211,7 +211,7 @@ pub fn response<M: AeroStructure>(
         .zip(&trajectory.y)
         .map(|(&t, y)| sample(aero, &mut eqs, t, y))
         .collect();
-    Ok(ResponseOutcome {
+    Ok(ResponseSolution {
         samples,
         states: trajectory.y,
         stats,

@@ -23,7 +23,7 @@ use crate::solve::{continue_static, StaticOptions, StaticStats};
 /// A static aeroelastic sweep, validated: speeds in increasing order, the root angle, gravity and
 /// other (dead, follower…) loads.
 #[derive(Debug, Clone, PartialEq)]
-pub struct StaticAeroPlan {
+pub struct AeroStaticOptions {
     /// Free-stream speeds (m/s), strictly increasing, non-negative.
     pub speeds: Vec<f64>,
     /// Root angle of attack (rad).
@@ -39,7 +39,7 @@ pub struct StaticAeroPlan {
     pub divergence_tolerance: f64,
 }
 
-impl StaticAeroPlan {
+impl AeroStaticOptions {
     /// Check the plan; `field` prefixes the error fields.
     pub fn validate(&self, field: &str) -> Result<(), InputError> {
         if self.speeds.is_empty() {
@@ -132,7 +132,7 @@ pub enum DivergenceBasis {
 
 /// What a static aeroelastic sweep produced.
 #[derive(Debug, Clone, PartialEq)]
-pub struct StaticAeroOutcome {
+pub struct AeroStaticSolution {
     /// The equilibria, one per speed reached.
     pub points: Vec<AeroEquilibrium>,
     /// The divergence speed: where `μ(x*(q)) = q` between two points of the sweep, refined; or,
@@ -303,10 +303,10 @@ impl<'a, M: AeroStructure> StructuralModel for SteadyAeroModel<'a, M> {
 /// outcome keeps the equilibria found and says where and why the sweep stopped.
 pub fn static_sweep<M: AeroStructure>(
     aero: &Aeroelastic<M>,
-    plan: &StaticAeroPlan,
+    plan: &AeroStaticOptions,
     field: &str,
     progress: &mut dyn FnMut(f64),
-) -> Result<StaticAeroOutcome, InputError> {
+) -> Result<AeroStaticSolution, InputError> {
     static_sweep_polled(aero, plan, field, &mut |f| {
         progress(f);
         true
@@ -318,10 +318,10 @@ pub fn static_sweep<M: AeroStructure>(
 /// points computed (`interrupted` in the outcome).
 pub fn static_sweep_polled<M: AeroStructure>(
     aero: &Aeroelastic<M>,
-    plan: &StaticAeroPlan,
+    plan: &AeroStaticOptions,
     field: &str,
     step: &mut dyn FnMut(f64) -> bool,
-) -> Result<StaticAeroOutcome, InputError> {
+) -> Result<AeroStaticSolution, InputError> {
     plan.validate(field)?;
     let steady = aero.with_aerodynamics(Aerodynamics::Steady, field)?;
     let mut loads = plan.loads.clone();
@@ -383,7 +383,7 @@ pub fn static_sweep_polled<M: AeroStructure>(
         step(1.0);
     }
     let divergence = find_divergence(&model, &applied, &mut ws, &points, plan, rho);
-    Ok(StaticAeroOutcome {
+    Ok(AeroStaticSolution {
         points,
         divergence,
         stopped,
@@ -478,7 +478,7 @@ fn find_divergence<'a, M: AeroStructure>(
     loads: &AppliedLoads,
     ws: &mut SteadyAeroWorkspace<'a, M>,
     points: &[AeroEquilibrium],
-    plan: &StaticAeroPlan,
+    plan: &AeroStaticOptions,
     rho: f64,
 ) -> Option<Divergence> {
     let speed = |q: f64| (2.0 * q / rho).sqrt();

@@ -14,12 +14,15 @@
 //! callers can keep it and mark it incomplete.
 
 mod bdf;
+mod bdf_step;
 mod dopri5;
 mod generalized_alpha;
+mod generalized_alpha_step;
 mod iteration;
 mod lu;
 mod method;
 mod midpoint;
+mod midpoint_step;
 mod radau;
 mod radau_step;
 

@@ -230,30 +230,7 @@ impl Radau {
             None => initial_step(system, t0, y0, &s.f0, &set.atol, set.rtol, 3, &mut stats),
         }
         .min(set.hmaxn);
-        let mut st = State {
-            t: t0,
-            y: y0.to_vec(),
-            h,
-            h_old: h,
-            first: true,
-            reject: false,
-            last: false,
-            need_jac: true,
-            need_lu: true,
-            jac_current: false,
-            faccon: 1.0,
-            theta: 0.0,
-            n_singular: 0,
-            last_failure_non_finite: false,
-            h_acc: h,
-            err_acc: 1e-2,
-        };
-        if st.h >= t_end - st.t {
-            st.h = t_end - st.t;
-            st.last = true;
-        }
-        st.h_old = st.h;
-        st.h_acc = st.h;
+        let mut st = State::new(t0, y0, h, t_end);
 
         loop {
             if stats.steps + stats.rejected_steps >= opts.max_steps {
@@ -280,20 +257,7 @@ impl Radau {
             }
 
             // Iteration matrices: a new Jacobian and/or new factorizations when asked for.
-            let mut singular = false;
-            if st.need_jac {
-                singular = !s.mats.linearize(system, st.t, &st.y);
-                stats.jacobian_evaluations += 1;
-                st.jac_current = !singular;
-                st.need_jac = false;
-                st.need_lu = true;
-            }
-            if st.need_lu && !singular {
-                stats.factorizations += 1;
-                singular = !s.factor(system, st.h);
-                st.need_lu = singular;
-            }
-            if singular {
+            if !s.iteration_matrices(system, &mut st, &mut stats) {
                 // Singular iteration matrix: RADAU5 halves the step, five times at most.
                 st.n_singular += 1;
                 if st.n_singular >= 5 {
@@ -303,13 +267,7 @@ impl Radau {
                     };
                     return fail(traj, stats, e);
                 }
-                stats.rejected_steps += 1;
-                stats.newton_failures += 1;
-                st.h *= 0.5;
-                st.reject = true;
-                st.last = false;
-                st.need_jac = !st.jac_current;
-                st.need_lu = true;
+                st.newton_failed(0.5, &mut stats);
                 continue;
             }
             let t_new = if st.last { t_end } else { st.t + st.h };
@@ -317,17 +275,12 @@ impl Radau {
             s.starting_values(&st);
             let newt = match s.newton(system, &mut st, &set, t_new, &mut stats) {
                 Newton::Converged(newt) => newt,
-                outcome => {
-                    st.h *= match outcome {
-                        Newton::Slow(f) => f,
-                        _ => 0.5,
-                    };
-                    stats.rejected_steps += 1;
-                    stats.newton_failures += 1;
-                    st.reject = true;
-                    st.last = false;
-                    st.need_jac = !st.jac_current;
-                    st.need_lu = true;
+                Newton::Slow(f) => {
+                    st.newton_failed(f, &mut stats);
+                    continue;
+                }
+                Newton::Failed => {
+                    st.newton_failed(0.5, &mut stats);
                     continue;
                 }
             };
@@ -350,7 +303,7 @@ impl Radau {
             // Accepted.
             st.first = false;
             stats.steps += 1;
-            let mut h_new = propose_step(&st, &set, err, newt, stats.steps > 1);
+            let h_new = propose_step(&st, &set, err, newt, stats.steps > 1);
             st.h_acc = st.h;
             st.err_acc = err.max(1e-2);
             s.accept(&mut st, t_new);
@@ -371,24 +324,7 @@ impl Radau {
             }
 
             // The next step: kept with its factorizations when close enough to the proposal.
-            h_new = h_new.min(set.hmaxn);
-            if st.reject {
-                h_new = h_new.min(st.h);
-            }
-            st.reject = false;
-            if st.t + h_new / set.quot1 >= t_end {
-                st.h = t_end - st.t;
-                st.last = true;
-            } else {
-                let qt = h_new / st.h;
-                if !set.relinearize && st.theta <= set.thet && (set.quot1..=set.quot2).contains(&qt)
-                {
-                    continue;
-                }
-                st.h = h_new;
-            }
-            st.need_lu = true;
-            st.need_jac = set.relinearize || st.theta > set.thet;
+            st.next_step(h_new, &set, t_end);
         }
     }
 

@@ -59,6 +59,74 @@ pub(super) struct State {
     pub(super) err_acc: f64,
 }
 
+impl State {
+    /// At `(t0, y0)` with the first step `h` (cut to reach `t_end`); a Jacobian and its
+    /// factorizations are needed.
+    pub(super) fn new(t0: f64, y0: &[f64], h: f64, t_end: f64) -> Self {
+        let mut st = State {
+            t: t0,
+            y: y0.to_vec(),
+            h,
+            h_old: h,
+            first: true,
+            reject: false,
+            last: false,
+            need_jac: true,
+            need_lu: true,
+            jac_current: false,
+            faccon: 1.0,
+            theta: 0.0,
+            n_singular: 0,
+            last_failure_non_finite: false,
+            h_acc: h,
+            err_acc: 1e-2,
+        };
+        if st.h >= t_end - st.t {
+            st.h = t_end - st.t;
+            st.last = true;
+        }
+        st.h_old = st.h;
+        st.h_acc = st.h;
+        st
+    }
+
+    /// A step rejected because its iteration matrix was singular or its Newton iteration
+    /// failed: retry with the step times `factor`, with a fresh Jacobian unless it is current.
+    pub(super) fn newton_failed(&mut self, factor: f64, stats: &mut IntegratorStats) {
+        stats.rejected_steps += 1;
+        stats.newton_failures += 1;
+        self.h *= factor;
+        self.reject = true;
+        self.last = false;
+        self.need_jac = !self.jac_current;
+        self.need_lu = true;
+    }
+
+    /// After an accepted step whose error proposed `h_new`: the next step, kept with its
+    /// factorizations when the ratio to the current one lies within `[quot1, quot2]` (and the
+    /// Jacobian is kept), else set with fresh factorizations (and a fresh Jacobian when Newton
+    /// converged slowly or the system relinearizes at every step).
+    pub(super) fn next_step(&mut self, h_new: f64, set: &Settings, t_end: f64) {
+        let mut h_new = h_new.min(set.hmaxn);
+        if self.reject {
+            h_new = h_new.min(self.h);
+        }
+        self.reject = false;
+        if self.t + h_new / set.quot1 >= t_end {
+            self.h = t_end - self.t;
+            self.last = true;
+        } else {
+            let qt = h_new / self.h;
+            if !set.relinearize && self.theta <= set.thet && (set.quot1..=set.quot2).contains(&qt) {
+                return;
+            }
+            self.h = h_new;
+        }
+        self.need_lu = true;
+        self.need_jac = set.relinearize || self.theta > set.thet;
+    }
+}
+
 /// What the simplified Newton iteration of one step ended with.
 pub(super) enum Newton {
     /// Converged after this many iterations.
@@ -114,6 +182,31 @@ impl Scratch {
         for i in 0..y.len() {
             self.scal[i] = set.atol[i] + set.rtol * y[i].abs();
         }
+    }
+
+    /// The iteration matrices a step of `st` needs: a new Jacobian if asked for, and new
+    /// factorizations after it or if asked for; false if the system cannot be linearized or a
+    /// matrix is singular.
+    pub(super) fn iteration_matrices<S: OdeSystem>(
+        &mut self,
+        system: &mut S,
+        st: &mut State,
+        stats: &mut IntegratorStats,
+    ) -> bool {
+        let mut singular = false;
+        if st.need_jac {
+            singular = !self.mats.linearize(system, st.t, &st.y);
+            stats.jacobian_evaluations += 1;
+            st.jac_current = !singular;
+            st.need_jac = false;
+            st.need_lu = true;
+        }
+        if st.need_lu && !singular {
+            stats.factorizations += 1;
+            singular = !self.factor(system, st.h);
+            st.need_lu = singular;
+        }
+        !singular
     }
 
     /// Iteration matrices: factor `γ/h I − J` and `(α + iβ)/h I − J`; false if either is

@@ -1,0 +1,209 @@
+//! The equations of motion as an [`OdeSystem`]: the right-hand side `(ẋ, ṗ)` (with the energy
+//! audit's rates), the exact Jacobian `∂(ẋ, ṗ)/∂(x, p)` and its dense buffers.
+
+use nalgebra::DMatrix;
+
+use std::ops::ControlFlow;
+use std::sync::atomic::Ordering;
+
+use super::newton_systems::chain_newton_min_dofs;
+use super::{EquationsOfMotion, Gyroscopic};
+use crate::model::StructuralModel;
+use crate::solve::eom_newton::ChainNewton;
+use crate::solve::integrate::{IntegratorSettings, Method, NewtonSolver, OdeSystem};
+
+impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
+    fn dim(&self) -> usize {
+        2 * self.n + if self.audit.is_some() { 2 } else { 0 }
+    }
+
+    /// One tolerance on the coordinates (rad) with consistent momenta, as [`Self::state_atol`];
+    /// the audit's quadrature states are not error-controlled.
+    fn atol_scale(&mut self, scale: &mut [f64]) {
+        // `state_atol` is linear in its tolerance: at 1 it gives the scales.
+        let n2 = 2 * self.n;
+        scale[..n2].copy_from_slice(&self.unit_atol());
+        scale[n2..].fill(f64::INFINITY);
+    }
+
+    /// The halt flag, then the energy audit's check of the balance at the step's end.
+    fn step_accepted(&mut self, t: f64, y: &[f64]) -> ControlFlow<()> {
+        if self
+            .halt
+            .as_ref()
+            .is_some_and(|h| h.load(Ordering::Relaxed))
+        {
+            return ControlFlow::Break(());
+        }
+        if self.audit.is_none() {
+            return ControlFlow::Continue(());
+        }
+        let (kinetic, strain) = self.energies(y);
+        let n2 = 2 * self.n;
+        match &mut self.audit {
+            Some(audit) => audit.check(t, kinetic + strain, y[n2], y[n2 + 1]),
+            None => ControlFlow::Continue(()),
+        }
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.rhs_evaluations += 1;
+        let n = self.n;
+        let (x, p) = (&y[..n], &y[n..2 * n]);
+        self.solve_velocities(x, p);
+        self.update_scales(t);
+        self.model.generalized_forces_into(
+            x,
+            self.loads,
+            &self.scales,
+            &mut self.ws,
+            &mut self.force,
+        );
+        match self.gyroscopic {
+            Gyroscopic::Exact => {
+                self.model
+                    .gyroscopic_into(x, &self.xdot, &mut self.ws, &mut self.gamma)
+            }
+            Gyroscopic::FiniteDifference { step } => self.gyroscopic_fd(x, p, step),
+            Gyroscopic::Neglected => self.gamma.fill(0.0),
+        }
+        let (dx, rest) = dy.split_at_mut(n);
+        let (dp, quadrature) = rest.split_at_mut(n);
+        dx.copy_from_slice(&self.xdot);
+        // C ẋ by the damping operator (zeros without damping).
+        self.c.apply(self.model, &self.xdot, &mut self.c_xdot);
+        // The audit's rates: power of the loads ẋ·Q and of the damping ẋᵀ C ẋ.
+        let (mut power, mut dissipation) = (0.0, 0.0);
+        for i in 0..n {
+            let mut v = self.force[i] + self.gamma[i] - self.c_xdot[i];
+            power += self.xdot[i] * self.force[i];
+            dissipation += self.xdot[i] * self.c_xdot[i];
+            match &self.k_diag {
+                Some(k) => v -= k[i] * x[i],
+                None => {
+                    for j in 0..n {
+                        v -= self.k[(i, j)] * x[j];
+                    }
+                }
+            }
+            dp[i] = v;
+        }
+        if let [w, d] = quadrature {
+            *w = power;
+            *d = dissipation;
+        }
+    }
+
+    fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
+        // With B = ∂(M ẋ)/∂x|_ẋ:  ∂ẋ/∂x = −M⁻¹ B,  ∂ẋ/∂p = M⁻¹,
+        // ∂ṗ/∂x = −K + ∂Q/∂x + G_x + (Bᵀ − C) ∂ẋ/∂x,  ∂ṗ/∂p = (Bᵀ − C) M⁻¹,
+        // G_x = ∂γ/∂x|_ẋ, and ∂γ/∂ẋ = Bᵀ. Without γ (simplified model) Bᵀ and G_x drop out.
+        // With the finite-difference γ the exact γ's derivatives are used (Newton needs only an
+        // approximate Jacobian).
+        self.jacobian_evaluations += 1;
+        let n = self.n;
+        let (x, p) = (&y[..n], &y[n..2 * n]);
+        if self.audit.is_some() {
+            // The quadrature states feed back into nothing, and their own rows are left zero:
+            // a simplified Newton that is exact for them once the other stages converge.
+            let n2 = 2 * n;
+            jac.rows_mut(n2, 2).fill(0.0);
+            jac.columns_mut(n2, 2).fill(0.0);
+        }
+        self.update_scales(t);
+        if !self.solve_velocities(x, p) {
+            jac.fill(f64::NAN);
+            return;
+        }
+        let (model, c) = (self.model, &mut self.c);
+        let d = self
+            .dense
+            .get_or_insert_with(|| DenseBuffers::new(n, c.matrix(model)));
+        let with_gamma = !matches!(self.gyroscopic, Gyroscopic::Neglected);
+        // ∂ẋ/∂x = −M⁻¹ B and dγ/dx|_p = G_x + Bᵀ ∂ẋ/∂x: O(n²) for the full model (dual numbers
+        // through the O(n) velocity solve), a few dense products for the reduced one.
+        self.model.hamiltonian_derivatives_into(
+            x,
+            p,
+            &mut self.ws,
+            with_gamma,
+            &mut d.dxdx,
+            &mut d.dgamma,
+        );
+        self.model
+            .load_jacobian_into(x, self.loads, &self.scales, &mut self.ws, &mut d.load_jac);
+        // M⁻¹ by one factorization and one O(n) velocity solve per column.
+        self.model
+            .velocities_block_into(x, &d.identity, &mut self.ws, &mut d.minv);
+        jac.view_mut((0, 0), (n, n)).copy_from(&d.dxdx);
+        jac.view_mut((0, n), (n, n)).copy_from(&d.minv);
+        let mut dpdx = jac.view_mut((n, 0), (n, n));
+        dpdx.copy_from(&d.load_jac);
+        match &self.k_diag {
+            Some(k) => {
+                for i in 0..n {
+                    dpdx[(i, i)] -= k[i];
+                }
+            }
+            None => dpdx -= &self.k,
+        }
+        if with_gamma {
+            dpdx += &d.dgamma;
+        }
+        if let Some(c) = &d.c {
+            dpdx.gemm(-1.0, c, &d.dxdx, 1.0);
+        }
+        // ∂ṗ/∂p = (Bᵀ − C) M⁻¹ with Bᵀ M⁻¹ = (M⁻¹ B)ᵀ = −(∂ẋ/∂x)ᵀ since M is symmetric.
+        let mut dpdp = jac.view_mut((n, n), (n, n));
+        if matches!(self.gyroscopic, Gyroscopic::Neglected) {
+            dpdp.fill(0.0);
+        } else {
+            dpdp.copy_from(&d.dxdx.transpose());
+            dpdp.neg_mut();
+        }
+        if let Some(c) = &d.c {
+            dpdp.gemm(-1.0, c, &d.minv, 1.0);
+        }
+    }
+
+    fn newton_solver(&mut self) -> Option<&mut dyn NewtonSolver> {
+        if !self.uses_chain_newton() {
+            return None;
+        }
+        if self.chain.is_none() {
+            let full = self.model.as_full_model()?;
+            let gyroscopic = !matches!(self.gyroscopic, Gyroscopic::Neglected);
+            self.chain = Some(ChainNewton::new(full, &self.damping, gyroscopic));
+        }
+        Some(self)
+    }
+
+    fn integrating_with(&mut self, method: Method, settings: &IntegratorSettings) {
+        self.auto_chain_min_dofs = chain_newton_min_dofs(method, settings);
+    }
+}
+
+/// Buffers of the dense Jacobian (`n_dofs × n_dofs` each), and the damping matrix it needs.
+pub(super) struct DenseBuffers {
+    /// `C`, formed once from the damping operator; `None` without damping.
+    pub(super) c: Option<DMatrix<f64>>,
+    pub(super) dgamma: DMatrix<f64>,
+    pub(super) load_jac: DMatrix<f64>,
+    pub(super) identity: DMatrix<f64>,
+    pub(super) minv: DMatrix<f64>,
+    pub(super) dxdx: DMatrix<f64>,
+}
+
+impl DenseBuffers {
+    pub(super) fn new(n: usize, c: Option<DMatrix<f64>>) -> Self {
+        let z = || DMatrix::zeros(n, n);
+        Self {
+            c,
+            dgamma: z(),
+            load_jac: z(),
+            identity: DMatrix::identity(n, n),
+            minv: z(),
+            dxdx: z(),
+        }
+    }
+}
