@@ -62,6 +62,7 @@ impl Case {
         }
         plan.damping = damping(d.damping.as_ref())?;
         plan.initial = self.initial(d.initial.as_ref(), n_dofs)?;
+        plan.load_names = self.load_names();
         plan.validate("loads", "dynamic")?;
         Ok(plan)
     }
@@ -147,6 +148,15 @@ impl Case {
                 })
             }
         }
+    }
+
+    /// Each load's name for messages: its `name`, or `loads[i]`.
+    pub(crate) fn load_names(&self) -> Vec<String> {
+        self.loads
+            .iter()
+            .enumerate()
+            .map(|(i, l)| l.name.clone().unwrap_or_else(|| format!("loads[{i}]")))
+            .collect()
     }
 
     /// The reason for an unknown load name, listing the known ones.

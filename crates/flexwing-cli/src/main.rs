@@ -56,7 +56,7 @@ enum Command {
         (with [static] modes) and status.txt into the output directory; with --plot also \
         static_shapes.svg and static_shapes.png. If a model fails to converge, the other \
         models still run, the files hold the points that converged, status.txt says \
-        \"incomplete\" and the exit status is 1. See docs/cli.md."
+        \"stopped\" and the exit status is 1. See docs/cli.md."
     )]
     Static(statics::StaticArgs),
     /// Time histories of the full, simplified and reduced models under time-varying loads.
@@ -71,7 +71,7 @@ enum Command {
         --plot also dynamic_tip.svg/.png and dynamic_snapshots.svg/.png. A progress bar appears \
         on stderr when it is a terminal and the run takes more than a second. If an integration \
         stops, the other models still run, the files hold the output times reached, status.txt \
-        says \"incomplete\" and the exit status is 1. See docs/cli.md."
+        says \"stopped\" and the exit status is 1. See docs/cli.md."
     )]
     Dynamic(dynamic::DynamicArgs),
     /// Divergence and flutter speeds along a sweep in free-stream speed, full and reduced models.

@@ -683,11 +683,12 @@ impl PyStepper {
             }
             Err(failure) => {
                 self.stats += failure.stats;
-                let stop = crate::convert::status::solve_error_dict(py, &failure.error)?;
-                stop.set_item("reason", "integration")?;
+                let message = failure.error.to_string();
+                let stop = flexwing::analysis::Stop::Integration(failure.error);
+                let stop = crate::convert::status::described(py, &stop)?;
                 Err(errors::solver(
                     py,
-                    &failure.error.to_string(),
+                    &message,
                     None,
                     Some(stop.into_any().unbind()),
                     None,

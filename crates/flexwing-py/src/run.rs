@@ -171,14 +171,14 @@ pub struct Incomplete<'py> {
 fn first_incomplete<'py>(
     py: Python<'py>,
     runs: &[(String, &Status)],
-    sweep: Option<&str>,
+    _sweep: Option<&str>,
 ) -> PyResult<Option<Incomplete<'py>>> {
     let stopped = runs.iter().find(|(_, s)| s.stop().is_some());
-    let first = stopped.or_else(|| runs.iter().find(|(_, s)| !convert::status::is_complete(s)));
+    let first = stopped.or_else(|| runs.iter().find(|(_, s)| !s.is_complete()));
     let Some((label, status)) = first else {
         return Ok(None);
     };
-    let (word, stop, message) = convert::status::status_fields(py, status, sweep)?;
+    let (word, stop, message) = convert::status::status_fields(py, status)?;
     Ok(Some(Incomplete {
         word,
         model: Some(label.clone()),
@@ -205,7 +205,7 @@ pub fn to_python<'py>(
                     incomplete = Some(Incomplete {
                         word: "stopped".into(),
                         model: Some("loaded modes".into()),
-                        stop: Some(convert::status::solve_error_dict(py, e)?),
+                        stop: Some(convert::status::described(py, e)?),
                         message: format!("loaded modes: {e}"),
                     });
                 }

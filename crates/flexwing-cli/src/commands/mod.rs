@@ -14,8 +14,6 @@ use std::path::{Path, PathBuf};
 use flexwing::analysis::{Doubt, Status, Stop};
 use flexwing::beam::Calibration;
 use flexwing::model::FullModel;
-use flexwing::solve::aeroelastic::FlutterStop;
-use flexwing::text::short;
 
 /// Set once a command has printed its JSON document on stdout, so that `main` prints the
 /// error document of `--json` only when none was printed: stdout always holds exactly one.
@@ -121,7 +119,7 @@ pub struct Incomplete {
     pub what: String,
     /// One-line reason, naming where the solver stopped or what check failed.
     pub message: String,
-    /// `incomplete` (stopped), `interrupted` (by the user) or `suspect` (reached its end, but a
+    /// `stopped`, `interrupted` (by the user) or `suspect` (reached its end, but a
     /// check of the result failed).
     pub word: &'static str,
 }
@@ -132,15 +130,15 @@ impl Incomplete {
         Self {
             what: what.into(),
             message: message.into(),
-            word: "incomplete",
+            word: "stopped",
         }
     }
 }
 
 /// The word of a whole run: `complete` when nothing is listed, else the worst of the list:
-/// `interrupted`, then `incomplete`, then `suspect`.
+/// `interrupted`, then `stopped`, then `suspect`.
 pub fn overall_word(incomplete: &[Incomplete]) -> &'static str {
-    ["interrupted", "incomplete", "suspect"]
+    ["interrupted", "stopped", "suspect"]
         .into_iter()
         .find(|w| incomplete.iter().any(|i| i.word == *w))
         .unwrap_or("complete")
@@ -210,88 +208,10 @@ pub fn status_entry(
 
 /// One line saying why a result is doubtful.
 pub fn doubt_message(doubt: &Doubt) -> String {
-    match doubt {
-        Doubt::EnergyBalance {
-            time,
-            max_error,
-            max_error_time,
-            limit,
-        } => format!(
-            "the energy balance |H − H(0) − W + D| / E exceeded its limit {} at t = {} s \
-             (largest {} at t = {} s): the integration error is larger than the tolerances \
-             suggest; tighten rtol and atol (or max_step), or raise energy_tolerance",
-            short(*limit),
-            short(*time),
-            short(*max_error),
-            short(*max_error_time)
-        ),
-        other => format!("{other:?}"),
-    }
+    doubt.to_string()
 }
 
-/// One line saying why a run stopped. `sweep` is the name of the swept load of a static sweep,
-/// `initial` the names of the loads of a static initial state.
-pub fn stop_message(stop: &Stop, sweep: Option<&str>, initial: &[String]) -> String {
-    match stop {
-        Stop::Integration(e) => e.to_string(),
-        Stop::InitialState(e) => format!(
-            "the initial static deflection under {} failed: {e}",
-            initial.join(", ")
-        ),
-        Stop::StaticPoint {
-            point,
-            points,
-            scale,
-            reached,
-            error,
-        } => match sweep {
-            Some(name) => {
-                let reached = reached
-                    .map(|r| format!(", converged up to scale {}", short(r)))
-                    .unwrap_or_default();
-                format!(
-                    "stopped at sweep point {} of {points} ({name} scale {}{reached}): {error}",
-                    point + 1,
-                    short(*scale),
-                )
-            }
-            None => error.to_string(),
-        },
-        Stop::Equations(e) => e.to_string(),
-        Stop::SpeedPoint {
-            point,
-            points,
-            speed,
-            error,
-        } => format!(
-            "stopped at speed {} of {points} (U = {} m/s): {error}",
-            point + 1,
-            short(*speed)
-        ),
-        Stop::Flutter(FlutterStop::Equilibrium { speed, error }) => format!(
-            "no static equilibrium at U = {} m/s: {error}",
-            short(*speed)
-        ),
-        Stop::Flutter(stop @ (FlutterStop::BranchLost { .. } | FlutterStop::Cancelled { .. })) => {
-            stop.to_string()
-        }
-        Stop::EnergyRunaway { time, gain, limit } => format!(
-            "stopped at t = {} s: the run created energy that no load supplied, {} times the \
-             energy it held or was given (limit energy_runaway = {}): a blown-up run",
-            short(*time),
-            short(*gain),
-            short(*limit)
-        ),
-        Stop::Interrupted { time: Some(t) } => {
-            format!(
-                "interrupted at t = {} s; the output up to there is kept",
-                short(*t)
-            )
-        }
-        Stop::Interrupted { time: None } => "interrupted before it started".into(),
-        Stop::SweepInterrupted { done, points } => {
-            format!("interrupted after {done} of {points} points; the points computed are kept")
-        }
-        other => format!("{other:?}"),
-    }
+/// One line saying why a run stopped.
+pub fn stop_message(stop: &Stop, _sweep: Option<&str>, _initial: &[String]) -> String {
+    stop.to_string()
 }

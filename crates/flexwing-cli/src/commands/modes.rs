@@ -110,7 +110,7 @@ fn write_files(
             mode: r.mode,
             omega_rad_s: r.omega,
             frequency_hz: r.frequency_hz,
-            bending_energy_fraction: r.bending_fraction,
+            bending_energy_fraction: r.bending_energy_fraction,
         }),
     )?;
     let shapes = dir.join("mode_shapes.csv");
@@ -184,8 +184,8 @@ fn table_report(
             r.mode,
             r.omega,
             r.frequency_hz,
-            r.bending_fraction,
-            mode_type(r.bending_fraction)
+            r.bending_energy_fraction,
+            mode_type(r.bending_energy_fraction)
         );
     }
     let _ = writeln!(s);
@@ -246,7 +246,7 @@ fn json_report(
                 mode: r.mode,
                 omega_rad_s: r.omega,
                 frequency_hz: r.frequency_hz,
-                bending_energy_fraction: r.bending_fraction,
+                bending_energy_fraction: r.bending_energy_fraction,
                 shape: JsonShape {
                     x_m: &r.shape.x,
                     dx_m: &r.shape.dx,

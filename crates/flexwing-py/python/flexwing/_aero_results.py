@@ -232,6 +232,10 @@ class FlutterRun(_Result):
         eigenvalues: the model's own eigen-analysis, a :class:`Stability`.
         pk: the p-k check with Theodorsen's C(k), a :class:`Stability`, or ``None``.
         equilibria: the static equilibria along the speeds, an :class:`AeroStaticRun`.
+        notes: what the numbers mean that the status does not show, as the CLI's ``note:``
+            lines: dicts with ``kind`` (``"equilibria-stopped"`` with the ``stop``;
+            ``"unstable-at-start"`` with ``pk``, ``mode``, ``wet_frequency``, ``speed``) and
+            ``message``.
     """
 
     label: str
@@ -252,6 +256,7 @@ class FlutterRun(_Result):
     eigenvalues: Stability
     pk: Optional[Stability]
     equilibria: AeroStaticRun
+    notes: List[Dict[str, Any]]
     extra: Dict[str, Any] = field(default_factory=dict)
 
     @property

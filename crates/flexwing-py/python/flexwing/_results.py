@@ -80,7 +80,7 @@ class ModesResult(_Result):
         mode: mode numbers, 1-based, shape ``(k,)``.
         omega: circular frequencies (rad/s), ``(k,)``.
         frequency_hz: frequencies (Hz), ``(k,)``.
-        bending_fraction: share of the strain energy in the bending springs (1: pure bending,
+        bending_energy_fraction: share of the strain energy in the bending springs (1: pure bending,
             0: pure torsion), ``(k,)``.
         x: node stations along the undeformed span (m), ``(n + 1,)``.
         dx, dy: nodal displacements along global x and y per unit modal amplitude, mass
@@ -94,7 +94,7 @@ class ModesResult(_Result):
     mode: np.ndarray
     omega: np.ndarray
     frequency_hz: np.ndarray
-    bending_fraction: np.ndarray
+    bending_energy_fraction: np.ndarray
     x: np.ndarray
     dx: np.ndarray
     dy: np.ndarray
@@ -256,6 +256,9 @@ class DynamicRun(_Result):
             ``t`` ``(S,)``, and ``x``, ``y`` (m), ``twist`` (rad), each ``(S, n + 1)``.
         comparison: differences from the first model's tip history (not for the first model):
             a dict with ``max_tip_difference`` (m), ``relative_x``, ``relative_y``; or ``None``.
+        notes: what made the run slow that its status does not show, as the CLI's ``note:``
+            lines: dicts with ``kind`` (``"newton-failures"``: ``failed``, ``steps``,
+            ``advice``) and ``message``.
     """
 
     label: str
@@ -282,6 +285,7 @@ class DynamicRun(_Result):
     energy_audit: Optional[Dict[str, Any]]
     snapshots: Dict[str, np.ndarray]
     comparison: Optional[Dict[str, Optional[float]]]
+    notes: List[Dict[str, Any]]
     extra: Dict[str, Any] = field(default_factory=dict)
 
     @property

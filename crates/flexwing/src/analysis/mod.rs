@@ -42,10 +42,20 @@ pub mod aero;
 pub mod dynamics;
 mod models;
 pub mod modes;
+mod notes;
 mod progress;
 pub mod statics;
 mod status;
 
 pub use models::{ModelKind, ReducedChoice};
+pub use notes::{NewtonAdvice, Note, NEWTON_NOTE_FAILURES};
 pub use progress::{NoProgress, Progress};
-pub use status::{Doubt, Status, Stop};
+pub use status::{Doubt, Status, Stop, STATUS_WORDS};
+
+/// The caller's name of load `i` for messages: `names[i]`, else `loads[i]`.
+pub(crate) fn load_name(names: &[String], i: usize) -> String {
+    names
+        .get(i)
+        .cloned()
+        .unwrap_or_else(|| format!("loads[{i}]"))
+}

@@ -17,7 +17,6 @@ use flexwing::analysis::Stop;
 use flexwing::Error;
 use serde::Serialize;
 
-use super::report::JsonAudit;
 use super::DynamicArgs;
 use crate::commands::flutter::aero_line;
 use crate::commands::{
@@ -84,7 +83,7 @@ struct JsonReport<'a> {
 #[derive(Serialize)]
 struct JsonModel {
     summary: SummaryRow,
-    energy_audit: Option<JsonAudit>,
+    energy_audit: Option<flexwing::analysis::dynamics::EnergyAudit>,
     samples: Vec<SampleRow>,
 }
 
@@ -126,9 +125,12 @@ fn summary(r: &AeroDynamicRun, incomplete: &[Incomplete]) -> SummaryRow {
         factorizations: st.factorizations,
         wall_time_s: finite(r.wall_time_s),
         max_tip_difference_m: r.max_tip_difference.and_then(finite),
-        energy_balance_max_error: r.energy.as_ref().and_then(|e| finite(e.max_error)),
-        energy_balance_max_error_t_s: r.energy.as_ref().and_then(|e| finite(e.max_error_time)),
-        energy_balance_limit: r.energy.as_ref().and_then(|e| e.limits.balance),
+        energy_balance_max_error: r.energy_audit.as_ref().and_then(|e| finite(e.max_error)),
+        energy_balance_max_error_t_s: r
+            .energy_audit
+            .as_ref()
+            .and_then(|e| finite(e.max_error_time)),
+        energy_balance_limit: r.energy_audit.as_ref().and_then(|e| e.limit),
         status: status_word(r),
     }
 }
@@ -198,7 +200,7 @@ pub fn run(args: &DynamicArgs, case: &Case) -> Result<(), Failure> {
                 .iter()
                 .map(|r| JsonModel {
                     summary: summary(r, &incomplete),
-                    energy_audit: r.energy.as_ref().map(JsonAudit::of),
+                    energy_audit: r.energy_audit,
                     samples: samples(r).collect(),
                 })
                 .collect(),
@@ -278,13 +280,13 @@ fn tables(
             .max_tip_difference
             .map_or_else(|| "-".into(), |v| format!("{v:.2e}"));
         let energy = r
-            .energy
+            .energy_audit
             .as_ref()
             .map_or_else(|| "-".into(), |e| format!("{:.2e}", e.max_error));
         let limit = r
-            .energy
+            .energy_audit
             .as_ref()
-            .and_then(|e| e.limits.balance)
+            .and_then(|e| e.limit)
             .map_or_else(|| "-".into(), |l| format!("{l:.1e}"));
         let _ = writeln!(
             s,

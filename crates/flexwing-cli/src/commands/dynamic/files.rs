@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use flexwing::analysis::dynamics::ModelRun;
+use flexwing::analysis::dynamics::DynamicRun;
 use flexwing::analysis::Status;
 
 use super::Outcome;
@@ -144,9 +144,9 @@ pub fn write_files(
             max_tip_difference_m: r.comparison.map(|c| c.max_tip_difference),
             max_relative_error_tip_x: r.comparison.and_then(|c| c.relative_x),
             max_relative_error_tip_y: r.comparison.and_then(|c| c.relative_y),
-            energy_balance_max_error: r.energy.as_ref().map(|e| e.max_error),
-            energy_balance_max_error_t_s: r.energy.as_ref().map(|e| e.max_error_time),
-            energy_balance_limit: r.energy.as_ref().and_then(|e| e.limits.balance),
+            energy_balance_max_error: r.energy_audit.as_ref().map(|e| e.max_error),
+            energy_balance_max_error_t_s: r.energy_audit.as_ref().map(|e| e.max_error_time),
+            energy_balance_limit: r.energy_audit.as_ref().and_then(|e| e.limit),
             status: super::report::status(r),
         }),
     )?;
@@ -178,7 +178,7 @@ fn case_title(outcome: &Outcome, case: &Case) -> String {
     case.title.clone().unwrap_or(name)
 }
 
-fn legend(run: &ModelRun, first: bool) -> String {
+fn legend(run: &DynamicRun, first: bool) -> String {
     let dofs = match run.dofs {
         1 => "1 dof".to_string(),
         n => format!("{n} dofs"),

@@ -15,9 +15,7 @@ use std::io::IsTerminal as _;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexwing::analysis::dynamics::{self, DynamicOutcome, Initial, ModelRun};
-use flexwing::analysis::ModelKind;
-use flexwing::solve::integrate::Method;
+use flexwing::analysis::dynamics::{self, DynamicOutcome, DynamicRun, Initial};
 use flexwing::Error;
 
 use super::{default_out_dir, model_line, overall_word, status_entry, Failure};
@@ -90,7 +88,7 @@ pub struct Outcome {
 
 impl Outcome {
     /// The simulated models, in the order run.
-    pub fn runs(&self) -> &[ModelRun] {
+    pub fn runs(&self) -> &[DynamicRun] {
         &self.result.runs
     }
 
@@ -105,7 +103,7 @@ impl Outcome {
     }
 
     /// Why `run` did not complete, if it did not.
-    pub fn message_of(&self, run: &ModelRun) -> Option<&str> {
+    pub fn message_of(&self, run: &DynamicRun) -> Option<&str> {
         let label = run.kind.label();
         self.incomplete
             .iter()
@@ -177,10 +175,8 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
         report::tables(&outcome, &written)
     };
     let printed = super::print_stdout(&text, args.json);
-    let point_masses = full.beam().bending_inertias().iter().all(|&j| j == 0.0);
-    let offset = full.beam().offsets().iter().any(|&d| d != 0.0);
     for r in &outcome.result.runs {
-        if let Some(note) = newton_note(r, point_masses, offset) {
+        for note in &r.notes {
             eprintln!("note: {name}: {}: {note}", r.kind.label());
         }
     }
@@ -203,43 +199,6 @@ pub fn run(args: &DynamicArgs) -> Result<(), Failure> {
         )));
     }
     printed
-}
-
-/// A note when most of a run's steps failed Newton (at least 20, and at least half as many as
-/// were accepted): what makes a run slow that its status does not show. On long full models of
-/// point masses this is the chain's alternating highest pattern, which has almost no inertia
-/// (docs/model-choices.md, "Rotary inertia in bending"): elements as rigid bars give it inertia,
-/// and generalized-α at a fixed step damps it. On bars with a mass offset, the twist-dependent
-/// in-plane inertia `m d0² sin²ψ` remains, which a section flap inertia outweighs
-/// (docs/model-choices.md, "The coupled beam's Newton failures").
-fn newton_note(r: &ModelRun, point_masses: bool, offset: bool) -> Option<String> {
-    let (failed, steps) = (r.stats.newton_failures, r.stats.steps);
-    if failed < 20 || 2 * failed < steps {
-        return None;
-    }
-    let full = matches!(r.kind, ModelKind::Full | ModelKind::Simplified);
-    let advice = match (r.integrator, full, point_masses) {
-        (_, true, false) if offset => {
-            "with a mass offset d0 the elements' bending inertia still varies with the twist; \
-             the section's flap inertia beam.section.rotary_inertia, when known, avoids this \
-             (docs/model-choices.md, \"The coupled beam's Newton failures\")"
-        }
-        (_, true, true) => {
-            "on long chains beam.element_inertia = \"bar\" avoids this (it gives the chain's \
-             highest pattern the inertia point masses lack; docs/model-choices.md, \"Rotary \
-             inertia in bending\"), as does integrator = \"generalized-alpha\" with a fixed `step`"
-        }
-        (Method::GeneralizedAlpha, true, false) => "a fixed `step` (dynamic.step) may avoid this",
-        (_, true, false) => {
-            "integrator = \"generalized-alpha\" with a fixed `step` may avoid this \
-             (docs/performance.md, \"O(n) Newton systems\")"
-        }
-        _ => "a smaller max_step or tighter tolerances may help",
-    };
-    Some(format!(
-        "{failed} step attempts failed Newton against {steps} accepted steps, which made the run \
-         slow; {advice}"
-    ))
 }
 
 /// The name of load `i` of the case, or `loads[i]`.

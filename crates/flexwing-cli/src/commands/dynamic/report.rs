@@ -3,10 +3,10 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use flexwing::analysis::dynamics::{DynamicPlan, Initial, ModelRun, Sample};
+use flexwing::analysis::dynamics::{DynamicPlan, DynamicRun, EnergyAudit, Initial, Sample};
 use flexwing::analysis::Stop;
 use flexwing::solve::integrate::Method;
-use flexwing::solve::{Damping, EnergyBalance, Gyroscopic, TimeFunction};
+use flexwing::solve::{Damping, Gyroscopic, TimeFunction};
 use serde::Serialize;
 
 use super::Outcome;
@@ -103,12 +103,12 @@ fn damping_line(damping: &Damping) -> String {
     }
 }
 
-fn last(run: &ModelRun) -> Option<&Sample> {
+fn last(run: &DynamicRun) -> Option<&Sample> {
     run.samples.last()
 }
 
 /// `complete`, `suspect`, `incomplete` or `interrupted`.
-pub fn status(run: &ModelRun) -> &'static str {
+pub fn status(run: &DynamicRun) -> &'static str {
     match run.status.stop() {
         Some(Stop::Interrupted { .. }) => "interrupted",
         _ => run.status.word(),
@@ -140,7 +140,7 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
     let _ = writeln!(s, "tolerances: {}", plan_lines.tolerances);
     let _ = writeln!(s);
 
-    type Cell<'a> = Box<dyn Fn(&ModelRun) -> String + 'a>;
+    type Cell<'a> = Box<dyn Fn(&DynamicRun) -> String + 'a>;
     let opt = |v: Option<f64>, f: &dyn Fn(f64) -> String| v.map_or_else(|| MISSING.into(), f);
     let mut rows: Vec<(&str, Cell)> = vec![
         ("dofs", Box::new(|r| r.dofs.to_string())),
@@ -225,14 +225,14 @@ pub fn tables(outcome: &Outcome, files: &[PathBuf]) -> String {
         (
             "energy balance error",
             Box::new(|r| {
-                opt(r.energy.as_ref().map(|e| e.max_error), &|v| {
+                opt(r.energy_audit.as_ref().map(|e| e.max_error), &|v| {
                     format!("{v:.2e}")
                 })
             }),
         ),
         (
             "energy balance limit",
-            Box::new(|r| match r.energy.as_ref().map(|e| e.limits.balance) {
+            Box::new(|r| match r.energy_audit.as_ref().map(|e| e.limit) {
                 Some(Some(l)) => format!("{l:.1e}"),
                 // The simplified model has no balance: its error is the energy it creates.
                 Some(None) => "none".into(),
@@ -360,26 +360,7 @@ struct JsonModel<'a> {
     t_s: Vec<f64>,
     tip: JsonTip,
     energy: JsonEnergy,
-    energy_audit: Option<JsonAudit>,
-}
-
-/// What the energy audit of a run found (docs/validation.md, "Energy audit").
-#[derive(Serialize)]
-#[allow(non_snake_case)]
-pub(super) struct JsonAudit {
-    /// Whether the model has an energy balance (all but the simplified model).
-    balanced: bool,
-    /// `max_t |H − H(0) − W + D| / E`: for the simplified model, the energy its equations create.
-    max_error: f64,
-    max_error_t_s: f64,
-    /// The limit of `max_error` (none for the simplified model).
-    limit: Option<f64>,
-    /// First time the limit was exceeded.
-    exceeded_t_s: Option<f64>,
-    /// The runaway limit, and when the run was stopped by it.
-    runaway_limit: f64,
-    runaway_t_s: Option<f64>,
-    reference_energy_J: f64,
+    energy_audit: Option<EnergyAudit>,
 }
 
 #[derive(Serialize)]
@@ -417,23 +398,7 @@ struct JsonEnergy {
     balance_error: Vec<f64>,
 }
 
-impl JsonAudit {
-    /// The audit `e` of a run.
-    pub(super) fn of(e: &EnergyBalance) -> Self {
-        Self {
-            balanced: e.limits.balance.is_some(),
-            max_error: e.max_error,
-            max_error_t_s: e.max_error_time,
-            limit: e.limits.balance,
-            exceeded_t_s: e.exceeded_at,
-            runaway_limit: e.limits.runaway,
-            runaway_t_s: e.runaway_at,
-            reference_energy_J: e.reference,
-        }
-    }
-}
-
-fn json_model<'a>(outcome: &'a Outcome, r: &'a ModelRun) -> JsonModel<'a> {
+fn json_model<'a>(outcome: &'a Outcome, r: &'a DynamicRun) -> JsonModel<'a> {
     let column = |f: fn(&Sample) -> f64| r.samples.iter().map(f).collect::<Vec<f64>>();
     let st = &r.stats;
     JsonModel {
@@ -474,7 +439,7 @@ fn json_model<'a>(outcome: &'a Outcome, r: &'a ModelRun) -> JsonModel<'a> {
             dissipated_J: column(|p| p.dissipated),
             balance_error: column(|p| p.balance_error),
         },
-        energy_audit: r.energy.as_ref().map(JsonAudit::of),
+        energy_audit: r.energy_audit,
     }
 }
 

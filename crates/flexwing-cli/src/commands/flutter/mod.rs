@@ -15,6 +15,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexwing::analysis::aero::flutter::{self, FlutterOutcome, FlutterRun};
+use flexwing::analysis::Note;
 use flexwing::model::aero::Aerodynamics;
 use flexwing::Error;
 
@@ -137,28 +138,12 @@ pub fn run(args: &FlutterArgs) -> Result<(), Failure> {
                 stop_message(stop, None, &[]),
             ));
         }
-        if let Some(stop) = r.equilibria_status.stop() {
-            notes.push(format!(
-                "{label}: equilibria: {} (expected past the divergence speed; the eigen-analysis \
-                 continues about the last equilibrium found)",
-                stop_message(stop, None, &[])
-            ));
-        }
-        for (what, s) in
-            std::iter::once(("", &r.stability)).chain(r.pk.as_ref().map(|p| (" p-k", p)))
-        {
-            for &b in &s.unstable_at_start {
-                let br = &s.branches[b];
-                notes.push(format!(
-                    "{label}{what}: the branch of wet mode {} ({} rad/s at U = 0) is already \
-                     unstable at the first speed, {} m/s: no flutter speed is given (with \
-                     quasi-steady aerodynamics and the elastic axis at or aft of mid-chord the \
-                     pitch damping vanishes; use wagner or peters)",
-                    br.mode,
-                    crate::output::short(br.wet_frequency),
-                    crate::output::short(s.speeds.first().copied().unwrap_or(0.0)),
-                ));
-            }
+        for note in &r.notes {
+            let what = match note {
+                Note::UnstableAtStart { pk: true, .. } => " p-k",
+                _ => "",
+            };
+            notes.push(format!("{label}{what}: {note}"));
         }
     }
     let full = &plan.model;

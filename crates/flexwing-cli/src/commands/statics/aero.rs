@@ -251,7 +251,7 @@ fn tables(
         let _ = writeln!(s, "status: complete");
     }
     for i in incomplete {
-        let _ = writeln!(s, "status: incomplete: {}: {}", i.what, i.message);
+        let _ = writeln!(s, "status: {}: {}: {}", i.word, i.what, i.message);
     }
     for f in files {
         let _ = writeln!(s, "wrote {}", f.display());

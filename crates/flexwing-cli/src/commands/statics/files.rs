@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use flexwing::model::FullModel;
 use serde::Serialize;
 
-use flexwing::analysis::statics::ModelRun;
+use flexwing::analysis::statics::StaticRun;
 
 use super::Outcome;
 use crate::output;
@@ -197,7 +197,7 @@ fn shape_plot(outcome: &Outcome, full: &FullModel, case: &Case) -> ShapePlot {
     }
 }
 
-fn legend(run: &ModelRun) -> String {
+fn legend(run: &StaticRun) -> String {
     let label = run.kind.label();
     let kind = if run.kind.modes().is_some() {
         format!("{label} (dashed, {} dofs)", run.dofs)

@@ -12,7 +12,7 @@ pub(crate) mod report;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexwing::analysis::statics::{self, LoadedMode, ModelRun, StaticOutcome};
+use flexwing::analysis::statics::{self, LoadedMode, StaticOutcome, StaticRun};
 use flexwing::model::Load;
 use flexwing::Error;
 
@@ -77,7 +77,7 @@ pub struct Outcome {
 
 impl Outcome {
     /// The solved models, the full model first.
-    pub fn runs(&self) -> &[ModelRun] {
+    pub fn runs(&self) -> &[StaticRun] {
         &self.result.runs
     }
 
@@ -90,7 +90,7 @@ impl Outcome {
     }
 
     /// Why `run` did not complete, if it did not.
-    pub fn message_of(&self, run: &ModelRun) -> Option<&str> {
+    pub fn message_of(&self, run: &StaticRun) -> Option<&str> {
         let label = run.kind.label();
         self.incomplete
             .iter()

@@ -7,7 +7,7 @@ use flexwing::beam::Profile;
 use flexwing::model::{DistributedForce, Force, Load};
 use serde::Serialize;
 
-use flexwing::analysis::statics::{ModelRun, PointResult};
+use flexwing::analysis::statics::{StaticPoint, StaticRun};
 
 use super::Outcome;
 pub use crate::output::short;
@@ -109,14 +109,14 @@ fn render(groups: &[Group], rows: usize) -> String {
     s
 }
 
-fn model_group(outcome: &Outcome, run: &ModelRun, rows: usize) -> Group {
-    let cell = |k: usize, f: &dyn Fn(&PointResult) -> Option<String>| -> String {
+fn model_group(outcome: &Outcome, run: &StaticRun, rows: usize) -> Group {
+    let cell = |k: usize, f: &dyn Fn(&StaticPoint) -> Option<String>| -> String {
         run.points
             .get(k)
             .and_then(f)
             .unwrap_or_else(|| MISSING.into())
     };
-    let column = |header, width, f: &dyn Fn(&PointResult) -> Option<String>| Column {
+    let column = |header, width, f: &dyn Fn(&StaticPoint) -> Option<String>| Column {
         header,
         width,
         cells: (0..rows).map(|k| cell(k, f)).collect(),
@@ -383,7 +383,7 @@ pub fn json(outcome: &Outcome, files: &[PathBuf]) -> String {
     text
 }
 
-fn json_point((k, p): (usize, &PointResult)) -> JsonPoint<'_> {
+fn json_point((k, p): (usize, &StaticPoint)) -> JsonPoint<'_> {
     let (x, y, twist) = p.tip();
     let st = &p.stats;
     JsonPoint {
