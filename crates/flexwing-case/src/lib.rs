@@ -6,8 +6,9 @@
 //! `docs/case-file.md` (a test keeps the two in step).
 //!
 //! The data flow of every front end: a case (TOML text, a file, or any serde data format with the
-//! same keys, such as a Python dict) → [`Case`] → a plan ([`Case::modes_plan`],
-//! [`Case::static_plan`], [`Case::dynamic_plan`]) → `flexwing::analysis::*::run` → an outcome.
+//! same keys, such as a Python dict) → [`Case`] → a plan ([`Case::plan`] of an [`Analysis`]: the
+//! library's `flexwing::analysis::Plan`, aeroelastic when the case has `[aero]`) →
+//! `flexwing::analysis::run` → an outcome.
 //!
 //! ```
 //! use flexwing::analysis::{modes, NoProgress};
@@ -38,6 +39,7 @@ mod beam;
 mod dynamic;
 mod error;
 mod loads;
+mod plan;
 mod property;
 mod spec;
 mod spec_aero;
@@ -50,6 +52,7 @@ use serde::Deserialize;
 
 pub use error::{one_line, CaseError};
 pub use loads::library_loads;
+pub use plan::Analysis;
 pub use property::Property;
 pub use spec::{
     BeamSpec, CalibrationSpec, Case, DampingKindSpec, DampingSpec, DirectionSpec, DynamicSpec,

@@ -23,6 +23,7 @@ pub mod release;
 pub mod report;
 pub mod sine;
 pub mod statics;
+pub mod study;
 pub mod table;
 pub mod timing;
 

@@ -130,6 +130,9 @@ pub enum Stop {
         #[cfg_attr(feature = "serde", serde(serialize_with = "ser::described"))]
         error: SolveError,
     },
+    /// The modes about the full model's last static equilibrium (a static analysis' loaded
+    /// modes) were not found; the equilibria are kept.
+    LoadedModes(#[cfg_attr(feature = "serde", serde(serialize_with = "ser::error"))] SolveError),
     /// The equations of motion could not be set up for this model.
     Equations(#[cfg_attr(feature = "serde", serde(serialize_with = "ser::error"))] InputError),
     /// The energy audit stopped the run at `time` (s): the energy it created, over the energy it
@@ -257,6 +260,7 @@ impl fmt::Display for Stop {
             }
             Stop::StaticPoint { error, .. } => write!(f, "{error}"),
             Stop::Equations(e) => write!(f, "{e}"),
+            Stop::LoadedModes(e) => write!(f, "{e}"),
             Stop::SpeedPoint {
                 point,
                 points,

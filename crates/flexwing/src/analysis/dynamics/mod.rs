@@ -25,6 +25,16 @@ use crate::solve::integrate::{IntegratorSettings, Method};
 use crate::solve::{Damping, Gyroscopic, TimeFunction};
 use crate::text::short;
 
+/// The case file's name of a way to get the gyroscopic term: `exact`, `finite-difference` or
+/// `neglected`.
+pub fn gyroscopic_name(g: Gyroscopic) -> &'static str {
+    match g {
+        Gyroscopic::Exact => "exact",
+        Gyroscopic::FiniteDifference { .. } => "finite-difference",
+        Gyroscopic::Neglected => "neglected",
+    }
+}
+
 /// Most output times of a run: every output time keeps a sample per model in memory.
 pub const MAX_OUTPUT_TIMES: usize = 100_000;
 
