@@ -56,14 +56,15 @@ pub use plan::Analysis;
 pub use property::Property;
 pub use spec::{
     BeamSpec, CalibrationSpec, Case, DampingKindSpec, DampingSpec, DirectionSpec, DynamicSpec,
-    GyroscopicSpec, InertiaAxisSpec, InitialKindSpec, InitialSpec, IntegratorSpec, LoadKindSpec,
-    LoadSpec, ModesSpec, SectionSpec, StaticSpec, SweepSpec, TimeKindSpec, TimeSpec,
+    EquationsSpec, GyroscopicSpec, InertiaAxisSpec, InitialKindSpec, InitialSpec, IntegrationSpec,
+    IntegratorSpec, LoadKindSpec, LoadSpec, ModesSpec, SectionSpec, StaticSpec, SweepSpec,
+    TimeKindSpec, TimeSpec,
 };
 pub use spec_aero::{
     AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustShapeSpec, GustSpec,
     SpeedSweepSpec,
 };
-pub use words::{in_user_terms, JARGON};
+pub use words::{in_user_terms, keys, JARGON};
 
 /// Largest case file read (bytes): 16 MiB, a thousand times the largest example; tables of
 /// 100 000 stations fit.
@@ -248,6 +249,27 @@ mod tests {
             .modes_plan()
             .unwrap_err();
         assert_eq!(e.key.as_deref(), Some("beam.section.rotary_inertia"), "{e}");
+    }
+
+    #[test]
+    fn the_keys_of_a_table_are_its_serde_names() {
+        assert_eq!(
+            keys::<SectionSpec>(),
+            [
+                "EI",
+                "mass_per_length",
+                "GJ",
+                "polar_inertia",
+                "polar_inertia_about",
+                "d0",
+                "rotary_inertia"
+            ]
+        );
+        assert!(keys::<IntegrationSpec>().contains(&"spectral_radius"));
+        assert_eq!(
+            keys::<EquationsSpec>(),
+            ["gyroscopic", "gyroscopic_step", "damping"]
+        );
     }
 
     #[test]

@@ -20,19 +20,17 @@ pub fn kind_name(kind: &ModelKind) -> &'static str {
     }
 }
 
-/// The static outcome as the dict of `StaticResult`; `sweep` names the swept load in stop
-/// messages.
+/// The static outcome as the dict of `StaticResult`.
 pub fn raw<'py>(
     py: Python<'py>,
     plan: &StaticPlan,
     outcome: &StaticOutcome,
-    sweep: Option<&str>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let runs = outcome
         .runs
         .iter()
-        .map(|r| run(py, plan, r, sweep))
+        .map(|r| run(py, plan, r))
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("runs", runs)?;
     let (modes, error) = match &outcome.loaded_modes {
@@ -74,12 +72,7 @@ pub fn stats_dict<'py>(py: Python<'py>, stats: &[StaticStats]) -> PyResult<Bound
     columns(py, stats)
 }
 
-fn run<'py>(
-    py: Python<'py>,
-    plan: &StaticPlan,
-    r: &StaticRun,
-    _sweep: Option<&str>,
-) -> PyResult<Bound<'py, PyDict>> {
+fn run<'py>(py: Python<'py>, plan: &StaticPlan, r: &StaticRun) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("label", r.kind.label())?;
     d.set_item("kind", kind_name(&r.kind))?;
