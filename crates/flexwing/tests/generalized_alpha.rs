@@ -6,7 +6,6 @@
 mod common;
 
 use common::*;
-use flexwing::beam::{Calibration, Profile};
 use flexwing::model::{Force, FullModel, Load, ReducedModel, StructuralModel};
 use flexwing::solve::integrate::{
     GeneralizedAlpha, GeneralizedAlphaOptions, Radau, RadauOptions, Tolerances, Trajectory,
@@ -15,14 +14,6 @@ use flexwing::solve::{
     solve_static, Damping, EquationsOfMotion, Gyroscopic, Modes, StaticOptions, TimeFunction,
 };
 
-fn table4(n: usize) -> FullModel {
-    model(
-        1.0,
-        &bending_only(Profile::Uniform(50.0), Profile::Uniform(0.2)),
-        n,
-        Calibration::TipLoad,
-    )
-}
 
 fn tip(full: &FullModel, q: &[f64]) -> [f64; 2] {
     let p = full.node_positions(&full.kinematics(q))[full.n_elements()];
