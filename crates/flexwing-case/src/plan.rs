@@ -81,3 +81,40 @@ impl Case {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use flexwing::analysis::{Status, Stop};
+    use flexwing::SolveError;
+
+    /// The serialized form every front end shows (the CLI's JSON, Python's dicts): the status
+    /// word, the stop with its reason, values, nested error and one-line messages.
+    #[test]
+    fn a_status_serializes_as_its_word_stop_and_message() {
+        let status = Status::Stopped(Stop::Integration(SolveError::TooManySteps {
+            time: 0.25,
+            steps: 100,
+        }));
+        let v = serde_json::to_value(&status).unwrap();
+        let message = "time integration stopped at t = 0.25 s: 100 steps (accepted and \
+                       rejected) reached the limit max_steps";
+        assert_eq!(
+            v,
+            serde_json::json!({
+                "status": "stopped",
+                "stop": {
+                    "reason": "integration",
+                    "error": { "kind": "too-many-steps", "time": 0.25, "steps": 100,
+                               "message": message },
+                    "message": message,
+                },
+                "message": message,
+            })
+        );
+        let v = serde_json::to_value(Status::Complete).unwrap();
+        assert_eq!(
+            v,
+            serde_json::json!({"status": "complete", "stop": null, "message": null})
+        );
+    }
+}

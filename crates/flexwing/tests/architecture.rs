@@ -63,7 +63,10 @@ fn the_module_map_lists_every_module_once() {
     for krate in std::fs::read_dir(root.join("crates")).unwrap().flatten() {
         files(&krate.path().join("src"), &mut actual);
     }
-    files(&root.join("crates/flexwing-py/python/flexwing"), &mut actual);
+    files(
+        &root.join("crates/flexwing-py/python/flexwing"),
+        &mut actual,
+    );
     let listed = listed(&text);
     let missing: Vec<_> = actual.difference(&listed).collect();
     let extra: Vec<_> = listed.difference(&actual).collect();

@@ -14,7 +14,6 @@ use flexwing::solve::{
     solve_static, Damping, EquationsOfMotion, Gyroscopic, Modes, StaticOptions, TimeFunction,
 };
 
-
 fn tip(full: &FullModel, q: &[f64]) -> [f64; 2] {
     let p = full.node_positions(&full.kinematics(q))[full.n_elements()];
     [p[0], p[1]]

@@ -16,7 +16,6 @@ use flexwing::solve::integrate::{
 };
 use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, NewtonSystems, TimeFunction};
 
-
 /// Which integrator, with its step control.
 #[derive(Clone, Copy)]
 enum Method {

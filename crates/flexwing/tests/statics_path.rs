@@ -14,7 +14,6 @@ use std::f64::consts::PI;
 
 const EI: f64 = 50.0;
 
-
 fn tip_load(full: &FullModel, fx: f64, fy: f64) -> flexwing::model::AppliedLoads {
     full.apply(
         &[Load::PointForce {

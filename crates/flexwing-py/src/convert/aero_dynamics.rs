@@ -1,6 +1,6 @@
 //! [`AeroDynamicOutcome`] into `AeroDynamicResult` and its `AeroDynamicRun`s: the columns of the
 //! CLI's `dynamic_aero.csv` and `dynamic_summary.csv`
-//! (crates/flexwing-cli/src/commands/dynamic/aero.rs), as arrays.
+//! (crates/flexwing-cli/src/render/aero_dynamic.rs), as arrays.
 
 use flexwing::analysis::aero::response::{AeroDynamicOutcome, AeroDynamicPlan, AeroSample};
 use flexwing::analysis::aero::response::{AeroDynamicRun, AeroStart};

@@ -1,6 +1,6 @@
 //! [`AeroStaticOutcome`] into `AeroStaticResult` and its `AeroStaticRun`s; the equilibria of a
 //! flutter run use the same `AeroStaticRun` ([`equilibria`]). The columns are those of the CLI's
-//! `static_aero.csv` and `static_nodes.csv` (crates/flexwing-cli/src/commands/statics/aero.rs).
+//! `static_aero.csv` and `static_nodes.csv` (crates/flexwing-cli/src/render/aero_static.rs).
 
 use flexwing::analysis::aero::statics::{AeroPoint, AeroStaticOutcome, AeroStaticPlan};
 use flexwing::analysis::aero::Aero;

@@ -1,7 +1,7 @@
 //! [`FlutterOutcome`] into `FlutterResult`, its `FlutterRun`s and their `Stability` (the
 //! eigen-analysis, and the p-k check): the data of the CLI's `flutter_summary.csv`,
 //! `flutter_crossings.csv`, `flutter_vg.csv` and `flutter_equilibria.csv`
-//! (crates/flexwing-cli/src/commands/flutter/), as arrays.
+//! (crates/flexwing-cli/src/render/flutter.rs), as arrays.
 
 use flexwing::analysis::aero::flutter::{FlutterOutcome, FlutterPlan, FlutterRun, Stability};
 use flexwing::solve::aeroelastic::CrossingKind;
