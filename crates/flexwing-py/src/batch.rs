@@ -18,7 +18,8 @@ use crate::case::{case_from_dict, PyCase};
 use crate::convert;
 use crate::errors;
 use crate::kwargs::Kwargs;
-use crate::run::{execute, incomplete_error, to_python, Analysis, Failure, Outcome};
+use crate::run::{execute, incomplete_error, to_python, Done as Outcome, Failure};
+use flexwing_case::Analysis;
 
 /// One case's run: its outcome or failure, and its wall time.
 type Done = (Result<Outcome, Failure>, f64);
@@ -90,26 +91,22 @@ fn item<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let d = PyDict::new(py);
     d.set_item("index", index)?;
-    let (status, result, error, wall): (&str, Option<Bound<'py, PyAny>>, Option<PyErr>, f64) =
-        match done {
-            Err(e) => ("error", None, Some(e), 0.0),
-            Ok((Err(f), wall)) => ("error", None, Some(f.to_py(py)), wall),
-            Ok((Ok(outcome), wall)) => {
-                let (result, incomplete) = to_python(py, &outcome, wall)?;
-                match incomplete {
-                    None => ("complete", Some(result), None, wall),
-                    Some(i) => {
-                        let word = if i.word == "suspect" {
-                            "suspect"
-                        } else {
-                            "stopped"
-                        };
-                        let e = incomplete_error(py, &result, i);
-                        (word, Some(result), Some(e), wall)
-                    }
+    type Item<'py> = (String, Option<Bound<'py, PyAny>>, Option<PyErr>, f64);
+    let (status, result, error, wall): Item<'py> = match done {
+        Err(e) => ("error".into(), None, Some(e), 0.0),
+        Ok((Err(f), wall)) => ("error".into(), None, Some(f.to_py(py)), wall),
+        Ok((Ok(outcome), wall)) => {
+            let (result, incomplete) = to_python(py, &outcome, wall)?;
+            match incomplete {
+                None => ("complete".into(), Some(result), None, wall),
+                Some(i) => {
+                    let word = i.word.clone();
+                    let e = incomplete_error(py, &result, i);
+                    (word, Some(result), Some(e), wall)
                 }
             }
-        };
+        }
+    };
     d.set_item("status", status)?;
     d.set_item("result", result)?;
     let message = error.as_ref().map(|e| e.value(py).to_string());
@@ -140,7 +137,7 @@ pub fn solve_many<'py>(
     let kw = Kwargs::new(py, kwargs, &["threads", "progress"], "solve_many")?;
     let analysis = match analysis {
         None => Analysis::Static,
-        Some(a) => Analysis::parse(py, &arrays::text(a, "analysis")?, "analysis")?,
+        Some(a) => crate::run::parse(py, &arrays::text(a, "analysis")?, "analysis")?,
     };
     let threads = match kw.get("threads")? {
         None => 1,

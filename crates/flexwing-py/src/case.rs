@@ -4,15 +4,15 @@
 
 use std::path::Path;
 
-use flexwing_case::{Case, CaseError};
+use flexwing_case::Case;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyString, PyTuple};
-use pythonize::Depythonizer;
+use pyo3::types::{PyDict, PyList};
 
 use crate::errors;
 use crate::kwargs::Kwargs;
 use crate::model::PyFullModel;
-use crate::run::{run_case, Analysis};
+use crate::run::run_case;
+use flexwing_case::Analysis;
 
 /// A flexwing case: the beam, the loads and the settings of its analyses, with the keys of the
 /// case file (docs/case-file.md).
@@ -26,33 +26,6 @@ pub struct PyCase {
     pub case: Case,
 }
 
-/// `obj` with NumPy arrays and scalars turned into lists and Python numbers, tuples into lists:
-/// what the serde reader of the case takes.
-pub fn plain_value<'py>(obj: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
-    let py = obj.py();
-    if let Ok(d) = obj.cast::<PyDict>() {
-        let out = PyDict::new(py);
-        for (k, v) in d.iter() {
-            out.set_item(k, plain_value(&v)?)?;
-        }
-        return Ok(out.into_any());
-    }
-    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
-        let items = obj
-            .try_iter()?
-            .map(|v| v.and_then(|v| plain_value(&v)))
-            .collect::<PyResult<Vec<_>>>()?;
-        return Ok(PyList::new(py, items)?.into_any());
-    }
-    if obj.is_instance_of::<PyString>() {
-        return Ok(obj.clone());
-    }
-    if obj.hasattr("tolist")? && obj.hasattr("dtype")? {
-        return plain_value(&obj.call_method0("tolist")?);
-    }
-    Ok(obj.clone())
-}
-
 /// A case from a dict with the case file's keys; errors name the key (`beam.section.EI`).
 pub fn case_from_dict(obj: &Bound<'_, PyAny>) -> PyResult<Case> {
     let py = obj.py();
@@ -63,19 +36,7 @@ pub fn case_from_dict(obj: &Bound<'_, PyAny>) -> PyResult<Case> {
             "must be a dict with the keys of a case file",
         ));
     }
-    let value = plain_value(obj)?;
-    errors::guard(py, || {
-        let mut de = Depythonizer::from_object(&value);
-        serde_path_to_error::deserialize::<_, Case>(&mut de).map_err(|e| {
-            let path = e.path().to_string();
-            let reason = flexwing_case::one_line(&e.inner().to_string());
-            let error = CaseError {
-                key: (path != ".").then_some(path),
-                ..CaseError::new(reason)
-            };
-            errors::case(py, &error)
-        })
-    })
+    crate::values::read_or_raise(obj, "", true)
 }
 
 /// The keys of `path` (`"beam.section.EI"`, `"loads[0].fy"`): names and list indices.
@@ -366,7 +327,7 @@ impl PyCase {
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let name = crate::arrays::text(analysis, "analysis")?;
-        let analysis = Analysis::parse(py, &name, "analysis")?;
+        let analysis = crate::run::parse(py, &name, "analysis")?;
         self.analysis(py, analysis, kwargs, "run")
     }
 

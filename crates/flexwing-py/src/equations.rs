@@ -15,12 +15,11 @@ use flexwing::model::{AppliedLoads, FullModel, ReducedModel, StructuralModel};
 use flexwing::solve::integrate::{
     integrate, IntegratorSettings, IntegratorStats, Method, OdeSystem,
 };
-use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, TimeFunction};
-use flexwing_case::LoadSpec;
+use flexwing::solve::{EquationsOfMotion, TimeFunction};
+use flexwing_case::{EquationsSpec, IntegrationSpec, LoadSpec};
 use nalgebra::DMatrix;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use pythonize::Depythonizer;
 use self_cell::self_cell;
 
 use crate::arrays::{self, out1, out_matrix};
@@ -108,19 +107,7 @@ fn loads_of(
     let Some(loads) = loads else {
         return Ok(AppliedLoads::none());
     };
-    let plain = crate::case::plain_value(loads)?;
-    let specs: Vec<LoadSpec> = errors::guard(py, || {
-        let mut de = Depythonizer::from_object(&plain);
-        serde_path_to_error::deserialize(&mut de).map_err(|e| {
-            let path = e.path().to_string();
-            let field = if path == "." {
-                "loads".to_string()
-            } else {
-                format!("loads{path}")
-            };
-            errors::input(py, &field, &flexwing_case::one_line(&e.inner().to_string()))
-        })
-    })?;
+    let specs: Vec<LoadSpec> = crate::values::read_or_raise(loads, "loads", false)?;
     for (i, s) in specs.iter().enumerate() {
         for (key, given) in [("time", s.time.is_some()), ("active", s.active.is_some())] {
             if given {
@@ -142,88 +129,24 @@ fn loads_of(
     })
 }
 
-fn gyroscopic_of(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<Gyroscopic> {
-    let name = kw
-        .get("gyroscopic")?
-        .map(|g| arrays::text(&g, "gyroscopic"))
-        .transpose()?;
-    let step = kw
-        .get("gyroscopic_step")?
-        .map(|s| arrays::number(&s, "gyroscopic_step"))
-        .transpose()?;
-    let g = match name.as_deref() {
-        None | Some("exact") => Gyroscopic::Exact,
-        Some("neglected") => Gyroscopic::Neglected,
-        Some("finite-difference") => Gyroscopic::FiniteDifference {
-            step: step.unwrap_or(Gyroscopic::DEFAULT_STEP),
-        },
-        Some(other) => {
-            return Err(errors::input(
-                py,
-                "gyroscopic",
-                &format!(
-                    "unknown value {other:?}; expected \"exact\", \"finite-difference\" or \
-                     \"neglected\""
-                ),
-            ))
-        }
-    };
-    g.validate("gyroscopic_step")
-        .map_err(|e| errors::library_input(py, &e))?;
-    Ok(g)
-}
-
-fn damping_of(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<Damping> {
-    let Some(d) = kw.get("damping")? else {
-        return Ok(Damping::None);
-    };
-    let d = d.cast::<PyDict>().map_err(|_| {
-        errors::argument_type(
-            py,
-            "damping",
-            "must be a dict: {\"type\": \"rayleigh\", \"alpha\": …, \"beta\": …} or \
-             {\"type\": \"modal\", \"ratios\": [...]}",
-        )
-    })?;
-    let allowed = ["type", "alpha", "beta", "ratios"];
-    for k in d.keys() {
-        let k: String = k.extract()?;
-        if !allowed.contains(&k.as_str()) {
-            return Err(errors::argument_type(
-                py,
-                &format!("damping.{k}"),
-                "unknown key; damping takes type, alpha, beta, ratios",
-            ));
+/// The keyword arguments of `kw` that are keys of the case crate's table `T` (not `None`), read
+/// as `T`: the keys, defaults and checks of the case file's `[dynamic]`.
+fn spec<T: serde::de::DeserializeOwned>(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<T> {
+    let given = PyDict::new(py);
+    for key in flexwing_case::keys::<T>() {
+        if let Some(v) = kw.get(key)? {
+            given.set_item(key, v)?;
         }
     }
-    let get = |k: &str| d.get_item(k).map(|v| v.filter(|v| !v.is_none()));
-    let kind = get("type")?
-        .map(|t| arrays::text(&t, "damping.type"))
-        .transpose()?
-        .unwrap_or_else(|| "none".into());
-    let number = |k: &str| -> PyResult<f64> {
-        get(k)?.map_or(Ok(0.0), |v| arrays::number(&v, &format!("damping.{k}")))
-    };
-    Ok(match kind.as_str() {
-        "none" => Damping::None,
-        "rayleigh" => Damping::Rayleigh {
-            alpha: number("alpha")?,
-            beta: number("beta")?,
-        },
-        "modal" => Damping::Modal {
-            ratios: match get("ratios")? {
-                Some(r) => arrays::vector(&r, "damping.ratios", None)?,
-                None => return Err(errors::input(py, "damping.ratios", "missing")),
-            },
-        },
-        other => {
-            return Err(errors::input(
-                py,
-                "damping.type",
-                &format!("unknown value {other:?}; expected \"none\", \"rayleigh\" or \"modal\""),
-            ))
-        }
-    })
+    crate::values::read_or_raise(given.as_any(), "", false)
+}
+
+/// The keywords a function takes: its own, then the keys of the case crate's tables `tables`.
+fn keywords(own: &[&'static str], tables: &[&'static [&'static str]]) -> Vec<&'static str> {
+    own.iter()
+        .copied()
+        .chain(tables.iter().flat_map(|t| t.iter().copied()))
+        .collect()
 }
 
 /// The equations of `model` under `loads`, with the options of `kw` (`gyroscopic`,
@@ -240,8 +163,11 @@ fn owned_eom(
         Some(s) => arrays::vector(&s, "scales", Some(n_loads))?,
         None => vec![1.0; n_loads],
     };
-    let gyroscopic = gyroscopic_of(py, kw)?;
-    let damping = damping_of(py, kw)?;
+    let options: EquationsSpec = spec(py, kw)?;
+    let library = |e: flexwing::InputError| errors::library_input(py, &e);
+    let gyroscopic = options.to_gyroscopic("").map_err(library)?;
+    gyroscopic.validate("gyroscopic_step").map_err(library)?;
+    let damping = options.to_damping("").map_err(library)?;
     damping
         .validate("damping", model.n_dofs())
         .map_err(|e| errors::library_input(py, &e))?;
@@ -293,8 +219,6 @@ pub struct PyEquations {
     dy: Vec<f64>,
 }
 
-const EQUATIONS_KEYS: &[&str] = &["scales", "gyroscopic", "gyroscopic_step", "damping"];
-
 impl PyEquations {
     /// Build from a model and the keyword arguments of `model.equations`.
     pub fn build(
@@ -303,7 +227,8 @@ impl PyEquations {
         loads: Option<&Bound<'_, PyAny>>,
         kwargs: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
-        let kw = Kwargs::new(py, kwargs, EQUATIONS_KEYS, "equations")?;
+        let allowed = keywords(&["scales"], &[flexwing_case::keys::<EquationsSpec>()]);
+        let kw = Kwargs::new(py, kwargs, &allowed, "equations")?;
         let n = model.n_dofs();
         let (cell, scales) = owned_eom(py, model, loads, &kw)?;
         Ok(Self {
@@ -444,25 +369,6 @@ impl PyEquations {
     }
 }
 
-const STEPPER_KEYS: &[&str] = &[
-    "scales",
-    "gyroscopic",
-    "gyroscopic_step",
-    "damping",
-    "x0",
-    "xdot0",
-    "t0",
-    "integrator",
-    "rtol",
-    "atol",
-    "max_steps",
-    "max_step",
-    "step",
-    "max_order",
-    "spectral_radius",
-    "hold",
-];
-
 /// How the load factors go over an interval of `Stepper.step`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Hold {
@@ -509,53 +415,19 @@ impl PyStepper {
         loads: Option<&Bound<'_, PyAny>>,
         kwargs: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
-        let kw = Kwargs::new(py, kwargs, STEPPER_KEYS, "stepper")?;
+        let allowed = keywords(
+            &["scales", "x0", "xdot0", "t0", "hold"],
+            &[
+                flexwing_case::keys::<EquationsSpec>(),
+                flexwing_case::keys::<IntegrationSpec>(),
+            ],
+        );
+        let kw = Kwargs::new(py, kwargs, &allowed, "stepper")?;
         let n = model.n_dofs();
-        let method = match kw.get("integrator")? {
-            None => Method::default(),
-            Some(name) => {
-                let name = arrays::text(&name, "integrator")?;
-                if name == "auto" {
-                    Method::default()
-                } else {
-                    Method::ALL
-                        .iter()
-                        .copied()
-                        .find(|m| m.name() == name)
-                        .ok_or_else(|| {
-                            let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
-                            errors::input(
-                                py,
-                                "integrator",
-                                &format!("unknown integrator {name:?}; expected \"auto\" or one of {names:?}"),
-                            )
-                        })?
-                }
-            }
-        };
-        let mut settings = IntegratorSettings::default();
-        for key in ["rtol", "atol", "spectral_radius"] {
-            if let Some(v) = kw.get(key)? {
-                let v = arrays::number(&v, key)?;
-                match key {
-                    "rtol" => settings.rtol = v,
-                    "atol" => settings.atol = v,
-                    _ => settings.spectral_radius = v,
-                }
-            }
-        }
-        if let Some(v) = kw.get("max_steps")? {
-            settings.max_steps = arrays::count(&v, "max_steps")?;
-        }
-        if let Some(v) = kw.get("max_order")? {
-            settings.max_order = arrays::count(&v, "max_order")?;
-        }
-        if let Some(v) = kw.get("max_step")? {
-            settings.max_step = Some(arrays::number(&v, "max_step")?);
-        }
-        if let Some(v) = kw.get("step")? {
-            settings.step = Some(arrays::number(&v, "step")?);
-        }
+        let integration: IntegrationSpec = spec(py, &kw)?;
+        let (method, settings) = integration
+            .to_settings("")
+            .map_err(|e| errors::library_input(py, &e))?;
         settings
             .validate("")
             .map_err(|e| errors::library_input(py, &e))?;
@@ -683,11 +555,12 @@ impl PyStepper {
             }
             Err(failure) => {
                 self.stats += failure.stats;
-                let stop = crate::convert::status::solve_error_dict(py, &failure.error)?;
-                stop.set_item("reason", "integration")?;
+                let message = failure.error.to_string();
+                let stop = flexwing::analysis::Stop::Integration(failure.error);
+                let stop = crate::convert::status::described(py, &stop)?;
                 Err(errors::solver(
                     py,
-                    &failure.error.to_string(),
+                    &message,
                     None,
                     Some(stop.into_any().unbind()),
                     None,

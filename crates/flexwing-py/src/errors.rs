@@ -13,7 +13,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use pyo3::IntoPyObjectExt;
 
-use crate::convert::status::solve_error_dict;
+use crate::convert::status::described;
 
 /// An instance of `flexwing._errors.{class}` with `message` and the attributes of `attributes`.
 fn exception(
@@ -103,7 +103,7 @@ pub fn solver(
 
 /// `SolverError` for a solver error outside any model's run.
 pub fn solve(py: Python<'_>, e: &SolveError) -> PyErr {
-    let stop = solve_error_dict(py, e).ok().map(|d| d.into_any().unbind());
+    let stop = described(py, e).ok().map(|d| d.into_any().unbind());
     solver(py, &e.to_string(), None, stop, None)
 }
 

@@ -7,18 +7,19 @@
 //! | module | what |
 //! |---|---|
 //! | `case` | `Case`: a case file, TOML text or dict; its analyses |
-//! | `run` | running an analysis of a case detached from the interpreter; [`run::Analysis`] lists them; `[aero]` picks the aeroelastic plans |
+//! | `run` | running an analysis of a case detached from the interpreter: `Case::plan` of the case crate's `Analysis`, `flexwing::analysis::run`, the outcome into its result |
 //! | `convert/` | library outcomes into result objects (dicts of NumPy arrays) |
 //! | `batch` | `solve_many`: many cases, each one's status and error as data |
 //! | `model` | `Beam`, `FullModel`, `ReducedModel` |
 //! | `equations` | `Equations` (rhs, Jacobian, energies at a state) and `Stepper` |
 //! | `arrays` | NumPy in (checked, converted, copied) and out |
 //! | `errors` | library errors into Python exceptions; panics caught at the boundary |
+//! | `values` | Python values into the case crate's serde types, errors naming the key path |
 //! | `kwargs`, `progress` | keyword arguments checked by name; the progress callback |
 //!
-//! A new analysis of the library joins as one variant of [`run::Analysis`], one converter in
-//! `convert/` and one result class in `python/flexwing/_results.py` (the aeroelastic ones —
-//! flutter, and statics and dynamics of a case with `[aero]` — are in `_aero_results.py`).
+//! A new analysis of the library (a variant of `flexwing::analysis::Plan` and `Outcome`, built
+//! by `Case::plan`) joins as one arm of [`run::to_python`], one converter in `convert/` and one
+//! result class in `python/flexwing/_results.py`.
 
 use pyo3::prelude::*;
 
@@ -32,6 +33,7 @@ mod kwargs;
 mod model;
 mod progress;
 mod run;
+mod values;
 
 /// What `__reduce__` returns: the callable that rebuilds the object, and its arguments.
 type Reduce<'py, A> = PyResult<(Bound<'py, PyAny>, A)>;

@@ -3,43 +3,17 @@
 //! (`equations.rs`). A beam is read through the case crate's `[beam]` table, so the rules are
 //! the case file's, with errors named by the keyword argument (`EI`, `elements`).
 
-use flexwing::analysis::modes::{run as run_modes, ModesPlan};
-use flexwing::analysis::NoProgress;
+use flexwing::analysis::modes::ModesPlan;
+use flexwing::analysis::{self, NoProgress, Plan};
 use flexwing::model::{FullModel, ReducedModel, StructuralModel};
 use flexwing::solve::Modes;
-use flexwing_case::BeamSpec;
+use flexwing_case::{keys, BeamSpec, SectionSpec};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::arrays::{self, out1, out_matrix};
-use crate::case::case_from_dict;
 use crate::errors;
 use crate::kwargs::Kwargs;
-
-/// The keyword arguments of `Beam`: the keys of `[beam]` and `[beam.section]`, and `x`.
-const BEAM_KEYS: &[&str] = &[
-    "length",
-    "elements",
-    "stations",
-    "calibration",
-    "element_inertia",
-    "x",
-    "EI",
-    "mass_per_length",
-    "GJ",
-    "polar_inertia",
-    "polar_inertia_about",
-    "d0",
-    "rotary_inertia",
-];
-const SECTION_KEYS: &[&str] = &[
-    "EI",
-    "mass_per_length",
-    "GJ",
-    "polar_inertia",
-    "d0",
-    "rotary_inertia",
-];
 
 /// The argument a case-file key of `[beam]` came from: `beam.section.EI` → `EI`.
 fn argument_of(key: &str) -> String {
@@ -51,28 +25,53 @@ fn argument_of(key: &str) -> String {
 
 /// The library beam of `spec` (a `[beam]` table), errors named by the keyword arguments.
 fn beam_of(py: Python<'_>, spec: &Bound<'_, PyDict>) -> PyResult<(BeamSpec, FullModel)> {
-    let case = PyDict::new(py);
-    case.set_item("beam", spec)?;
-    let rename = |e: PyErr| {
-        let value = e.value(py);
-        match value
-            .getattr("key")
-            .and_then(|k| k.extract::<Option<String>>())
-        {
-            Ok(Some(key)) => {
-                let reason: String = value
-                    .getattr("reason")
-                    .and_then(|r| r.extract())
-                    .unwrap_or_default();
-                errors::input(py, &argument_of(&key), &reason)
-            }
-            _ => e,
+    // A value of the wrong type (a text for a number) is a TypeError, as Python's own.
+    let spec: BeamSpec = crate::values::read(spec.as_any(), "beam").map_err(|e| match &e.key {
+        Some(key) if e.reason.starts_with("invalid type") => {
+            errors::argument_type(py, &argument_of(key), &e.reason)
         }
-    };
-    let case = case_from_dict(case.as_any()).map_err(rename)?;
-    let model =
-        errors::guard(py, || case.model().map_err(|e| errors::case(py, &e))).map_err(rename)?;
-    Ok((case.beam.clone(), model))
+        Some(key) => errors::input(py, &argument_of(key), &e.reason),
+        None => errors::case(py, &e),
+    })?;
+    let model = errors::guard(py, || {
+        spec.model()
+            .map_err(|e| errors::input(py, &argument_of(&e.field), &e.reason))
+    })?;
+    Ok((spec, model))
+}
+
+/// The value of the keyword argument `key` of `Beam` as a case-file value: a text, a count
+/// (`elements`), stations (`stations`), or a property — a number, or an array of values at the
+/// stations `x` (the table `{x, value}`).
+fn argument<'py>(
+    py: Python<'py>,
+    key: &str,
+    v: &Bound<'py, PyAny>,
+    x: Option<&[f64]>,
+) -> PyResult<Bound<'py, PyAny>> {
+    if v.is_instance_of::<pyo3::types::PyString>() {
+        return Ok(v.clone());
+    }
+    match key {
+        "elements" => return Ok(arrays::count(v, key)?.into_pyobject(py)?.into_any()),
+        "stations" => return Ok(PyList::new(py, arrays::vector(v, key, None)?)?.into_any()),
+        _ => {}
+    }
+    if v.extract::<f64>().is_ok() && !v.hasattr("__len__")? {
+        return Ok(arrays::number(v, key)?.into_pyobject(py)?.into_any());
+    }
+    let values = arrays::vector(v, key, x.map(<[f64]>::len))?;
+    let x = x.ok_or_else(|| {
+        errors::input(
+            py,
+            "x",
+            &format!("missing: {key} is an array of values at the stations x (m)"),
+        )
+    })?;
+    let table = PyDict::new(py);
+    table.set_item("x", x.to_vec())?;
+    table.set_item("value", values)?;
+    Ok(table.into_any())
 }
 
 /// A cantilever cut into rigid elements, with its section properties over the span.
@@ -96,7 +95,14 @@ impl PyBeam {
     #[new]
     #[pyo3(signature = (**kwargs))]
     fn new(py: Python<'_>, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
-        let kw = Kwargs::new(py, kwargs, BEAM_KEYS, "Beam")?;
+        // The keys of `[beam]` and of `[beam.section]` (the case crate's), and `x`.
+        let (beam_keys, section_keys) = (keys::<BeamSpec>(), keys::<SectionSpec>());
+        let allowed: Vec<&str> = (beam_keys.iter().filter(|k| **k != "section"))
+            .chain(section_keys)
+            .chain(&["x"])
+            .copied()
+            .collect();
+        let kw = Kwargs::new(py, kwargs, &allowed, "Beam")?;
         let beam = PyDict::new(py);
         let section = PyDict::new(py);
         let required = |name: &str| {
@@ -104,52 +110,23 @@ impl PyBeam {
                 .ok_or_else(|| errors::input(py, name, "missing: a required argument"))
         };
         beam.set_item("length", arrays::number(&required("length")?, "length")?)?;
-        if let Some(n) = kw.get("elements")? {
-            beam.set_item("elements", arrays::count(&n, "elements")?)?;
-        }
-        if let Some(s) = kw.get("stations")? {
-            beam.set_item("stations", arrays::vector(&s, "stations", None)?)?;
-        }
-        if let Some(c) = kw.get("calibration")? {
-            beam.set_item("calibration", arrays::text(&c, "calibration")?)?;
-        }
-        if let Some(c) = kw.get("element_inertia")? {
-            beam.set_item("element_inertia", arrays::text(&c, "element_inertia")?)?;
+        for key in ["EI", "mass_per_length"] {
+            required(key)?;
         }
         let x = kw
             .get("x")?
             .map(|x| arrays::vector(&x, "x", None))
             .transpose()?;
-        for key in SECTION_KEYS {
-            let Some(v) = kw.get(key)? else {
-                if matches!(*key, "EI" | "mass_per_length") {
-                    return Err(errors::input(py, key, "missing: a required argument"));
-                }
+        for key in beam_keys.iter().chain(section_keys) {
+            let (Some(v), true) = (kw.get(key)?, *key != "length") else {
                 continue;
             };
-            let is_number = v.extract::<f64>().is_ok() && !v.hasattr("__len__")?;
-            if is_number {
-                section.set_item(key, arrays::number(&v, key)?)?;
+            let into = if section_keys.contains(key) {
+                &section
             } else {
-                let values = arrays::vector(&v, key, x.as_ref().map(Vec::len))?;
-                let x = x.as_ref().ok_or_else(|| {
-                    errors::input(
-                        py,
-                        "x",
-                        &format!("missing: {key} is an array of values at the stations x (m)"),
-                    )
-                })?;
-                let table = PyDict::new(py);
-                table.set_item("x", x.clone())?;
-                table.set_item("value", values)?;
-                section.set_item(key, table)?;
-            }
-        }
-        if let Some(a) = kw.get("polar_inertia_about")? {
-            section.set_item(
-                "polar_inertia_about",
-                arrays::text(&a, "polar_inertia_about")?,
-            )?;
+                &beam
+            };
+            into.set_item(key, argument(py, key, &v, x.as_deref())?)?;
         }
         beam.set_item("section", section)?;
         let (spec, model) = beam_of(py, &beam)?;
@@ -401,15 +378,15 @@ impl PyFullModel {
         let count = count.map(|c| arrays::count(c, "count")).transpose()?;
         let plan = ModesPlan::new(self.model.clone(), count, "count")
             .map_err(|e| errors::library_input(py, &e))?;
+        let plan = Plan::Modes(plan);
         let (outcome, rust_time_s) = errors::detached(py, || {
             let start = std::time::Instant::now();
-            let outcome = run_modes(&plan, &mut NoProgress);
+            let outcome = analysis::run(&plan, &mut NoProgress);
             (outcome, start.elapsed().as_secs_f64())
         })?;
-        let outcome = outcome.map_err(|e| errors::solve(py, &e))?;
-        let raw = crate::convert::modes::raw(py, &self.model, &outcome)?;
-        raw.set_item("rust_time_s", rust_time_s)?;
-        crate::convert::build(py, "modes", raw)
+        let outcome = outcome.map_err(|e| errors::library(py, &e))?;
+        let done = crate::run::Done { plan, outcome };
+        Ok(crate::run::to_python(py, &done, rust_time_s)?.0)
     }
 
     /// The reduced model on ``modes`` of the undeformed state: an int ``r`` (the first ``r``)

@@ -12,6 +12,7 @@ mod aero_reduced;
 mod aero_response;
 mod aero_statics;
 mod aero_typical_section;
+mod architecture;
 mod bad_input;
 mod chain3d_bathe_bolourchi;
 mod chain3d_dynamics;
