@@ -20,7 +20,7 @@ pub(crate) use chain::AeroScratch;
 pub(crate) use fluid::FluidInertia;
 pub(crate) use lag::Lag;
 pub(crate) use strip::{Air, StripData};
-pub use theodorsen::theodorsen;
+pub use theodorsen::{theodorsen, theodorsen_derivative};
 
 use nalgebra::DMatrix;
 
