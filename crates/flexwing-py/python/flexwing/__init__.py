@@ -27,7 +27,8 @@ the right-hand side, Jacobian and energies at a state; ``model.stepper(loads)`` 
 run one interval at a time with the loads set between calls.
 
 Errors are ``FlexwingError`` and its subclasses (``InputError``, ``CaseFileError``,
-``ArgumentTypeError``, ``SolverError``, ``InternalError``). Units are SI. The API reference is
+``ArgumentTypeError``, ``SolverError``, ``ReentrancyError``, ``InternalError``). Units are
+SI. The API reference is
 ``docs/python.md``.
 """
 
@@ -37,6 +38,7 @@ from ._errors import (
     FlexwingError,
     InputError,
     InternalError,
+    ReentrancyError,
     SolverError,
 )
 from ._native import (
@@ -94,13 +96,20 @@ __all__ = [
     "CaseFileError",
     "ArgumentTypeError",
     "SolverError",
+    "ReentrancyError",
     "InternalError",
     "__version__",
 ]
 
 
-def solve(case, analysis="static"):
+def solve(case, analysis="static", index=None):
     """Solve one case as ``solve_many`` does: a :class:`BatchItem` with its status, result and
     error as data (never raises for the case's own failure). The function a Dask
-    ``client.map`` maps over cases."""
-    return solve_many([case], analysis)[0]
+    ``client.map`` maps over cases: ``client.map(flexwing.solve, cases, ["static"] * n,
+    range(n))`` numbers them. ``index``: the item's ``index`` (the case's position in the
+    caller's sweep), ``None`` if not given."""
+    if index is None:
+        item = solve_many([case], analysis)[0]
+        item.index = None
+        return item
+    return solve_many([case], analysis, start=index)[0]
