@@ -68,9 +68,7 @@ def solve_chunk(cases, start: int, analysis: str = "static", keep=None):
     """The task a worker runs: ``flexwing.solve_many`` on one chunk of cases, numbered from
     ``start``; with ``keep``, each ``BatchItem`` is reduced on the worker to what ``keep``
     returns (a few numbers travel back instead of every array of the result)."""
-    items = flexwing.solve_many(cases, analysis)
-    for item in items:
-        item.index += start  # solve_many numbers the cases of its own chunk
+    items = flexwing.solve_many(cases, analysis, start=start)  # indices in the whole sweep
     return items if keep is None else [keep(item) for item in items]
 
 

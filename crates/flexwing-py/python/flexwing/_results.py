@@ -255,10 +255,13 @@ class BatchItem(_Result):
     """The outcome of one case of :func:`flexwing.solve_many`.
 
     Attributes:
-        index: the case's position in the input.
+        index: the case's position in the input plus ``solve_many``'s ``start``; for
+            ``flexwing.solve`` the ``index`` given, else ``None``.
         status: ``"complete"``, ``"suspect"`` (every model ran to the end but one's energy
             balance exceeded its limit), ``"stopped"`` (a model stopped; ``result`` holds what
-            it reached) or ``"error"`` (bad input or a failed set-up; ``result`` is ``None``).
+            it reached), ``"interrupted"`` (the batch was stopped while the case ran: Ctrl-C or
+            a raising progress callback) or ``"error"`` (bad input or a failed set-up;
+            ``result`` is ``None``).
         result: the analysis result (``ModesResult``, ``StaticResult``, ``DynamicResult``,
             ``AeroStaticResult``, ``AeroDynamicResult``, ``FlutterResult``), or ``None``.
         error: the exception the case would have raised (a :class:`flexwing.FlexwingError`),
@@ -269,7 +272,7 @@ class BatchItem(_Result):
 
     _kind = "batch"
 
-    index: int
+    index: Optional[int]
     status: str
     result: Any
     error: Optional[BaseException]
