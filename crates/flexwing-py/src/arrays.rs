@@ -16,7 +16,8 @@ use nalgebra::DMatrix;
 use numpy::ndarray::{Array2, ArrayViewD};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyFloat, PyInt};
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyBool, PyFloat, PyInt, PyType};
 
 use crate::errors;
 
@@ -25,10 +26,29 @@ pub const MASKED: &str =
     "invalid type: a masked array (numpy.ma) is refused, as its masked values \
                           would be used: pass a.filled(value) or a.compressed()";
 
-/// Whether `obj` is a NumPy masked array (`numpy.ma.MaskedArray`), looked up only when NumPy
-/// is imported (an object cannot be one otherwise).
+/// Whether `obj` is a NumPy masked array (`numpy.ma.MaskedArray`). Cheap for what arguments
+/// usually are: an exact `numpy.ndarray`, float, int, list or tuple is not one; for anything
+/// else `numpy.ma` is looked up only if it was imported (an object cannot be a masked array
+/// otherwise).
 pub fn is_masked(obj: &Bound<'_, PyAny>) -> PyResult<bool> {
+    static NDARRAY: PyOnceLock<Py<PyType>> = PyOnceLock::new();
     let py = obj.py();
+    let ndarray = NDARRAY.get_or_try_init(py, || -> PyResult<_> {
+        Ok(py
+            .import("numpy")?
+            .getattr("ndarray")?
+            .cast_into::<PyType>()?
+            .unbind())
+    })?;
+    let t = obj.get_type();
+    if t.is(ndarray.bind(py))
+        || obj.is_exact_instance_of::<PyFloat>()
+        || obj.is_exact_instance_of::<PyInt>()
+        || obj.is_exact_instance_of::<pyo3::types::PyList>()
+        || obj.is_exact_instance_of::<pyo3::types::PyTuple>()
+    {
+        return Ok(false);
+    }
     let modules = py.import("sys")?.getattr("modules")?;
     let Some(ma) = modules.get_item("numpy.ma").ok().filter(|m| !m.is_none()) else {
         return Ok(false);

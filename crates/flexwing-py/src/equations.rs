@@ -659,7 +659,7 @@ impl PyStepper {
                     &format!("must be positive, got {dt}"),
                 ));
             }
-            let n_loads = self.snapshot().scales.len();
+            let n_loads = lock(&self.state).scales.len();
             let new_scales = scales
                 .map(|s| arrays::vector(s, "scales", Some(n_loads)))
                 .transpose()?;

@@ -34,6 +34,8 @@ pub const MAX_NESTED: usize = 16;
 
 thread_local! {
     static DEPTH: Cell<usize> = const { Cell::new(0) };
+    /// Whether this thread is Python's main thread (asked once per thread).
+    static IS_MAIN: Cell<Option<bool>> = const { Cell::new(None) };
 }
 
 /// One level of nesting of long calls on this thread, left when dropped.
@@ -77,10 +79,17 @@ pub struct Signals {
 impl Signals {
     /// Signals for a call made on the current thread.
     pub fn new(py: Python<'_>) -> PyResult<Self> {
-        let threading = py.import("threading")?;
-        let main = threading
-            .call_method0("main_thread")?
-            .is(&threading.call_method0("current_thread")?);
+        let main = match IS_MAIN.with(Cell::get) {
+            Some(main) => main,
+            None => {
+                let threading = py.import("threading")?;
+                let main = threading
+                    .call_method0("main_thread")?
+                    .is(&threading.call_method0("current_thread")?);
+                IS_MAIN.with(|m| m.set(Some(main)));
+                main
+            }
+        };
         Ok(Self {
             main,
             last: Instant::now(),
