@@ -243,7 +243,7 @@ fn parse_case(c: &Bound<'_, PyAny>, i: usize) -> PyResult<Result<Case, PyErr>> {
 /// Solve ``analysis`` (``"static"``, ``"modes"``, ``"dynamic"`` or ``"flutter"``; with
 /// ``[aero]``, ``"static"`` and ``"dynamic"`` are aeroelastic) for every case of ``cases``
 /// (``Case`` objects or dicts with the case file's keys) and return one ``BatchItem`` per case,
-/// in order: its ``index`` (``start`` + its position), ``status`` (``"complete"``,
+/// in order (a ``Batch``: a list with ``to_pandas()`` and ``to_xarray()``): its ``index`` (``start`` + its position), ``status`` (``"complete"``,
 /// ``"suspect"`` (an energy balance beyond its limit), ``"stopped"``, ``"interrupted"``,
 /// ``"error"``), ``result``, ``error`` (the exception the case would raise, as data) and wall
 /// time. No case's failure stops the others, and nothing is raised for them.
@@ -261,7 +261,7 @@ pub fn solve_many<'py>(
     cases: &Bound<'py, PyAny>,
     analysis: Option<&Bound<'py, PyAny>>,
     kwargs: Option<&Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyList>> {
+) -> PyResult<Bound<'py, PyAny>> {
     errors::guard(py, || solve_many_guarded(py, cases, analysis, kwargs))
 }
 
@@ -270,7 +270,7 @@ fn solve_many_guarded<'py>(
     cases: &Bound<'py, PyAny>,
     analysis: Option<&Bound<'py, PyAny>>,
     kwargs: Option<&Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyList>> {
+) -> PyResult<Bound<'py, PyAny>> {
     let kw = Kwargs::new(py, kwargs, &["threads", "progress", "start"], "solve_many")?;
     let analysis = match analysis {
         None => Analysis::Static,
@@ -328,9 +328,14 @@ fn solve_many_guarded<'py>(
         };
         items.append(item(py, start + i, done)?)?;
     }
+    // A `flexwing.Batch`: the list with the views of a sweep (to_pandas, to_xarray).
+    let batch = py
+        .import("flexwing._results")?
+        .getattr("Batch")?
+        .call1((items,))?;
     if let Some(e) = stopped_by {
-        errors::set_attribute(py, &e, "result", items.into_any().unbind());
+        errors::set_attribute(py, &e, "result", batch.unbind());
         return Err(e);
     }
-    Ok(items)
+    Ok(batch)
 }

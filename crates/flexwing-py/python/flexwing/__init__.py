@@ -22,6 +22,11 @@ equilibria and the gust response.
 The batch level: ``flexwing.solve_many(cases, "static")`` returns each case's status, result
 and error as data (the unit of work of a Dask sweep, see ``examples/python/sweep_dask.py``).
 
+Every result converts with ``to_pandas()`` and ``to_xarray()`` (and a batch with
+``Batch.to_pandas(index=…)``), draws with ``plot()`` and shows as a table in a notebook; a tqdm
+bar is ``progress=flexwing.tqdm_progress()``. pandas, xarray, matplotlib and tqdm are optional
+extras (``pip install "flexwing[pandas,xarray,plot,tqdm]"``).
+
 The model level: ``Beam``, ``FullModel``, ``ReducedModel``; ``model.equations(loads)`` for
 the right-hand side, Jacobian and energies at a state; ``model.stepper(loads)`` to advance a
 run one interval at a time with the loads set between calls.
@@ -60,7 +65,9 @@ from ._aero_results import (
     FlutterRun,
     Stability,
 )
+from ._progress import tqdm_progress
 from ._results import (
+    Batch,
     BatchItem,
     DynamicResult,
     DynamicRun,
@@ -91,6 +98,8 @@ __all__ = [
     "AeroDynamicRun",
     "AeroDynamicResult",
     "BatchItem",
+    "Batch",
+    "tqdm_progress",
     "FlexwingError",
     "InputError",
     "CaseFileError",

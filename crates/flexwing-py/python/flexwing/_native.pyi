@@ -16,7 +16,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ._aero_results import AeroDynamicResult, AeroStaticResult, FlutterResult
-from ._results import BatchItem, DynamicResult, ModesResult, StaticResult
+from ._results import Batch, DynamicResult, ModesResult, StaticResult
 
 __version__: str
 
@@ -358,8 +358,9 @@ def solve_many(
     threads: int = 1,
     progress: Optional[Callable[[int, int], Any]] = None,
     start: int = 0,
-) -> List[BatchItem]:
-    """Solve ``analysis`` for every case and return one ``BatchItem`` per case, in order, with
+) -> Batch:
+    """Solve ``analysis`` for every case and return one ``BatchItem`` per case, in order (a
+    ``Batch``: a list with ``to_pandas(index=…)`` and ``to_xarray(index=…)``), with
     its index (``start`` + position), status (``"complete"``, ``"suspect"``, ``"stopped"``,
     ``"interrupted"``, ``"error"``), result, error (as data) and wall time (s). No case's
     failure stops the others. ``threads``: worker threads of this process sharing the cases
