@@ -192,6 +192,16 @@ pub fn linearize<M: AeroStructure>(
     })
 }
 
+/// The eigenvalues of `a` after balancing (`balance.rs`), or `None` if the real Schur form does
+/// not converge within 10 000 iterations (nalgebra's unbounded default can loop forever on a
+/// matrix as ill-scaled as a reduced model's with lag states).
+pub fn poles(a: &DMatrix<f64>) -> Option<Vec<nalgebra::Complex<f64>>> {
+    let mut m = a.clone();
+    super::balance::balance(&mut m);
+    let schur = nalgebra::linalg::Schur::try_new(m, f64::EPSILON, 10_000)?;
+    Some(schur.complex_eigenvalues().iter().copied().collect())
+}
+
 /// The static aeroelastic equilibrium of `options` (the steady model, load stepping in dynamic
 /// pressure from rest), as the flutter analysis' and the responses'.
 fn equilibrium<M: AeroStructure>(

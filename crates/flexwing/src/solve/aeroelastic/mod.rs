@@ -32,7 +32,7 @@ pub use flutter::{
 };
 mod response;
 
-pub use linearize::{linearize, LinearizeOptions, StateSpace};
+pub use linearize::{linearize, poles, LinearizeOptions, StateSpace};
 pub use signals::{Input, Output, Signal, StateBasis, INPUT_NAMES, OUTPUT_NAMES};
 
 pub use response::{response, ResponseOptions, ResponseSample, ResponseSolution};
