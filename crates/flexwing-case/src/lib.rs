@@ -38,6 +38,7 @@ mod aero;
 mod beam;
 mod dynamic;
 mod error;
+mod linearize;
 mod loads;
 mod plan;
 mod property;
@@ -62,7 +63,7 @@ pub use spec::{
 };
 pub use spec_aero::{
     AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustShapeSpec, GustSpec,
-    SpeedSweepSpec,
+    LinearizeSpec, SpeedSweepSpec, StatesSpec,
 };
 pub use words::{in_user_terms, keys, JARGON};
 

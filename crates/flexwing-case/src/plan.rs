@@ -20,24 +20,29 @@ pub enum Analysis {
     Dynamic,
     /// Flutter and divergence along `[aero.sweep]` (`[aero]`, `[flutter]`).
     Flutter,
+    /// Linear state-space models about the static aeroelastic equilibrium at
+    /// `aero.flight.speed` (`[aero]`, `[linearize]`).
+    Linearize,
 }
 
 impl Analysis {
     /// Every analysis.
-    pub const ALL: [Analysis; 4] = [
+    pub const ALL: [Analysis; 5] = [
         Analysis::Modes,
         Analysis::Static,
         Analysis::Dynamic,
         Analysis::Flutter,
+        Analysis::Linearize,
     ];
 
-    /// `modes`, `static`, `dynamic` or `flutter`: the CLI's subcommand.
+    /// `modes`, `static`, `dynamic`, `flutter` or `linearize`: the CLI's subcommand.
     pub fn name(self) -> &'static str {
         match self {
             Analysis::Modes => "modes",
             Analysis::Static => "static",
             Analysis::Dynamic => "dynamic",
             Analysis::Flutter => "flutter",
+            Analysis::Linearize => "linearize",
         }
     }
 
@@ -50,8 +55,8 @@ impl Analysis {
 impl Case {
     /// The plan of `analysis` for this case, validated: [`Case::modes_plan`],
     /// [`Case::static_plan`] or [`Case::aero_static_plan`], [`Case::dynamic_plan`] or
-    /// [`Case::aero_dynamic_plan`], [`Case::flutter_plan`] — the aeroelastic one when the case
-    /// has `[aero]`.
+    /// [`Case::aero_dynamic_plan`], [`Case::flutter_plan`], [`Case::linearize_plan`] — the
+    /// aeroelastic one when the case has `[aero]`.
     ///
     /// # Errors
     /// Those of the plan built.
@@ -78,6 +83,7 @@ impl Case {
             Analysis::Dynamic if aero => Plan::AeroDynamic(self.aero_dynamic_plan()?),
             Analysis::Dynamic => Plan::Dynamic(self.dynamic_plan()?),
             Analysis::Flutter => Plan::Flutter(self.flutter_plan()?),
+            Analysis::Linearize => Plan::Linearize(self.linearize_plan()?),
         })
     }
 }

@@ -7,7 +7,7 @@ use flexwing::solve::integrate::Method;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::property::Property;
-use super::spec_aero::{AeroSpec, FlutterSpec};
+use super::spec_aero::{AeroSpec, FlutterSpec, LinearizeSpec};
 use super::words::word_enum;
 
 /// The whole case file.
@@ -37,6 +37,9 @@ pub struct Case {
     /// `[flutter]`, optional, for `flexwing flutter`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub flutter: Option<FlutterSpec>,
+    /// `[linearize]`, optional, for `flexwing linearize`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub linearize: Option<LinearizeSpec>,
     /// The file the case was read from, for messages; not a key.
     #[serde(skip)]
     pub(crate) file: Option<String>,

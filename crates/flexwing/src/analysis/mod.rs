@@ -9,6 +9,7 @@
 //! | static aeroelasticity, divergence | [`aero::statics::AeroStaticPlan`] | [`aero::statics::run`] | [`aero::statics::AeroStaticOutcome`] |
 //! | flutter (V-g, V-ω, p-k check) | [`aero::flutter::FlutterPlan`] | [`aero::flutter::run`] | [`aero::flutter::FlutterOutcome`] |
 //! | gust and manoeuvre responses | [`aero::response::AeroDynamicPlan`] | [`aero::response::run`] | [`aero::response::AeroDynamicOutcome`] |
+//! | linear state-space models | [`aero::linearize::LinearizePlan`] | [`aero::linearize::run`] | [`aero::linearize::LinearizeOutcome`] |
 //! | any of these | [`Plan`] | [`run`] | [`Outcome`] |
 //!
 //! [`Plan`], [`run`] and [`Outcome`] are the one dispatcher every front end calls (the case

@@ -55,6 +55,18 @@ pub enum Note {
         /// The first speed of the sweep (m/s).
         speed: f64,
     },
+    /// A linear model has poles with a positive real part: its equilibrium is dynamically
+    /// unstable (past the flutter speed, or a divergence the static solver did not see).
+    UnstablePoles {
+        /// How many.
+        count: usize,
+        /// The largest real part (1/s).
+        real: f64,
+        /// Its frequency `|Im s|` (rad/s); 0 for a real pole.
+        frequency: f64,
+        /// The speed of the equilibrium (m/s).
+        speed: f64,
+    },
 }
 
 /// Least number of Newton failures for [`Note::NewtonFailures`].
@@ -172,6 +184,20 @@ impl fmt::Display for Note {
                  wagner or peters)",
                 short(*wet_frequency),
                 short(*speed),
+            ),
+            Note::UnstablePoles {
+                count,
+                real,
+                frequency,
+                speed,
+            } => write!(
+                f,
+                "the linear model at {} m/s is unstable: {count} pole{} with a positive real \
+                 part, the largest {} 1/s at {} rad/s (past the flutter speed)",
+                short(*speed),
+                if *count == 1 { "" } else { "s" },
+                short(*real),
+                short(*frequency),
             ),
         }
     }

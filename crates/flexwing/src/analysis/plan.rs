@@ -8,6 +8,7 @@
 //! render it (ARCHITECTURE.md, "Adding an analysis or a model").
 
 use super::aero::flutter::{self, FlutterOutcome, FlutterPlan};
+use super::aero::linearize::{self, LinearizeOutcome, LinearizePlan};
 use super::aero::response::{self, AeroDynamicOutcome, AeroDynamicPlan};
 use super::aero::statics::{self as aero_statics, AeroStaticOutcome, AeroStaticPlan};
 use super::dynamics::{self, DynamicOutcome, DynamicPlan};
@@ -36,6 +37,8 @@ pub enum Plan {
     Flutter(FlutterPlan),
     /// Aeroelastic response.
     AeroDynamic(AeroDynamicPlan),
+    /// Linear state-space models about the static aeroelastic equilibrium.
+    Linearize(LinearizePlan),
 }
 
 /// What any analysis produced.
@@ -55,10 +58,12 @@ pub enum Outcome {
     Flutter(FlutterOutcome),
     /// Aeroelastic response.
     AeroDynamic(AeroDynamicOutcome),
+    /// Linear state-space models.
+    Linearize(LinearizeOutcome),
 }
 
 impl Plan {
-    /// `modes`, `static`, `dynamic`, `aero-static`, `flutter` or `aero-dynamic`.
+    /// `modes`, `static`, `dynamic`, `aero-static`, `flutter`, `aero-dynamic` or `linearize`.
     pub fn name(&self) -> &'static str {
         match self {
             Plan::Modes(_) => "modes",
@@ -67,6 +72,7 @@ impl Plan {
             Plan::AeroStatic(_) => "aero-static",
             Plan::Flutter(_) => "flutter",
             Plan::AeroDynamic(_) => "aero-dynamic",
+            Plan::Linearize(_) => "linearize",
         }
     }
 
@@ -79,6 +85,7 @@ impl Plan {
             Plan::AeroStatic(p) => &p.model,
             Plan::Flutter(p) => &p.model,
             Plan::AeroDynamic(p) => &p.structure.model,
+            Plan::Linearize(p) => &p.model,
         }
     }
 
@@ -88,7 +95,7 @@ impl Plan {
     pub fn checks_seldom(&self) -> bool {
         matches!(
             self,
-            Plan::Static(_) | Plan::AeroStatic(_) | Plan::Flutter(_)
+            Plan::Static(_) | Plan::AeroStatic(_) | Plan::Flutter(_) | Plan::Linearize(_)
         )
     }
 }
@@ -107,6 +114,7 @@ pub fn run(plan: &Plan, progress: &mut dyn Progress) -> Result<Outcome, Error> {
         Plan::AeroStatic(p) => Outcome::AeroStatic(aero_statics::run(p, progress)?),
         Plan::Flutter(p) => Outcome::Flutter(flutter::run(p, progress)?),
         Plan::AeroDynamic(p) => Outcome::AeroDynamic(response::run(p, progress)?),
+        Plan::Linearize(p) => Outcome::Linearize(linearize::run(p, progress)?),
     })
 }
 
@@ -144,6 +152,7 @@ impl Outcome {
             Outcome::Dynamic(o) => o.runs.iter().map(|r| entry(&r.kind, &r.status)).collect(),
             Outcome::AeroStatic(o) => o.runs.iter().map(|r| entry(&r.kind, &r.status)).collect(),
             Outcome::AeroDynamic(o) => o.runs.iter().map(|r| entry(&r.kind, &r.status)).collect(),
+            Outcome::Linearize(o) => o.runs.iter().map(|r| entry(&r.kind, &r.status)).collect(),
             Outcome::Flutter(o) => o
                 .runs
                 .iter()
@@ -193,6 +202,7 @@ impl Outcome {
         match self {
             Outcome::Dynamic(o) => o.runs.iter().flat_map(|r| of(&r.kind, &r.notes)).collect(),
             Outcome::Flutter(o) => o.runs.iter().flat_map(|r| of(&r.kind, &r.notes)).collect(),
+            Outcome::Linearize(o) => o.runs.iter().flat_map(|r| of(&r.kind, &r.notes)).collect(),
             _ => Vec::new(),
         }
     }

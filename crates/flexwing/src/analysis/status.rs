@@ -182,6 +182,18 @@ pub enum Stop {
         #[cfg_attr(feature = "serde", serde(serialize_with = "ser::described"))]
         error: SolveError,
     },
+    /// A linearization found no stable static equilibrium at `speed` (m/s, the value of the
+    /// caller's key `field`) to linearize about: past the divergence speed, or the static solver
+    /// failed.
+    LinearizationEquilibrium {
+        /// The caller's name of the speed (`aero.flight.speed`).
+        field: String,
+        /// The speed (m/s).
+        speed: f64,
+        /// The static solver's error.
+        #[cfg_attr(feature = "serde", serde(serialize_with = "ser::described"))]
+        error: SolveError,
+    },
     /// The flutter analysis lost a branch between `from` and `speed` (m/s), or (`branch:
     /// None`) needed more sub-steps than its cap there
     /// ([`crate::solve::aeroelastic::FlutterStop::BranchLost`]); its data up to there are kept.
@@ -279,6 +291,16 @@ impl fmt::Display for Stop {
                 };
                 write!(f, "{stop}")
             }
+            Stop::LinearizationEquilibrium {
+                field,
+                speed,
+                error,
+            } => write!(
+                f,
+                "{field} = {} m/s: no stable static equilibrium to linearize about (past the \
+                 divergence speed, or the static solver failed): {error}",
+                short(*speed)
+            ),
             Stop::FlutterBranchLost {
                 branch,
                 from,

@@ -8,6 +8,7 @@ mod aero_chain_reference;
 mod aero_convergence;
 mod aero_flutter;
 mod aero_linear_matrices;
+mod aero_linearize;
 mod aero_reduced;
 mod aero_response;
 mod aero_statics;

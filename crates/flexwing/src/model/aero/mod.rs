@@ -19,7 +19,7 @@ mod theodorsen;
 pub(crate) use chain::AeroScratch;
 pub(crate) use fluid::FluidInertia;
 pub(crate) use lag::Lag;
-pub(crate) use strip::{Air, StripData};
+pub(crate) use strip::{loads as strip_loads, Air, Motion, StripData};
 pub use theodorsen::{theodorsen, theodorsen_derivative};
 
 use nalgebra::DMatrix;

@@ -21,6 +21,8 @@ pub use statics::{
     Divergence, DivergenceBasis, SteadyAeroModel, SteadyAeroWorkspace,
 };
 mod flutter;
+mod linearize;
+mod signals;
 mod tracking;
 
 pub use flutter::{
@@ -29,5 +31,8 @@ pub use flutter::{
     MAX_SUBSTEPS,
 };
 mod response;
+
+pub use linearize::{linearize, poles, LinearizeOptions, StateSpace};
+pub use signals::{Input, Output, Signal, StateBasis, INPUT_NAMES, OUTPUT_NAMES};
 
 pub use response::{response, ResponseOptions, ResponseSample, ResponseSolution};
