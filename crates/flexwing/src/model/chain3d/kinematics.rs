@@ -13,7 +13,7 @@
 //! global angular velocity it adds: a change `δφ_i` turns everything outboard of node `i` rigidly
 //! about `P_i` by the global small rotation `H_i δφ_i`.
 
-use super::algebra::{add, cross, lift, lift_m, mm, mmt, mv, zero, Real, M3, V3};
+use super::algebra::{add, column, cross, dot, lift, lift_m, mm, mmt, mv, zero, Real, M3, V3};
 use super::rotation::{exp, tangent_left, Coefficients};
 use super::Chain3d;
 
@@ -134,15 +134,46 @@ impl Chain3d {
         let mut l: V3<D> = zero();
         for j in (0..n).rev() {
             let m = D::from(self.beam.masses[j]);
-            let own = super::algebra::scale(m, &mo.gdot[j]);
+            let mut own = super::algebra::scale(m, &mo.gdot[j]);
             // About P_j: L_{j+1} moved from P_{j+1} by (P_{j+1} − P_j) × Π_{j+1}.
             l = add(
                 &add(&l, &cross(&fr.d[j], &pi)),
                 &add(&cross(&fr.arm[j], &own), &mv(&fr.inertia[j], &mo.omega[j])),
             );
+            if let Some(f) = &self.fluid {
+                // The fluid's momenta: m_a u n at the mid-chord point (arm a_f from P_j) and
+                // J_a (ω·t) t, with u = n·(V_j + ω_j × a_f).
+                let (u, arm, axis) = self.fluid_motion(fr, mo, j);
+                let lin = super::algebra::scale(u * f.mass[j], &column(&fr.r[j], 1));
+                let spin = dot(&mo.omega[j], &axis) * f.inertia[j];
+                l = add(
+                    &l,
+                    &add(&cross(&arm, &lin), &super::algebra::scale(spin, &axis)),
+                );
+                own = add(&own, &lin);
+            }
             pi = add(&pi, &own);
             mo.l[j] = l;
             mo.pi[j] = pi;
         }
+    }
+
+    /// The fluid's motion at element `j` (the chain must carry fluid inertia): the normal
+    /// velocity `u = n·(V_j + ω_j × a_f)` of the mid-chord point, its arm `a_f = ½ d_j + ζ_m c_j`
+    /// from `P_j`, and the span axis `t_j`.
+    pub(crate) fn fluid_motion<D: Real>(
+        &self,
+        fr: &Frames<D>,
+        mo: &Motion<D>,
+        j: usize,
+    ) -> (D, V3<D>, V3<D>) {
+        let f = self.fluid.as_ref().expect("a wet chain");
+        let r = &fr.r[j];
+        let arm = add(
+            &super::algebra::scale(D::from(0.5), &fr.d[j]),
+            &super::algebra::scale(D::from(f.station[j]), &column(r, 2)),
+        );
+        let v = add(&mo.v[j], &cross(&mo.omega[j], &arm));
+        (dot(&column(r, 1), &v), arm, column(r, 0))
     }
 }

@@ -21,13 +21,51 @@ use crate::model::{AppliedLoads, FullModel, StructuralModel};
 pub struct Chain3d {
     pub(crate) beam: Beam3d,
     pub(crate) n: usize,
+    /// The fluid's inertia (apparent mass) of an aeroelastic model, `None` in vacuo
+    /// (`model::aero::fluid`; its terms in the recursions, `kinematics.rs` and `mass.rs`).
+    pub(crate) fluid: Option<crate::model::aero::FluidInertia>,
 }
 
 impl Chain3d {
     /// The 3-D chain of a beam.
     pub fn new(beam: Beam3d) -> Self {
         let n = beam.n_elements();
-        Self { beam, n }
+        Self {
+            beam,
+            n,
+            fluid: None,
+        }
+    }
+
+    /// The same chain with the fluid's inertia added to its kinetic energy: per element a
+    /// directional mass `m_a` along the section normal `n` at the mid-chord point
+    /// `P_i + R_i (ℓ_i/2, 0, ζ_m)` and a polar inertia `J_a` about `t` (docs/chain3d-model.md,
+    /// "Strip aerodynamics").
+    ///
+    /// # Panics
+    /// If the vectors of `fluid` do not have one entry per element.
+    pub(crate) fn with_fluid(mut self, fluid: crate::model::aero::FluidInertia) -> Self {
+        let n = self.n;
+        assert!(
+            fluid.mass.len() == n && fluid.station.len() == n && fluid.inertia.len() == n,
+            "fluid inertia needs one entry per element"
+        );
+        self.fluid = Some(fluid);
+        self
+    }
+
+    /// The chain without the fluid's inertia.
+    pub(crate) fn dry(&self) -> Self {
+        Self {
+            beam: self.beam.clone(),
+            n: self.n,
+            fluid: None,
+        }
+    }
+
+    /// Whether the chain carries the fluid's inertia (an aeroelastic model's structure).
+    pub fn has_fluid_inertia(&self) -> bool {
+        self.fluid.is_some()
     }
     /// The beam this chain was built from.
     pub fn beam(&self) -> &Beam3d {

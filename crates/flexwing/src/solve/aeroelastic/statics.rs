@@ -89,8 +89,9 @@ pub struct AeroEquilibrium {
     pub x: Vec<f64>,
     /// Joint rotations of the full model.
     pub q: Vec<f64>,
-    /// Tip displacement of the elastic axis `(dx, dy)` (m).
-    pub tip: [f64; 2],
+    /// Tip displacement of the elastic axis `(dx, dy, dz)` (m; `dz`, chordwise toward the
+    /// leading edge, is 0 on the planar chain).
+    pub tip: [f64; 3],
     /// Tip twist (rad, nose-up).
     pub tip_twist: f64,
     /// Total aerodynamic force along the ground's vertical (N).
@@ -288,8 +289,13 @@ impl<'a, M: AeroStructure> StructuralModel for SteadyAeroModel<'a, M> {
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64> {
         self.aero.structure().full_coordinates(x)
     }
+    fn element_rotations(&self, dx: &[f64]) -> Vec<f64> {
+        self.aero.structure().element_rotations(dx)
+    }
+    /// The structure's ([`StructuralModel::full_model`]; the 3-D chain has none, and no solver
+    /// path calls it).
     fn full_model(&self) -> &FullModel {
-        self.aero.full()
+        self.aero.structure().full_model()
     }
 }
 
@@ -330,7 +336,7 @@ pub fn static_sweep_polled<M: AeroStructure>(
             g: g * plan.root_angle.cos(),
         });
     }
-    let applied = aero.full().apply(&loads, &format!("{field}.loads"))?;
+    let applied = aero.apply(&loads, &format!("{field}.loads"))?;
     let model = SteadyAeroModel::new(&steady, plan.root_angle);
     let mut ws = model.workspace();
     let k = applied.n_loads();
@@ -403,17 +409,9 @@ fn equilibrium_point<'a, M: AeroStructure>(
     stats: StaticStats,
     root_angle: f64,
 ) -> AeroEquilibrium {
-    let full = model.full_model();
+    let chain = model.aero.chain();
     let q = model.full_coordinates(x);
-    let kin = full.kinematics(&q);
-    let nodes = full.node_positions(&kin);
-    let nel = full.n_elements();
-    let tip = nodes[nel];
-    let tip_twist = if full.has_torsion() {
-        kin.psi[nel - 1]
-    } else {
-        0.0
-    };
+    let (tip, tip_twist) = chain.tip(&q);
     let mut f = vec![0.0; x.len()];
     model.unit_load(x, ws, &mut f);
     let (sa, ca) = root_angle.sin_cos();
@@ -431,10 +429,10 @@ fn equilibrium_point<'a, M: AeroStructure>(
         speed,
         dynamic_pressure: pressure,
         x: x.to_vec(),
-        tip: [tip[0] - full.beam().length(), tip[1]],
+        tip,
         tip_twist,
         lift,
-        root_bending_moment: full.stiffness()[0] * q[0],
+        root_bending_moment: chain.root_bending_moment(&q),
         q,
         divergence_pressure,
         stats,
