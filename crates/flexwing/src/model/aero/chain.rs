@@ -118,7 +118,8 @@ impl<M: AeroStructure> Aeroelastic<M> {
         let full = match self.chain() {
             AeroChain::Planar(full) => full,
             AeroChain::Spatial(chain) => {
-                return chain.strip_configuration_along(q, v, spatial_of(sc));
+                let b = base.spatial.as_deref().expect("a 3-D chain's scratch");
+                return chain.strip_configuration_along(b, q, v, spatial_of(sc));
             }
         };
         let n = full.n_elements();

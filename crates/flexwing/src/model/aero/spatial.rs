@@ -41,6 +41,10 @@ pub(crate) struct SpatialStrips<D> {
     pub(crate) pitch_rate: Vec<D>,
     /// The configuration `x` (a dual one along a direction).
     x: Vec<D>,
+    /// Leading elements of `fr` that hold the real frames of the base configuration (the
+    /// directional derivatives along consecutive joints, from the first, re-lift only the
+    /// elements in between).
+    lifted: usize,
     own_f: Vec<V3<D>>,
     own_n: Vec<V3<D>>,
 }
@@ -53,6 +57,7 @@ impl<D: DualNum<Primitive = f64> + Copy> SpatialStrips<D> {
             cdot: vec![z; n],
             pitch_rate: vec![D::from(0.0); n],
             x: vec![D::from(0.0); 3 * n],
+            lifted: 0,
             own_f: vec![z; n],
             own_n: vec![z; n],
         }
@@ -66,12 +71,15 @@ impl Chain3d {
         q: &[D],
         sp: &mut SpatialStrips<D>,
     ) {
-        self.configure(q, &mut sp.fr);
+        self.configure_from(q, &mut sp.fr, 0, false);
     }
 
-    /// The kinematics along `q + ε v` (dual numbers) into `sp`.
+    /// The kinematics along `q + ε v` (dual numbers) into `sp`, from those of `q` in `base`:
+    /// the elements inboard of the first joint `v` moves are `base`'s (O(n) copies), the rest
+    /// is configured with dual numbers.
     pub(crate) fn strip_configuration_along(
         &self,
+        base: &SpatialStrips<f64>,
         q: &[f64],
         v: &[f64],
         sp: &mut SpatialStrips<Dual64>,
@@ -79,20 +87,24 @@ impl Chain3d {
         for ((x, &a), &b) in sp.x.iter_mut().zip(q).zip(v) {
             *x = Dual64::new(a, b);
         }
-        self.configure(&sp.x, &mut sp.fr);
+        let start = v.iter().position(|&e| e != 0.0).map_or(self.n, |k| k / 3);
+        // A direction from the first joint starts a new set (a new base): nothing is lifted.
+        if start == 0 {
+            sp.lifted = 0;
+        }
+        if start > sp.lifted {
+            sp.fr.lift_range(&base.fr, sp.lifted, start, false);
+        }
+        if start < self.n {
+            self.configure_from(&sp.x, &mut sp.fr, start, false);
+        }
+        sp.lifted = start;
     }
 
     /// The real configuration of `base` as a dual one (derivatives along the rates).
     pub(crate) fn strip_freeze(&self, base: &SpatialStrips<f64>, sp: &mut SpatialStrips<Dual64>) {
-        let lift3 = |m: &[[f64; 3]; 3]| m.map(|r| r.map(Dual64::from));
-        for i in 0..self.n {
-            sp.fr.r[i] = lift3(&base.fr.r[i]);
-            sp.fr.h[i] = lift3(&base.fr.h[i]);
-            sp.fr.d[i] = lift(&base.fr.d[i]);
-        }
-        for (p, b) in sp.fr.p.iter_mut().zip(&base.fr.p) {
-            *p = lift(b);
-        }
+        sp.fr.lift_range(&base.fr, 0, self.n, false);
+        sp.lifted = self.n;
     }
 
     /// The strips' velocities `ċ_i` and pitch rates `ψ̇_i` for the joint rates `qdot` at the

@@ -230,6 +230,8 @@ struct DualScratch {
     out: Vec<Dual64>,
     own_f: Vec<V3<Dual64>>,
     own_n: Vec<V3<Dual64>>,
+    /// Leading elements of `fr` holding the real kinematics of the base configuration.
+    lifted: usize,
 }
 
 impl DualScratch {
@@ -245,6 +247,7 @@ impl DualScratch {
             out: vec![z; 3 * n],
             own_f: vec![zero(); n],
             own_n: vec![zero(); n],
+            lifted: 0,
         }
     }
 
@@ -254,6 +257,23 @@ impl DualScratch {
             *d = Dual64::from(v);
         }
         self.x[k].eps = 1.0;
+    }
+
+    /// The kinematics along `x + ε e_k` into `self.fr`, from the real kinematics `base` of `x`:
+    /// the elements inboard of joint `k / 3` are `base`'s, the rest configured with dual
+    /// numbers (O(n − k/3)). Called for `k = 0, 1, …` in turn with one base (`k = 0` starts a
+    /// new one), so only the elements between consecutive joints are lifted.
+    fn configure_along(&mut self, model: &Chain3d, base: &Frames<f64>, x: &[f64], k: usize) {
+        self.seed(x, k);
+        let start = k / 3;
+        if start == 0 {
+            self.lifted = 0;
+        }
+        if start > self.lifted {
+            self.fr.lift_range(base, self.lifted, start, true);
+        }
+        model.configure_from(&self.x, &mut self.fr, start, true);
+        self.lifted = start;
     }
 }
 
@@ -371,10 +391,11 @@ impl StructuralModel for Chain3d {
             return;
         }
         // Column k: Q along x + ε e_k (exact; O(n) per column).
-        let d = ws.dual(self.n);
+        ws.configure(self, x);
+        let Workspace3d { fr, dual, .. } = ws;
+        let d = dual.get_or_insert_with(|| Box::new(DualScratch::new(self.n)));
         for k in 0..nd {
-            d.seed(x, k);
-            self.configure(&d.x, &mut d.fr);
+            d.configure_along(self, fr, x, k);
             self.forces_frames(&d.fr, loads, scales, &mut d.own_f, &mut d.own_n, &mut d.out);
             for (r, v) in d.out.iter().enumerate() {
                 out[(r, k)] = v.eps;
@@ -427,13 +448,14 @@ impl StructuralModel for Chain3d {
         dgamma: &mut DMatrix<f64>,
     ) {
         let nd = self.n_dofs();
-        let d = ws.dual(self.n);
+        ws.configure(self, x);
+        let Workspace3d { fr, dual, .. } = ws;
+        let d = dual.get_or_insert_with(|| Box::new(DualScratch::new(self.n)));
         for (v, &r) in d.xdot.iter_mut().zip(xdot) {
             *v = Dual64::from(r);
         }
         for k in 0..nd {
-            d.seed(x, k);
-            self.configure(&d.x, &mut d.fr);
+            d.configure_along(self, fr, x, k);
             self.kinetic_terms(&d.fr, &d.xdot, &mut d.mo, Some(&mut d.p), Some(&mut d.out));
             for r in 0..nd {
                 dp[(r, k)] = d.p[r].eps;
@@ -464,6 +486,7 @@ impl StructuralModel for Chain3d {
         for k in 0..nd {
             d.seed(x, k);
             self.configure(&d.x, &mut d.fr);
+            d.lifted = 0;
             if !self.factor_mass(&d.fr, &mut d.ab) {
                 return false;
             }

@@ -221,7 +221,10 @@ impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
             self.direction(k);
             // Along x: dual configuration, real rates.
             aero.set_configuration_along(&self.sc, &self.q, &self.unit, &mut self.dsc);
-            aero.set_rates(&qdot_d, &mut self.dsc);
+            // The steady model's flow and loads do not read the rates.
+            if unsteady {
+                aero.set_rates(&qdot_d, &mut self.dsc);
+            }
             aero.set_flow(&self.air, &mut self.dsc);
             self.dsc.weff.copy_from_slice(&weff);
             aero.set_loads(&self.air, &mut self.dsc);

@@ -1,6 +1,7 @@
 //! Aeroelastic analyses (docs/aeroelastic-model.md §5): the equations of motion with strip
 //! aerodynamics, static aeroelastic equilibrium and divergence, stability and flutter, the
-//! frequency-domain (p-k) check, and time responses to gusts and manoeuvres.
+//! frequency-domain (p-k) check, time responses to gusts and manoeuvres, and the flutter study
+//! against a load level (`study.rs`), on the planar chain and the 3-D chain.
 
 mod audit;
 mod balance;
@@ -31,3 +32,9 @@ pub use flutter::{
 mod response;
 
 pub use response::{response, ResponseOptions, ResponseSample, ResponseSolution};
+mod study;
+
+pub use study::{
+    deflection_study, DeflectionPoint, DeflectionStudyOptions, DeflectionStudySolution,
+    StudyParameter,
+};
