@@ -7,7 +7,7 @@ use crate::common;
 use flexwing::model::aero::{Aerodynamics, Aeroelastic, FlightCondition, PlanarStructure};
 use flexwing::solve::aeroelastic::{
     flutter, linearize, stability_eigenvalues, AeroelasticEquations, FlightHistory, FlutterOptions,
-    Gust, GustShape, Input, LinearizeOptions, Output, StateBasis, StateSpace,
+    Gust, GustPenetration, GustShape, Input, LinearizeOptions, Output, StateBasis, StateSpace,
 };
 use flexwing::solve::integrate::{integrate, IntegratorSettings, Method, OdeSystem};
 use flexwing::solve::{Damping, StaticOptions, TimeFunction};
@@ -146,6 +146,7 @@ fn nonlinear_gains<M: PlanarStructure>(
                 amplitude: eps,
                 start: 0.0,
                 spanwise: flexwing::beam::Profile::Uniform(1.0),
+                penetration: GustPenetration::Uniform,
             })
         }
         _ => unreachable!(),

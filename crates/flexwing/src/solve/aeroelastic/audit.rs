@@ -190,7 +190,7 @@ impl<M: AeroStructure> AeroelasticEquations<'_, M> {
 #[cfg(test)]
 mod tests {
     use super::super::equations::tests::test_wing;
-    use super::super::flight::{FlightHistory, Gust, GustShape};
+    use super::super::flight::{FlightHistory, Gust, GustPenetration, GustShape};
     use super::super::schur::AeroNewtonSystems;
     use super::*;
     use crate::beam::Profile;
@@ -250,6 +250,7 @@ mod tests {
                     amplitude: 1.0,
                     start: 0.05,
                     spanwise: Profile::Uniform(1.0),
+                    penetration: GustPenetration::Uniform,
                 }),
             };
             let damping = Damping::Rayleigh {

@@ -8,7 +8,7 @@ use nalgebra::{Complex, DMatrix, DVector};
 
 use super::super::equations::tests::test_wing;
 use super::super::evaluator::AeroEvaluator;
-use super::super::flight::{FlightHistory, Gust, GustShape};
+use super::super::flight::{FlightHistory, Gust, GustPenetration, GustShape};
 use super::*;
 use crate::beam::Profile;
 use crate::model::ReducedModel;
@@ -84,6 +84,7 @@ fn perturbed<M: PlanarStructure>(
         amplitude: h,
         start: 0.0,
         spanwise,
+        penetration: GustPenetration::Uniform,
     };
     match o.inputs[j] {
         Input::RootAngle => flight.initial.root_angle += h,
