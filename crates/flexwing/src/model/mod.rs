@@ -168,6 +168,18 @@ pub trait StructuralModel {
     fn as_full_model(&self) -> Option<&FullModel> {
         None
     }
+    /// This model as the 3-D chain, when it is one (its coordinates are the joints' rotation
+    /// vectors): the implicit integrators then solve their Newton systems in O(n)
+    /// (`model::chain3d::newton`). `None` (the default) for other models.
+    fn as_chain3d(&self) -> Option<&Chain3d> {
+        None
+    }
+    /// `K` as 3×3 diagonal blocks (row-major, one per joint), when it is block diagonal with
+    /// such blocks (the 3-D chain): the equations of motion then never form it. `None` (the
+    /// default) otherwise.
+    fn stiffness_blocks(&self) -> Option<Vec<[[f64; 3]; 3]>> {
+        None
+    }
 }
 
 /// [`StructuralModel::hamiltonian_derivatives_into`] from `B = ∂(M ẋ)/∂x` and dense products:

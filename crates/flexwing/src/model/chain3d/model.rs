@@ -509,6 +509,14 @@ impl StructuralModel for Chain3d {
         loads.is_conservative(scales)
     }
 
+    fn as_chain3d(&self) -> Option<&Chain3d> {
+        Some(self)
+    }
+
+    fn stiffness_blocks(&self) -> Option<Vec<[[f64; 3]; 3]>> {
+        Some(self.beam.stiffness.clone())
+    }
+
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64> {
         x.to_vec()
     }
