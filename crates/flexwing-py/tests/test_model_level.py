@@ -108,7 +108,7 @@ def test_a_stepper_failure_says_when_and_keeps_the_state():
     before = stepper.y.copy()
     with pytest.raises(flexwing.SolverError) as info:
         stepper.step(0.5, [1.0])
-    assert 0.0 <= info.value.stop["time"] < 0.5
+    assert 0.0 <= info.value.stop["error"]["time"] < 0.5
     assert stepper.t == 0.0 and np.array_equal(stepper.y, before)
 
 

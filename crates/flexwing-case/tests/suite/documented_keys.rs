@@ -17,7 +17,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/case-file.md");
     let text = std::fs::read_to_string(path).expect("docs/case-file.md");
     // The key tables of each section, in the order they appear.
-    let sections: [(&str, &[&str]); 15] = [
+    let sections: [(&str, &[&str]); 16] = [
         ("### Top level", &[""]),
         ("### `[beam]`", &["beam"]),
         ("### `[beam.section]`", &["beam.section"]),
@@ -33,6 +33,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
         ("### `[aero.flight.gust]`", &["aero.flight.gust"]),
         ("### `[aero.sweep]`", &["aero.sweep"]),
         ("### `[flutter]`", &["flutter"]),
+        ("### `[linearize]`", &["linearize"]),
     ];
     let mut tables = BTreeMap::new();
     let mut pending: Vec<&str> = Vec::new();
@@ -129,6 +130,8 @@ amplitude = 1.0
 speeds = [1.0, 2.0]
 
 [flutter]
+
+[linearize]
 "#
     )
 }
@@ -150,7 +153,7 @@ fn schema_keys(table: &str) -> BTreeSet<String> {
             "{ model = \"steady\" }",
             "{ model = \"steady\", zzz_bogus = 1 }",
         ),
-        t if t.starts_with("aero") || t == "flutter" => {
+        t if t.starts_with("aero") || t == "flutter" || t == "linearize" => {
             let header = format!("[{t}]\n");
             let base = base_aero();
             assert!(base.contains(&header), "{t}");
@@ -183,7 +186,14 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
         // Sub-tables are documented under their own heading, not as keys.
         let subtables: &[&str] = match table.as_str() {
             "" => &[
-                "beam", "modes", "loads", "static", "dynamic", "aero", "flutter",
+                "beam",
+                "modes",
+                "loads",
+                "static",
+                "dynamic",
+                "aero",
+                "flutter",
+                "linearize",
             ],
             "beam" => &["section"],
             "aero" => &["flight", "sweep"],
@@ -204,7 +214,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
         let documented: BTreeSet<String> = keys.keys().cloned().collect();
         assert_eq!(documented, schema, "keys of [{table}]");
     }
-    assert_eq!(docs.len(), 17, "{:?}", docs.keys());
+    assert_eq!(docs.len(), 18, "{:?}", docs.keys());
 }
 
 /// The default the code uses for each key whose documented default is a literal.
@@ -416,6 +426,7 @@ fn aero_defaults(put: &mut impl FnMut(&'static str, &'static str, String)) {
     // Without the gravity load (with [aero] gravity is aero.flight.gravity) and its sweep.
     let text = base_aero()
         .replace("[flutter]\n", "")
+        .replace("[linearize]\n", "")
         .replace(
             "[[loads]]\nname = \"G\"\ntype = \"gravity\"\ntime = { type = \"constant\" }\n",
             "",
@@ -451,6 +462,21 @@ fn aero_defaults(put: &mut impl FnMut(&'static str, &'static str, String)) {
     );
     put("flutter", "tolerance", flutter.tolerance.to_string());
     put("flutter", "pk", flutter.pk.to_string());
+    let linear = case.linearize_plan().unwrap();
+    put("linearize", "full", linear.full.to_string());
+    put("linearize", "reduced", format!("{:?}", linear.reduced));
+    put(
+        "linearize",
+        "reduced_modes",
+        format!("{:?}", linear.reduced_modes),
+    );
+    put("linearize", "inputs", format!("{:?}", linear.inputs));
+    put("linearize", "outputs", format!("{:?}", linear.outputs));
+    put(
+        "linearize",
+        "states",
+        format!("\"{}\"", linear.states.name()),
+    );
     let dynamic = case.aero_dynamic_plan().unwrap();
     let gust = dynamic.flight.gust.expect("a gust");
     put("aero.flight.gust", "start", gust.start.to_string());

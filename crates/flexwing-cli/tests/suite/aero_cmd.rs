@@ -116,7 +116,7 @@ fn gust_example_starts_at_equilibrium_and_completes() {
         assert!((limit - 1e-3).abs() < 1e-15, "{limit}");
         assert_eq!(m["summary"]["energy_balance_limit"].as_f64(), Some(limit));
         assert_eq!(audit["balanced"], true);
-        assert!(audit["exceeded_t_s"].is_null() && audit["runaway_t_s"].is_null());
+        assert!(audit["exceeded_time"].is_null() && audit["runaway_time"].is_null());
         assert!(max_error < 1e-6, "{audit}");
         let s = m["samples"].as_array().unwrap();
         let largest = s
@@ -150,13 +150,13 @@ fn gust_runs_that_go_wrong_are_stopped_or_suspect() {
             base.replace("integrator = \"auto\"", "integrator = \"dopri5\"")
                 .replace("rtol = 1e-6", "rtol = 1e-2")
                 .replace("atol = 1e-8", "atol = 0.1"),
-            "incomplete",
-            "runaway_t_s",
+            "stopped",
+            "runaway_time",
         ),
         (
             format!("{base}energy_tolerance = 1e-10\n"),
             "suspect",
-            "exceeded_t_s",
+            "exceeded_time",
         ),
     ];
     for (k, (text, word, when)) in cases.iter().enumerate() {

@@ -290,27 +290,24 @@ fn a_step_cap_with_a_loose_tolerance_keeps_case_b_within_1e4_m() {
 fn paper_free_vibration_full_conserves_energy_and_simplified_runs_away() {
     // Regression (issue 9, found (a)): the simplified model of the example grew its energy from
     // 34.7 J to 7889 J and the run said `complete`, exit 0. Now the energy audit stops it when
-    // it created 9 times the energy it held (default energy_runaway), the run is `incomplete`
+    // it created 9 times the energy it held (default energy_runaway), the run is `stopped`
     // and the exit status 1; the full model's balance holds.
     let dir = TempDir::new("free-vibration-copy");
     let case = shortened(&dir, "paper_free_vibration.toml", "0.1");
     let (o, out) = run_dynamic(&dir, &case, &["--json"]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let err = stderr(&o);
-    assert!(
-        err.contains("simplified: incomplete: stopped at t = "),
-        "{err}"
-    );
+    assert!(err.contains("simplified: stopped at t = "), "{err}");
     assert!(err.contains("energy_runaway = 9"), "{err}");
     assert_eq!(err.lines().count(), 1, "{err}");
     let doc = json(&o);
-    assert_eq!(doc["status"], "incomplete");
+    assert_eq!(doc["status"], "stopped");
     let full = model(&doc, "full");
     let simplified = model(&doc, "simplified");
     assert_eq!(full["gyroscopic"], "exact");
     assert_eq!(simplified["gyroscopic"], "neglected");
     assert_eq!(full["status"], "complete");
-    assert_eq!(simplified["status"], "incomplete");
+    assert_eq!(simplified["status"], "stopped");
     // Released at rest from the static deflection under the (inactive) 150 N tip force.
     assert_eq!(numbers(&full["energy"]["kinetic_J"])[0], 0.0);
     let y0 = numbers(&full["tip"]["y_m"])[0];
@@ -323,17 +320,17 @@ fn paper_free_vibration_full_conserves_energy_and_simplified_runs_away() {
     let audit = &full["energy_audit"];
     assert_eq!(audit["balanced"], true);
     assert!(audit["max_error"].as_f64().unwrap() < 1e-3, "{audit}");
-    assert!(audit["exceeded_t_s"].is_null());
+    assert!(audit["exceeded_time"].is_null());
     // The simplified model has no balance: its error is the energy it created, beyond 9 E.
     let s = &simplified["energy_audit"];
     assert_eq!(s["balanced"], false);
     assert!(s["limit"].is_null());
     assert!(s["max_error"].as_f64().unwrap() > 9.0, "{s}");
-    let stopped = s["runaway_t_s"].as_f64().unwrap();
+    let stopped = s["runaway_time"].as_f64().unwrap();
     assert!(stopped > 0.0 && stopped < 0.1, "{s}");
     let status = fs::read_to_string(out.join("status.txt")).unwrap();
     assert!(
-        status.starts_with("incomplete: simplified: stopped at t = "),
+        status.starts_with("stopped: simplified: stopped at t = "),
         "{status}"
     );
 }
@@ -910,13 +907,13 @@ fn an_integration_failure_keeps_what_was_computed() {
     for needle in ["full: ", "time integration stopped at t = ", "simplified"] {
         assert!(err.contains(needle), "{needle:?} not in {err:?}");
     }
-    assert!(stdout(&o).contains("status: incomplete: full: "));
+    assert!(stdout(&o).contains("status: stopped: full: "));
 
     let status = fs::read_to_string(out.join("status.txt")).unwrap();
     let lines: Vec<&str> = status.lines().collect();
     assert_eq!(lines.len(), 2, "{status}");
-    assert!(lines[0].starts_with("incomplete: full: time integration stopped at t = "));
-    assert!(lines[1].starts_with("incomplete: simplified: "));
+    assert!(lines[0].starts_with("stopped: full: time integration stopped at t = "));
+    assert!(lines[1].starts_with("stopped: simplified: "));
 
     let (_, rows) = read_csv(&out.join("dynamic_tip.csv"));
     let times: Vec<(&str, &str)> = rows
@@ -937,7 +934,7 @@ fn an_integration_failure_keeps_what_was_computed() {
     let (_, rows) = read_csv(&out.join("dynamic_nodes.csv"));
     assert_eq!(rows.len(), 2 * 3 * 5);
     let (_, rows) = read_csv(&out.join("dynamic_summary.csv"));
-    assert!(rows.iter().all(|r| r.last().unwrap() == "incomplete"));
+    assert!(rows.iter().all(|r| r.last().unwrap() == "stopped"));
 }
 
 #[test]
@@ -947,10 +944,10 @@ fn an_integration_failure_still_prints_one_json_document() {
     let (o, _) = run_dynamic(&dir, &case, &["--json", "--plot"]);
     assert_eq!(o.status.code(), Some(1));
     let doc = json(&o);
-    assert_eq!(doc["status"], "incomplete");
+    assert_eq!(doc["status"], "stopped");
     assert!(doc["error"].as_str().unwrap().starts_with("full: "));
     let full = model(&doc, "full");
-    assert_eq!(full["status"], "incomplete");
+    assert_eq!(full["status"], "stopped");
     assert!(full["error"]
         .as_str()
         .unwrap()
@@ -961,7 +958,7 @@ fn an_integration_failure_still_prints_one_json_document() {
 #[test]
 fn a_step_budget_stops_a_run_and_keeps_its_output() {
     // The paper's sine case with a budget of 50 integrator steps per model: every model stops
-    // early, names the limit, and the output computed so far is kept and marked incomplete.
+    // early, names the limit, and the output computed so far is kept and marked stopped.
     let dir = TempDir::new("dynamic-budget");
     let text = fs::read_to_string(example("paper_sine.toml")).unwrap();
     let line = text
@@ -978,7 +975,7 @@ fn a_step_budget_stops_a_run_and_keeps_its_output() {
     assert_eq!(o.status.code(), Some(1), "stderr: {err}");
     assert!(err.contains("max_steps"), "{err:?}");
     let status = fs::read_to_string(out.join("status.txt")).unwrap();
-    assert!(status.starts_with("incomplete: full: "), "{status}");
+    assert!(status.starts_with("stopped: full: "), "{status}");
     let (_, rows) = read_csv(&out.join("dynamic_tip.csv"));
     assert!(!rows.is_empty(), "no partial output kept");
 }

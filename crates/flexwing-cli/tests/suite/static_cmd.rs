@@ -588,13 +588,13 @@ fn a_run_that_does_not_converge_keeps_the_converged_points() {
     ] {
         assert!(err.contains(needle), "{needle:?} not in {err:?}");
     }
-    assert!(stdout(&o).contains("status: incomplete: full: "));
+    assert!(stdout(&o).contains("status: stopped: full: "));
 
     let status = fs::read_to_string(out.join("status.txt")).unwrap();
     let lines: Vec<&str> = status.lines().collect();
     assert_eq!(lines.len(), 2, "{status}");
-    assert!(lines[0].starts_with("incomplete: full: stopped at sweep point 4 of 4"));
-    assert!(lines[1].starts_with("incomplete: reduced-r2: "));
+    assert!(lines[0].starts_with("stopped: full: stopped at sweep point 4 of 4"));
+    assert!(lines[1].starts_with("stopped: reduced-r2: "));
 
     // The converged points are in the files.
     let (_, rows) = read_csv(&out.join("static_tip.csv"));
@@ -625,10 +625,10 @@ fn a_run_that_does_not_converge_still_prints_one_json_document() {
     let (o, _) = run_static(&dir, &case, &["--json"]);
     assert_eq!(o.status.code(), Some(1));
     let doc = json(&o);
-    assert_eq!(doc["status"], "incomplete");
+    assert_eq!(doc["status"], "stopped");
     assert!(doc["error"].as_str().unwrap().starts_with("full: "));
     let full = model(&doc, "full");
-    assert_eq!(full["status"], "incomplete");
+    assert_eq!(full["status"], "stopped");
     assert!(full["error"].as_str().unwrap().contains("did not converge"));
     assert_eq!(full["points"].as_array().unwrap().len(), 3);
 }
@@ -644,5 +644,5 @@ fn an_impossible_tolerance_is_a_run_failure() {
     assert_eq!(o.status.code(), Some(1), "stderr: {}", stderr(&o));
     assert!(stderr(&o).contains("full: static solver did not converge"));
     let status = fs::read_to_string(out.join("status.txt")).unwrap();
-    assert!(status.starts_with("incomplete: full: "), "{status}");
+    assert!(status.starts_with("stopped: full: "), "{status}");
 }

@@ -17,6 +17,14 @@ pub enum Calibration {
 }
 
 impl Calibration {
+    /// The case file's name: `tip-load` or `uniform`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Calibration::TipLoad => "tip-load",
+            Calibration::Uniform => "uniform",
+        }
+    }
+
     /// Bending spring stiffnesses for the node stations `nodes` (`x_0 = 0 … x_n = L`).
     pub(crate) fn bending(self, ei: &Profile, nodes: &[f64]) -> Vec<f64> {
         match self {

@@ -93,6 +93,55 @@ pub enum Load {
     },
 }
 
+impl std::fmt::Display for Load {
+    /// One line describing the load, its values and where it acts.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use crate::text::short;
+        let profile = |p: &Profile| match p {
+            Profile::Uniform(v) => short(*v),
+            Profile::Table { .. } => "table".into(),
+        };
+        match self {
+            Load::PointForce { span, force } => {
+                let (kind, names, a, b) = match force {
+                    Force::Dead { fx, fy } => ("dead", "(fx, fy)", fx, fy),
+                    Force::Follower { tangential, normal } => {
+                        ("follower", "(tangential, normal)", tangential, normal)
+                    }
+                };
+                write!(
+                    f,
+                    "{kind} point force {names} = ({}, {}) N at span {} m",
+                    short(*a),
+                    short(*b),
+                    short(*span)
+                )
+            }
+            Load::Moment { span, value } => {
+                write!(f, "moment {} N·m at span {} m", short(*value), short(*span))
+            }
+            Load::Torque { span, value } => {
+                write!(f, "torque {} N·m at span {} m", short(*value), short(*span))
+            }
+            Load::Distributed(d) => {
+                let (kind, names, a, b) = match d {
+                    DistributedForce::Dead { fx, fy } => ("dead", "(fx, fy)", fx, fy),
+                    DistributedForce::Follower { tangential, normal } => {
+                        ("follower", "(tangential, normal)", tangential, normal)
+                    }
+                };
+                write!(
+                    f,
+                    "{kind} distributed force {names} = ({}, {}) N/m",
+                    profile(a),
+                    profile(b)
+                )
+            }
+            Load::Gravity { g } => write!(f, "gravity, g = {} m/s² along -y", short(*g)),
+        }
+    }
+}
+
 /// Loads resolved against one model: per-element items, each tagged with its user load.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AppliedLoads {

@@ -101,6 +101,7 @@ impl StaticOptions {
 
 /// Counters of a static solve.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct StaticStats {
     /// Accepted load steps.
     pub load_steps: usize,

@@ -4,7 +4,6 @@
 //! `ρ∞ = 1`, bounded decay below), and a reduced model against Radau.
 
 use crate::common::*;
-use flexwing::beam::{Calibration, Profile};
 use flexwing::model::{Force, FullModel, Load, ReducedModel, StructuralModel};
 use flexwing::solve::integrate::{
     GeneralizedAlpha, GeneralizedAlphaOptions, Radau, RadauOptions, Tolerances, Trajectory,
@@ -12,15 +11,6 @@ use flexwing::solve::integrate::{
 use flexwing::solve::{
     solve_static, Damping, EquationsOfMotion, Gyroscopic, Modes, StaticOptions, TimeFunction,
 };
-
-fn table4(n: usize) -> FullModel {
-    model(
-        1.0,
-        &bending_only(Profile::Uniform(50.0), Profile::Uniform(0.2)),
-        n,
-        Calibration::TipLoad,
-    )
-}
 
 fn tip(full: &FullModel, q: &[f64]) -> [f64; 2] {
     let p = full.node_positions(&full.kinematics(q))[full.n_elements()];

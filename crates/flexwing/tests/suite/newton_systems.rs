@@ -14,15 +14,6 @@ use flexwing::solve::integrate::{
 };
 use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, NewtonSystems, TimeFunction};
 
-fn table4(n: usize) -> FullModel {
-    model(
-        1.0,
-        &bending_only(Profile::Uniform(50.0), Profile::Uniform(0.2)),
-        n,
-        Calibration::TipLoad,
-    )
-}
-
 /// Which integrator, with its step control.
 #[derive(Clone, Copy)]
 enum Method {

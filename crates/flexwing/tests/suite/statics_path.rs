@@ -5,22 +5,12 @@
 
 use crate::common::elastica::dead_tip_primary;
 use crate::common::*;
-use flexwing::beam::{Calibration, Profile};
 use flexwing::model::{Force, FullModel, Load};
 use flexwing::solve::{solve_static, sweep_static, StaticOptions, StaticSolution};
 use flexwing::SolveError;
 use std::f64::consts::PI;
 
 const EI: f64 = 50.0;
-
-fn table4(n: usize) -> FullModel {
-    model(
-        1.0,
-        &bending_only(Profile::Uniform(EI), Profile::Uniform(0.2)),
-        n,
-        Calibration::TipLoad,
-    )
-}
 
 fn tip_load(full: &FullModel, fx: f64, fy: f64) -> flexwing::model::AppliedLoads {
     full.apply(

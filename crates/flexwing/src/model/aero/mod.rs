@@ -22,8 +22,8 @@ mod theodorsen;
 pub(crate) use chain::AeroScratch;
 pub(crate) use fluid::FluidInertia;
 pub(crate) use lag::Lag;
-pub(crate) use strip::{Air, StripData};
-pub use theodorsen::theodorsen;
+pub(crate) use strip::{loads as strip_loads, Air, Motion, StripData};
+pub use theodorsen::{theodorsen, theodorsen_derivative};
 
 use nalgebra::DMatrix;
 
@@ -86,7 +86,35 @@ pub enum Aerodynamics {
     },
 }
 
+impl std::fmt::Display for Aerodynamics {
+    /// The model in words: `steady strip theory`, `Wagner's function (…) with apparent mass`, ….
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Aerodynamics::Steady => write!(f, "steady strip theory"),
+            Aerodynamics::QuasiSteady => write!(f, "quasi-steady (C(k) = 1) with apparent mass"),
+            Aerodynamics::Wagner => write!(
+                f,
+                "Wagner's function (R. T. Jones, 2 states per strip) with apparent mass"
+            ),
+            Aerodynamics::Peters { states } => write!(
+                f,
+                "Peters' finite-state inflow ({states} states per strip) with apparent mass"
+            ),
+        }
+    }
+}
+
 impl Aerodynamics {
+    /// The case file's name of the model: `steady`, `quasi-steady`, `wagner` or `peters`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Aerodynamics::Steady => "steady",
+            Aerodynamics::QuasiSteady => "quasi-steady",
+            Aerodynamics::Wagner => "wagner",
+            Aerodynamics::Peters { .. } => "peters",
+        }
+    }
+
     /// Whether the model has the section's velocity and the apparent mass (all but `Steady`).
     pub fn is_unsteady(&self) -> bool {
         !matches!(self, Aerodynamics::Steady)

@@ -233,7 +233,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     /// velocities `ẋ = M⁻¹ p` and the strip loads only, not the whole right-hand side (the
     /// outputs of a response ask for it at every output time). NaN if `M(x)` is not positive
     /// definite.
-    pub(crate) fn vertical_aerodynamic_force_at(&mut self, t: f64, y: &[f64]) -> f64 {
+    pub fn vertical_aerodynamic_force_at(&mut self, t: f64, y: &[f64]) -> f64 {
         let n = self.n;
         let (xp, a) = y[..2 * n + self.na].split_at(2 * n);
         let (x, p) = xp.split_at(n);

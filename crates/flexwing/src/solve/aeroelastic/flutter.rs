@@ -204,6 +204,7 @@ pub struct Crossing {
 
 /// Counters of a flutter analysis.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct FlutterStats {
     /// Linearizations (equilibrium plus derivatives) computed.
     pub linearizations: usize,

@@ -22,6 +22,8 @@ pub use statics::{
     Divergence, DivergenceBasis, SteadyAeroModel, SteadyAeroWorkspace,
 };
 mod flutter;
+mod linearize;
+mod signals;
 mod tracking;
 
 pub use flutter::{
@@ -30,6 +32,9 @@ pub use flutter::{
     MAX_SUBSTEPS,
 };
 mod response;
+
+pub use linearize::{linearize, poles, LinearizeOptions, StateSpace};
+pub use signals::{Input, Output, Signal, StateBasis, INPUT_NAMES, OUTPUT_NAMES};
 
 pub use response::{response, ResponseOptions, ResponseSample, ResponseSolution};
 mod study;

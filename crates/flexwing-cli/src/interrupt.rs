@@ -5,8 +5,6 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use flexwing::analysis::Progress;
-
 /// Set by Ctrl-C or `kill` once [`catch_interrupts`] ran.
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 /// Whether a second Ctrl-C ends the process at once (exit status 130).
@@ -31,15 +29,4 @@ pub fn catch_interrupts(second_quits: bool) {
 /// Whether Ctrl-C or `kill` came (after [`catch_interrupts`]).
 pub fn interrupted() -> bool {
     INTERRUPTED.load(Ordering::Relaxed)
-}
-
-/// A [`Progress`] that draws nothing and stops the analysis on Ctrl-C.
-pub struct Cancel;
-
-impl Progress for Cancel {
-    fn advance(&mut self, _fraction: f64) {}
-
-    fn cancelled(&mut self) -> bool {
-        interrupted()
-    }
 }

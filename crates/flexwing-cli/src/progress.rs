@@ -65,9 +65,9 @@ impl analysis::Progress for Progress {
         bar.set_position((fraction * TICKS as f64) as u64);
     }
 
-    /// Whether Ctrl-C or `kill` came (after [`crate::commands::interrupt::catch_interrupts`]).
+    /// Whether Ctrl-C or `kill` came (after [`crate::interrupt::catch_interrupts`]).
     fn cancelled(&mut self) -> bool {
-        crate::commands::interrupt::interrupted()
+        crate::interrupt::interrupted()
     }
 
     /// The current model is done: clear its bar.
