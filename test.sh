@@ -5,8 +5,8 @@
 # virtual environment (`.venv`, created if missing; `FLEXWING_VENV` picks another), where pytest
 # runs its suite (crates/flexwing-py/tests) against the `flexwing` binary of the same build.
 # Needs only Rust and Python ≥ 3.11 with its venv module (the pinned numpy needs 3.11; the
-# package itself runs on ≥ 3.9); maturin, numpy, pytest and
-# dask[distributed] come from PyPI (crates/flexwing-py/requirements-test.txt).
+# package itself runs on ≥ 3.9); maturin, numpy, pytest, hypothesis, dask[distributed] and the
+# optional extras the views use come from PyPI (crates/flexwing-py/requirements-test.txt).
 #
 #   ./test.sh                 everything
 #   ./test.sh --python-only   the Python part alone (after a Rust build)

@@ -38,9 +38,36 @@ mod values;
 /// What `__reduce__` returns: the callable that rebuilds the object, and its arguments.
 type Reduce<'py, A> = PyResult<(Bound<'py, PyAny>, A)>;
 
+/// Load NumPy's C API now, while the module is imported: `numpy` loads it on the first array
+/// it makes, and a Ctrl-C pending then (the first analysis of a fresh process, interrupted)
+/// made that import fail inside a call, as a panic. Here a `KeyboardInterrupt` during the
+/// import of NumPy propagates as itself, and the import of `flexwing` fails with it.
+fn load_numpy(py: Python<'_>) -> PyResult<()> {
+    py.import("numpy")?;
+    py.import("numpy.lib")?;
+    let major: u32 = py
+        .import("numpy")?
+        .getattr("__version__")?
+        .extract::<String>()?
+        .split('.')
+        .next()
+        .and_then(|m| m.parse().ok())
+        .unwrap_or(2);
+    py.import(if major >= 2 {
+        "numpy._core.multiarray"
+    } else {
+        "numpy.core.multiarray"
+    })?;
+    errors::guard(py, || {
+        numpy::PyArray1::<f64>::zeros(py, 0, false);
+        Ok(())
+    })
+}
+
 /// The Rust half of the `flexwing` package; import `flexwing`, not this module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    load_numpy(m.py())?;
     m.add_class::<case::PyCase>()?;
     m.add_class::<model::PyBeam>()?;
     m.add_class::<model::PyFullModel>()?;

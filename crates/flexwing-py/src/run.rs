@@ -15,6 +15,7 @@ use pyo3::types::PyDict;
 
 use crate::convert;
 use crate::errors;
+use crate::progress::PyProgress;
 
 /// The analysis called `name` (`"modes"`, `"static"`, `"dynamic"`, `"flutter"`), or an
 /// `InputError` naming `field`.
@@ -70,8 +71,16 @@ pub fn execute(
     analysis: Analysis,
     progress: &mut dyn Progress,
 ) -> Result<Done, Failure> {
+    let plan = match errors::catch(|| case.plan(analysis)) {
+        Err(m) => return Err(Failure::Panic(m)),
+        Ok(plan) => plan.map_err(Failure::Case)?,
+    };
+    execute_plan(plan, progress)
+}
+
+/// Run `plan` (no Python here: call it detached), a panic caught as [`Failure::Panic`].
+pub fn execute_plan(plan: Plan, progress: &mut dyn Progress) -> Result<Done, Failure> {
     let run = || -> Result<Done, Failure> {
-        let plan = case.plan(analysis).map_err(Failure::Case)?;
         let outcome = analysis::run(&plan, progress).map_err(Failure::Library)?;
         Ok(Done { plan, outcome })
     };
@@ -151,8 +160,44 @@ pub fn incomplete_error(
     )
 }
 
-/// Run `analysis` of `case` detached from the interpreter, with an optional progress callback;
-/// with `check`, a model that stopped raises `SolverError` (carrying the partial result).
+/// Run `plan_and_run` (an analysis: no Python inside) detached from the interpreter, with the
+/// optional progress callback and signals polled ([`PyProgress`]), and build its result.
+/// `check`: a model that did not complete raises `SolverError` carrying the partial result. A
+/// callback's exception or a signal (Ctrl-C) stops the analysis at its next check: that
+/// exception is raised, with the partial result as its `result` attribute.
+pub fn run_detached<'py>(
+    py: Python<'py>,
+    progress: Option<Py<PyAny>>,
+    check: bool,
+    plan_and_run: impl FnOnce(&mut dyn Progress) -> Result<Done, Failure> + Send,
+) -> PyResult<Bound<'py, PyAny>> {
+    let _nesting = crate::progress::Nesting::enter(py)?;
+    let mut reporter = PyProgress::new(py, progress)?;
+    let (done, rust_time_s) = py.detach(|| {
+        let start = Instant::now();
+        let done = plan_and_run(&mut reporter);
+        (done, start.elapsed().as_secs_f64())
+    });
+    // The callback's or a signal handler's exception wins over the analysis' own failure (it
+    // may be why the analysis stopped); it is raised even when the analysis completed after
+    // the last check (the caller asked to stop), with the result.
+    let stopped_by = reporter.take_error();
+    let done = match done {
+        Err(f) => return Err(stopped_by.unwrap_or_else(|| f.to_py(py))),
+        Ok(done) => done,
+    };
+    let (result, incomplete) = to_python(py, &done, rust_time_s)?;
+    if let Some(e) = stopped_by {
+        errors::set_attribute(py, &e, "result", result.unbind());
+        return Err(e);
+    }
+    match incomplete {
+        Some(i) if check => Err(incomplete_error(py, &result, i)),
+        _ => Ok(result),
+    }
+}
+
+/// Run `analysis` of `case` (see [`run_detached`]).
 pub fn run_case<'py>(
     py: Python<'py>,
     case: &Case,
@@ -160,17 +205,5 @@ pub fn run_case<'py>(
     progress: Option<Py<PyAny>>,
     check: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let mut reporter = crate::progress::PyProgress::new(progress);
-    let (done, rust_time_s) = py.detach(|| {
-        let start = Instant::now();
-        let done = execute(case, analysis, &mut reporter);
-        (done, start.elapsed().as_secs_f64())
-    });
-    reporter.check()?;
-    let done = done.map_err(|f| f.to_py(py))?;
-    let (result, incomplete) = to_python(py, &done, rust_time_s)?;
-    match incomplete {
-        Some(i) if check => Err(incomplete_error(py, &result, i)),
-        _ => Ok(result),
-    }
+    run_detached(py, progress, check, |p| execute(case, analysis, p))
 }

@@ -102,7 +102,7 @@ BAD = [
     ("negative max_steps", lambda: FULL.stepper([LOAD], max_steps=-1), InputError, "max_steps"),
     ("x0 of the wrong size", lambda: FULL.stepper([LOAD], x0=[0.0]), InputError, "x0"),
     ("reduced model on mode 0", lambda: FULL.reduced([0, 1]), InputError, "modes[0]"),
-    ("reduced model on too many modes", lambda: FULL.reduced(5), InputError, "modes[4]"),
+    ("reduced model on too many modes", lambda: FULL.reduced(5), InputError, "modes"),
     ("reduced model on a repeated mode", lambda: FULL.reduced([1, 1]), InputError, "modes[1]"),
     ("too many modes", lambda: FULL.modes(count=99), InputError, "count"),
     ("negative mode count", lambda: FULL.modes(count=-1), InputError, "count"),

@@ -18,8 +18,8 @@ use flexwing::beam::Profile;
 use flexwing::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCondition};
 use flexwing::model::{AppliedLoads, ReducedModel, StructuralModel};
 use flexwing::solve::aeroelastic::{
-    flutter, response, AeroelasticEquations, FlightHistory, FlutterOptions, Gust, GustShape,
-    ResponseOptions, ResponseSolution,
+    flutter, response, AeroelasticEquations, FlightHistory, FlutterMethod, FlutterOptions,
+    FlutterSolution, Gust, GustShape, ResponseOptions, ResponseSolution,
 };
 use flexwing::solve::integrate::{IntegratorStats, Radau, RadauOptions, Tolerances};
 use flexwing::solve::{AuditLimits, Damping};
@@ -84,8 +84,29 @@ fn main() {
     let sections: Vec<&str> = args
         .iter()
         .map(String::as_str)
-        .filter(|a| ["flutter", "sweep", "gust", "audit"].contains(a))
+        .filter(|a| {
+            [
+                "flutter",
+                "sweep",
+                "gust",
+                "audit",
+                "pk",
+                "pk-once",
+                "eigen-once",
+            ]
+            .contains(a)
+        })
         .collect();
+    if sections == ["pk-once"] || sections == ["eigen-once"] {
+        let plan = patil_flutter_plan(if sections == ["pk-once"] {
+            FlutterMethod::PkTheodorsen
+        } else {
+            FlutterMethod::Eigenvalues
+        });
+        let out = flutter(&patil(32), &plan, "flutter", &mut |_| {}).expect("plan");
+        println!("{:?}\n{:?}", out.flutter, out.stats);
+        return;
+    }
     let want = |name: &str| sections.is_empty() || sections.contains(&name);
     let (budget, batches) = if quick {
         (Duration::from_millis(300), 3)
@@ -106,6 +127,86 @@ fn main() {
     }
     if want("audit") {
         audit_table(&wing, &rom6, budget, batches);
+    }
+    if want("pk") {
+        pk_table(budget, batches);
+    }
+}
+
+/// `examples/patil_flutter.toml`'s flutter plan: 4 branches through 2, 4, … 40 m/s, flutter
+/// speeds to 1e-7.
+fn patil_flutter_plan(method: FlutterMethod) -> FlutterOptions {
+    let mut plan = FlutterOptions::new((1..=20).map(|k| 2.0 * k as f64).collect(), 4);
+    plan.tolerance = 1e-7;
+    plan.method = method;
+    plan
+}
+
+/// One model's flutter analysis.
+type FlutterRun<'a> = dyn Fn(&FlutterOptions) -> Result<FlutterSolution, flexwing::InputError> + 'a;
+
+/// The p-k method (Theodorsen's `C(k)`) against the eigenvalue flutter (Peters 6 states) of the
+/// same model and plan (`examples/patil_flutter.toml`: n = 32, 4 branches, 20 speeds, 1e-7),
+/// full and reduced; the ratio is p-k over eigenvalues. Also n = 64.
+fn pk_table(budget: Duration, batches: usize) {
+    println!("\np-k (Theodorsen) against the eigenvalue flutter (Peters 6), Patil's wing, 4 branches × 20 speeds, tolerance 1e-7\n");
+    println!("| model | method | flutter speed (m/s) | frequency (rad/s) | Newton iterations | linearizations | time | spread | CPU | p-k / eigenvalues (CPU) |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    for n in [32, 64] {
+        let wing = patil(n);
+        let rom4 = wing.reduced(&(0..4).collect::<Vec<_>>()).expect("rom");
+        let rom8 = wing.reduced(&(0..8).collect::<Vec<_>>()).expect("rom");
+        let models: Vec<(String, Box<FlutterRun<'_>>)> = vec![
+            (
+                format!("full, n = {n}"),
+                Box::new(|p: &FlutterOptions| flutter(&wing, p, "flutter", &mut |_| {})),
+            ),
+            (
+                format!("reduced r = 4, n = {n}"),
+                Box::new(|p: &FlutterOptions| flutter(&rom4, p, "flutter", &mut |_| {})),
+            ),
+            (
+                format!("reduced r = 8, n = {n}"),
+                Box::new(|p: &FlutterOptions| flutter(&rom8, p, "flutter", &mut |_| {})),
+            ),
+        ];
+        for (name, run) in &models {
+            if n == 64 && name.starts_with("reduced") {
+                continue;
+            }
+            let mut eigen_cpu = f64::NAN;
+            for method in [FlutterMethod::Eigenvalues, FlutterMethod::PkTheodorsen] {
+                let plan = patil_flutter_plan(method);
+                let out = run(&plan).expect("plan");
+                let f = out.flutter.expect("flutters");
+                let (t, spread) = measure(budget, batches, || {
+                    black_box(run(&plan).expect("plan"));
+                });
+                let cpu = cpu_per_call(budget, || {
+                    black_box(run(&plan).expect("plan"));
+                });
+                let ratio = if method == FlutterMethod::Eigenvalues {
+                    eigen_cpu = cpu;
+                    "–".to_string()
+                } else {
+                    format!("{:.2}", cpu / eigen_cpu)
+                };
+                println!(
+                    "| {name} | {} | {:.8} | {:.8} | {} | {} | {} | {:.0} % | {} | {ratio} |",
+                    match method {
+                        FlutterMethod::Eigenvalues => "eigenvalues",
+                        FlutterMethod::PkTheodorsen => "p-k",
+                    },
+                    f.speed,
+                    f.frequency,
+                    out.stats.newton_iterations,
+                    out.stats.linearizations,
+                    fmt_time(t),
+                    spread * 100.0,
+                    fmt_time(cpu)
+                );
+            }
+        }
     }
 }
 

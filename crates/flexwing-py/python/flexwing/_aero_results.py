@@ -72,6 +72,14 @@ class AeroStaticRun(_Run):
         stats: the static solver's counters per point, each ``(p,)`` (as ``StaticRun.stats``).
     """
 
+    _axis = "speed"
+    _coord = "speed"
+    _columns = (
+        "speed", "dynamic_pressure", "tip_x", "tip_y", "tip_twist", "lift", "root_bending_moment",
+        "divergence_pressure", "tip_difference",
+    )
+    _grids = {"x": "node", "y": "node", "twist": "node", "q": "dof"}
+
     label: str
     kind: str
     modes: Optional[List[int]]
@@ -214,6 +222,9 @@ class FlutterRun(_Run):
     """
 
     _nested = {"eigenvalues": Stability, "pk": Stability, "equilibria": AeroStaticRun}
+    # Its tables and datasets are those of its eigen-analysis (the V-g/V-ω data); the
+    # equilibria and the p-k check have their own (run.equilibria.to_pandas(), run.pk…).
+    _delegate = "eigenvalues"
 
     label: str
     kind: str
@@ -302,6 +313,14 @@ class AeroDynamicRun(_Run):
         snapshots: as ``DynamicRun.snapshots``.
         max_tip_difference: largest tip distance from the first model's (m), or ``None``.
     """
+
+    _axis = "time"
+    _coord = "t"
+    _columns = (
+        "t", "tip_x", "tip_y", "tip_twist", "root_bending_moment", "lift", "speed", "kinetic",
+        "strain", "total", "work", "dissipated", "balance_error",
+    )
+    _grids = {}
 
     label: str
     kind: str

@@ -10,9 +10,10 @@ nothing does).
 A result class says how it is built from its dict with two class attributes: ``_nested`` maps a
 field to the class its dict (or each dict of its list, for a list) becomes, and ``_kind`` (on
 the top-level results) is the name of the analysis the Rust side builds it for (the library's
-``Plan::name``). Every view of a result (``to_dict`` here; data frames, plots and notebook
-reprs later) works from the dataclass fields, so a new result class gets them by declaring its
-fields.
+``Plan::name``). Every view of a result — ``to_dict`` here, ``to_pandas``/``to_xarray``
+(``_frames.py``), ``plot`` (``_plot.py``), the notebook's HTML (``_html.py``) — works from the
+dataclass fields and a run's declared ``_axis``, ``_coord``, ``_columns`` and ``_grids``, so a new
+result class gets them by declaring its fields.
 """
 
 from __future__ import annotations
@@ -73,10 +74,20 @@ def _summary(obj, fields: List[str]) -> str:
 
 
 class _Result:
-    """The base of every result class."""
+    """The base of every result class: ``to_dict()``, ``to_pandas()``, ``to_xarray()``,
+    ``plot()`` and the notebook's HTML, each built once from the dataclass fields and what the
+    class declares (``_frames.py``, ``_plot.py``, ``_html.py``)."""
 
     _nested: ClassVar[Dict[str, type]] = {}
     _kind: ClassVar[Optional[str]] = None
+    # What a run's views are made of (``_frames.py``): the dimension its values run along, the
+    # field of its coordinate, its columns over that axis, its fields with a second dimension;
+    # or the field whose views are the run's (``_delegate``).
+    _axis: ClassVar[Optional[str]] = None
+    _coord: ClassVar[Optional[str]] = None
+    _columns: ClassVar[tuple] = ()
+    _grids: ClassVar[Dict[str, str]] = {}
+    _delegate: ClassVar[Optional[str]] = None
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -87,6 +98,35 @@ class _Result:
         """The result as nested dicts, lists, NumPy arrays and numbers (the arrays are the
         result's own, not copies)."""
         return _to_dict(self)
+
+    def to_pandas(self):
+        """The result as a ``pandas.DataFrame``: one row per point, output time or speed (and
+        per model, with a ``(model, …)`` row index), one column per quantity; the units in
+        ``frame.attrs["units"]``. Needs pandas (``pip install "flexwing[pandas]"``)."""
+        from . import _frames
+
+        return _frames.frame(self)
+
+    def to_xarray(self):
+        """The result as an ``xarray.Dataset`` with named dimensions (``model``, ``point``,
+        ``time``, ``speed``, ``branch``, ``mode``, ``node``, ``dof``, ``load``) and units as
+        attributes; NetCDF and Zarr through xarray (``ds.to_netcdf(path)``). Needs xarray
+        (``pip install "flexwing[xarray]"``)."""
+        from . import _frames
+
+        return _frames.dataset(self)
+
+    def plot(self, ax=None, **kwargs):
+        """A quick look with matplotlib: the figure (see ``flexwing._plot``). Needs matplotlib
+        (``pip install "flexwing[plot]"``)."""
+        from . import _plot
+
+        return _plot.plot(self, ax, **kwargs)
+
+    def _repr_html_(self) -> str:
+        from . import _html
+
+        return _html.html_of(self)
 
 
 class _Run(_Result):

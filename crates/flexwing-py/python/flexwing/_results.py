@@ -19,6 +19,7 @@ __all__ = [
     "DynamicRun",
     "DynamicResult",
     "BatchItem",
+    "Batch",
 ]
 
 
@@ -90,6 +91,11 @@ class StaticRun(_Run):
         stats: solver counters per point, each ``(p,)``: ``load_steps``, ``rejected_steps``,
             ``iterations``, ``residual_evaluations``, ``factorizations``, ``residual_norm``.
     """
+
+    _axis = "point"
+    _coord = None
+    _columns = ("scale", "tip_x", "tip_y", "tip_twist", "tip_difference")
+    _grids = {"x": "node", "y": "node", "twist": "node", "q": "dof", "scales": "load"}
 
     label: str
     kind: str
@@ -195,6 +201,11 @@ class DynamicRun(_Run):
             ``advice``) and ``message``.
     """
 
+    _axis = "time"
+    _coord = "t"
+    _columns = ("t", "tip_x", "tip_y", "tip_twist", "kinetic", "strain", "total", "work", "dissipated", "balance_error")
+    _grids = {}
+
     label: str
     kind: str
     modes: Optional[List[int]]
@@ -255,10 +266,13 @@ class BatchItem(_Result):
     """The outcome of one case of :func:`flexwing.solve_many`.
 
     Attributes:
-        index: the case's position in the input.
+        index: the case's position in the input plus ``solve_many``'s ``start``; for
+            ``flexwing.solve`` the ``index`` given, else ``None``.
         status: ``"complete"``, ``"suspect"`` (every model ran to the end but one's energy
             balance exceeded its limit), ``"stopped"`` (a model stopped; ``result`` holds what
-            it reached) or ``"error"`` (bad input or a failed set-up; ``result`` is ``None``).
+            it reached), ``"interrupted"`` (the batch was stopped while the case ran: Ctrl-C or
+            a raising progress callback) or ``"error"`` (bad input or a failed set-up;
+            ``result`` is ``None``).
         result: the analysis result (``ModesResult``, ``StaticResult``, ``DynamicResult``,
             ``AeroStaticResult``, ``AeroDynamicResult``, ``FlutterResult``), or ``None``.
         error: the exception the case would have raised (a :class:`flexwing.FlexwingError`),
@@ -269,7 +283,7 @@ class BatchItem(_Result):
 
     _kind = "batch"
 
-    index: int
+    index: Optional[int]
     status: str
     result: Any
     error: Optional[BaseException]
@@ -289,3 +303,35 @@ class BatchItem(_Result):
 
     def __repr__(self) -> str:
         return _summary(self, ["index", "status", "message"])
+
+
+class Batch(list):
+    """What :func:`flexwing.solve_many` returns: a list of :class:`BatchItem`, in input order,
+    with the views of a sweep.
+
+    ``to_pandas(index=None)``: one row per case — ``status``, ``message``, ``wall_time_s`` and
+    the scalars of its result, flat (the result's ``status``; per model, prefixed with its label,
+    its scalars and the last value of each of its columns: ``full.tip_y`` at the last point or
+    output time, ``full.flutter_speed``, ``full.divergence_speed``; a modal analysis'
+    ``frequency_hz[k]``), NaN where a case has none; rows indexed by ``case`` (the items'
+    ``index``) or by ``index``: labels of the swept parameters, one per item (a list, a list of
+    tuples, or a ``pandas.Index``/``MultiIndex`` such as ``MultiIndex.from_product([forces,
+    stiffnesses], names=["F", "EI"])``). ``to_xarray(index=None)``: the same as a dataset
+    whose dimensions are the index' levels (a product sweep becomes a grid ``F × EI``). Units
+    in ``frame.attrs["units"]`` and on each variable."""
+
+    def to_pandas(self, index=None):
+        from . import _frames
+
+        return _frames.batch_frame(self, index)
+
+    def to_xarray(self, index=None):
+        from . import _frames
+
+        return _frames.batch_dataset(self, index)
+
+    def _repr_html_(self) -> str:
+        from . import _html
+
+        return _html.batch_html(self)
+

@@ -4,7 +4,7 @@
 //! to small harmonic inputs, within a linearization error that shrinks with the amplitude.
 
 use crate::common;
-use flexwing::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCondition};
+use flexwing::model::aero::{Aerodynamics, Aeroelastic, FlightCondition, PlanarStructure};
 use flexwing::solve::aeroelastic::{
     flutter, linearize, stability_eigenvalues, AeroelasticEquations, FlightHistory, FlutterOptions,
     Gust, GustShape, Input, LinearizeOptions, Output, StateBasis, StateSpace,
@@ -120,7 +120,7 @@ fn frequency_response(ss: &StateSpace, j: usize, omega: f64) -> (DVector<C64>, D
 /// The non-linear response to `u_j = ε sin ωt` started on the linear model's periodic state
 /// (so that no transient is excited but the O(ε²) mismatch), over `periods` periods: the
 /// complex gains `(a + i b)/ε` of the outputs' fits `a sin ωt + b cos ωt` about the equilibrium.
-fn nonlinear_gains<M: AeroStructure>(
+fn nonlinear_gains<M: PlanarStructure>(
     aero: &Aeroelastic<M>,
     ss: &StateSpace,
     o: &LinearizeOptions,
@@ -237,7 +237,7 @@ fn frequency_response_is_the_nonlinear_harmonic_response() {
     check_response(&rom, "reduced");
 }
 
-fn check_response<M: AeroStructure>(aero: &Aeroelastic<M>, label: &str) {
+fn check_response<M: PlanarStructure>(aero: &Aeroelastic<M>, label: &str) {
     let o = options(20.0, 0.03, StateBasis::Velocities);
     let ss = linearize(aero, &o, "linearize").unwrap();
     let names: Vec<&str> = ss.outputs.iter().map(|s| s.name.as_str()).collect();

@@ -17,7 +17,7 @@ use super::statics::{sweep_model, AeroPoint};
 use super::{build, models, Aero, Built, Fields, SpeedSweep};
 use crate::analysis::{ModelKind, Note, Progress, Status, Stop};
 use crate::error::{Error, InputError};
-use crate::model::aero::{AeroStructure, Aeroelastic, FlightCondition};
+use crate::model::aero::{Aeroelastic, FlightCondition, PlanarStructure};
 use crate::model::{FullModel, Load};
 use crate::solve::aeroelastic::{
     flutter_polled, AeroStaticOptions, Branch, Crossing, Divergence, FlutterMethod, FlutterOptions,
@@ -383,7 +383,7 @@ fn solver_plan(plan: &FlutterPlan, dofs: usize, method: FlutterMethod) -> Flutte
 
 /// Equilibria, eigen-analysis and (if asked) the p-k check of one model, in thirds of its
 /// progress.
-fn analyse<M: AeroStructure>(
+fn analyse<M: PlanarStructure>(
     kind: &ModelKind,
     aero: &Aeroelastic<M>,
     plan: &FlutterPlan,

@@ -14,7 +14,7 @@ use nalgebra::Complex;
 use super::{build, models, Aero, Built, Fields};
 use crate::analysis::{ModelKind, Note, Progress, Status, Stop};
 use crate::error::{Error, InputError};
-use crate::model::aero::{AeroStructure, Aeroelastic, FlightCondition};
+use crate::model::aero::{Aeroelastic, FlightCondition, PlanarStructure};
 use crate::model::{FullModel, Load};
 use crate::solve::aeroelastic::{
     linearize as solve_linearize, poles as poles_of, Input, LinearizeOptions, Output, StateBasis,
@@ -235,7 +235,7 @@ pub fn run(plan: &LinearizePlan, progress: &mut dyn Progress) -> Result<Lineariz
     Ok(LinearizeOutcome { runs })
 }
 
-fn linearize_model<M: AeroStructure>(
+fn linearize_model<M: PlanarStructure>(
     kind: &ModelKind,
     aero: &Aeroelastic<M>,
     options: &LinearizeOptions,

@@ -17,7 +17,7 @@ use super::{build, models, Aero, Built, Fields};
 use crate::analysis::dynamics::{status_of, DynamicPlan, EnergyAudit, Initial, Snapshot};
 use crate::analysis::{ModelKind, Progress, Status, Stop};
 use crate::error::{Error, InputError, SolveError};
-use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic};
+use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, PlanarStructure};
 use crate::model::{AppliedLoads, Load};
 use crate::solve::aeroelastic::{AeroelasticEquations, FlightHistory, SteadyAeroModel};
 use crate::solve::integrate::{integrate, IntegratorStats, Method, OdeSystem};
@@ -255,7 +255,7 @@ struct Simulator<'a> {
 }
 
 impl Simulator<'_> {
-    fn run<M: AeroStructure>(
+    fn run<M: PlanarStructure>(
         &self,
         kind: &ModelKind,
         aero: &Aeroelastic<M>,
@@ -401,7 +401,6 @@ impl Simulator<'_> {
             scales.push(initial.root_angle.cos());
         }
         let applied = aero
-            .full()
             .apply(&loads, "loads")
             .map_err(SolveError::from_input)?;
         let model = SteadyAeroModel::new(&steady, initial.root_angle);

@@ -13,8 +13,8 @@
 //! global angular velocity it adds: a change `δφ_i` turns everything outboard of node `i` rigidly
 //! about `P_i` by the global small rotation `H_i δφ_i`.
 
-use super::algebra::{add, cross, lift, lift_m, mm, mmt, mv, zero, Real, M3, V3};
-use super::rotation::{exp, tangent_left, Coefficients};
+use super::algebra::{add, column, cross, dot, lift, lift_m, mm, mmt, mv, zero, Real, M3, V3};
+use super::rotation::{exp_and_tangent, Coefficients};
 use super::Chain3d;
 
 /// The kinematics of one configuration: frames, joint axes, node positions, mass-centre arms and
@@ -38,6 +38,46 @@ pub(crate) struct Frames<D> {
     pub(crate) arm: Vec<V3<D>>,
     /// Inertia tensors about the mass centres `I_i = R_i J_i R_iᵀ`.
     pub(crate) inertia: Vec<M3<D>>,
+}
+
+impl Frames<num_dual::Dual64> {
+    /// The real frames of elements `from..end` of `base` (and nodes `from..=end`) as dual
+    /// numbers with zero dual parts: with the elements before `from` already lifted, the part
+    /// of the chain a change of joint `end` does not move. `kinetic` also lifts what the
+    /// kinetic terms read (pre-joint frames, rotation vectors and their coefficients, arms,
+    /// inertia tensors); the strips need the frames, joint axes and nodes only.
+    pub(crate) fn lift_range(
+        &mut self,
+        base: &Frames<f64>,
+        from: usize,
+        end: usize,
+        kinetic: bool,
+    ) {
+        use num_dual::Dual64;
+        let l3 = |m: &M3<f64>| m.map(|r| r.map(Dual64::from));
+        for i in from..end {
+            self.r[i] = l3(&base.r[i]);
+            self.h[i] = l3(&base.h[i]);
+            self.d[i] = lift(&base.d[i]);
+            if kinetic {
+                self.b[i] = l3(&base.b[i]);
+                self.phi[i] = lift(&base.phi[i]);
+                self.arm[i] = lift(&base.arm[i]);
+                self.inertia[i] = l3(&base.inertia[i]);
+                let c = &base.coefficients[i];
+                self.coefficients[i] = Coefficients {
+                    s: Dual64::from(c.s),
+                    a: Dual64::from(c.a),
+                    b: Dual64::from(c.b),
+                    da: Dual64::from(c.da),
+                    db: Dual64::from(c.db),
+                };
+            }
+        }
+        for i in from..=end {
+            self.p[i] = lift(&base.p[i]);
+        }
+    }
 }
 
 impl<D: Real> Frames<D> {
@@ -85,31 +125,57 @@ impl<D: Real> Motion<D> {
 impl Chain3d {
     /// The kinematics of the configuration `x` (`3n` entries, joint-major) into `fr`. O(n).
     pub(crate) fn configure<D: Real>(&self, x: &[D], fr: &mut Frames<D>) {
+        self.configure_from(x, fr, 0, true);
+    }
+
+    /// [`Chain3d::configure`] of elements `start ..` only, from the frames of the elements
+    /// before `start` already in `fr` (those of `x`): a change of joint `start` moves nothing
+    /// inboard of it, so a directional derivative along it costs O(n − start). Without
+    /// `inertia`, the mass-centre arms and inertia tensors are not computed (the strips need
+    /// the frames, joint axes and nodes only).
+    pub(crate) fn configure_from<D: Real>(
+        &self,
+        x: &[D],
+        fr: &mut Frames<D>,
+        start: usize,
+        inertia: bool,
+    ) {
         let n = self.n;
         debug_assert_eq!(x.len(), 3 * n);
-        let mut prev: M3<D> = super::algebra::identity();
-        let mut node: V3<D> = zero();
-        fr.p[0] = node;
-        for i in 0..n {
+        let mut prev: M3<D> = if start == 0 {
+            super::algebra::identity()
+        } else {
+            fr.r[start - 1]
+        };
+        let mut node: V3<D> = if start == 0 { zero() } else { fr.p[start] };
+        fr.p[start] = node;
+        let straight = self.beam.reference.straight;
+        for i in start..n {
             let phi = [x[3 * i], x[3 * i + 1], x[3 * i + 2]];
             let c = Coefficients::of(&phi);
-            let b = mm(&prev, &lift_m(&self.beam.reference.relative[i]));
-            let r = mm(&b, &exp(&phi, &c));
-            let h = mm(&b, &tangent_left(&phi, &c));
+            let b = if straight {
+                prev
+            } else {
+                mm(&prev, &lift_m(&self.beam.reference.relative[i]))
+            };
+            let (e, t) = exp_and_tangent(&phi, &c);
+            let r = mm(&b, &e);
+            let h = mm(&b, &t);
             let l = D::from(self.beam.reference.lengths[i]);
             let d = [r[0][0] * l, r[1][0] * l, r[2][0] * l];
-            let arm = mv(&r, &lift(&self.beam.arms[i]));
-            let j = self.beam.inertias[i];
-            // R J Rᵀ with J diagonal: (R diag(J)) Rᵀ.
-            let rj: M3<D> = std::array::from_fn(|a| std::array::from_fn(|k| r[a][k] * j[k]));
-            fr.inertia[i] = mmt(&rj, &r);
+            if inertia {
+                fr.arm[i] = mv(&r, &lift(&self.beam.arms[i]));
+                let j = self.beam.inertias[i];
+                // R J Rᵀ with J diagonal: (R diag(J)) Rᵀ.
+                let rj: M3<D> = std::array::from_fn(|a| std::array::from_fn(|k| r[a][k] * j[k]));
+                fr.inertia[i] = mmt(&rj, &r);
+            }
             fr.phi[i] = phi;
             fr.coefficients[i] = c;
             fr.b[i] = b;
             fr.h[i] = h;
             fr.r[i] = r;
             fr.d[i] = d;
-            fr.arm[i] = arm;
             node = add(&node, &d);
             fr.p[i + 1] = node;
             prev = r;
@@ -134,15 +200,46 @@ impl Chain3d {
         let mut l: V3<D> = zero();
         for j in (0..n).rev() {
             let m = D::from(self.beam.masses[j]);
-            let own = super::algebra::scale(m, &mo.gdot[j]);
+            let mut own = super::algebra::scale(m, &mo.gdot[j]);
             // About P_j: L_{j+1} moved from P_{j+1} by (P_{j+1} − P_j) × Π_{j+1}.
             l = add(
                 &add(&l, &cross(&fr.d[j], &pi)),
                 &add(&cross(&fr.arm[j], &own), &mv(&fr.inertia[j], &mo.omega[j])),
             );
+            if let Some(f) = &self.fluid {
+                // The fluid's momenta: m_a u n at the mid-chord point (arm a_f from P_j) and
+                // J_a (ω·t) t, with u = n·(V_j + ω_j × a_f).
+                let (u, arm, axis) = self.fluid_motion(fr, mo, j);
+                let lin = super::algebra::scale(u * f.mass[j], &column(&fr.r[j], 1));
+                let spin = dot(&mo.omega[j], &axis) * f.inertia[j];
+                l = add(
+                    &l,
+                    &add(&cross(&arm, &lin), &super::algebra::scale(spin, &axis)),
+                );
+                own = add(&own, &lin);
+            }
             pi = add(&pi, &own);
             mo.l[j] = l;
             mo.pi[j] = pi;
         }
+    }
+
+    /// The fluid's motion at element `j` (the chain must carry fluid inertia): the normal
+    /// velocity `u = n·(V_j + ω_j × a_f)` of the mid-chord point, its arm `a_f = ½ d_j + ζ_m c_j`
+    /// from `P_j`, and the span axis `t_j`.
+    pub(crate) fn fluid_motion<D: Real>(
+        &self,
+        fr: &Frames<D>,
+        mo: &Motion<D>,
+        j: usize,
+    ) -> (D, V3<D>, V3<D>) {
+        let f = self.fluid.as_ref().expect("a wet chain");
+        let r = &fr.r[j];
+        let arm = add(
+            &super::algebra::scale(D::from(0.5), &fr.d[j]),
+            &super::algebra::scale(D::from(f.station[j]), &column(r, 2)),
+        );
+        let v = add(&mo.v[j], &cross(&mo.omega[j], &arm));
+        (dot(&column(r, 1), &v), arm, column(r, 0))
     }
 }

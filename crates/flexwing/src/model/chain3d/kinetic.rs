@@ -65,6 +65,11 @@ impl Chain3d {
             let w = &mo.omega[i];
             let iw = super::algebra::mv(&fr.inertia[i], w);
             t += dot(&mo.gdot[i], &mo.gdot[i]) * m + dot(w, &iw);
+            if let Some(f) = &self.fluid {
+                let (u, _, axis) = self.fluid_motion(fr, mo, i);
+                let spin = dot(w, &axis);
+                t += u * u * f.mass[i] + spin * spin * f.inertia[i];
+            }
         }
         t * 0.5
     }

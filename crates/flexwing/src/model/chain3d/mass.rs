@@ -16,7 +16,7 @@
 
 use nalgebra::DMatrix;
 
-use super::algebra::{hat, mm, mscale, msub, mtm, transpose, Real, M3};
+use super::algebra::{add, column, hat, madd, mm, mscale, msub, mtm, scale, transpose, Real, M3};
 use super::kinematics::Frames;
 use super::Chain3d;
 
@@ -42,11 +42,31 @@ impl<D: Real> Spatial<D> {
         for k in 0..3 {
             c[k][k] = m;
         }
-        Self {
+        let mut body = Self {
             a: msub(&fr.inertia[i], &mscale(m, &mm(&ch, &ch))),
             b: mscale(m, &ch),
             c,
+        };
+        if let Some(f) = &model.fluid {
+            // The fluid's directional mass A = m_a n nᵀ at the mid-chord point (arm r from P_i)
+            // and its polar inertia J = J_a t tᵀ: [[J − r̂ A r̂, r̂ A], [−A r̂, A]].
+            let r = &fr.r[i];
+            let arm = add(
+                &scale(D::from(0.5), &fr.d[i]),
+                &scale(D::from(f.station[i]), &column(r, 2)),
+            );
+            let (n, t) = (column(r, 1), column(r, 0));
+            let a: M3<D> =
+                std::array::from_fn(|p| std::array::from_fn(|q| n[p] * n[q] * f.mass[i]));
+            let j: M3<D> =
+                std::array::from_fn(|p| std::array::from_fn(|q| t[p] * t[q] * f.inertia[i]));
+            let rh = hat(&arm);
+            let ra = mm(&rh, &a);
+            body.a = madd(&body.a, &msub(&j, &mm(&ra, &rh)));
+            body.b = madd(&body.b, &ra);
+            body.c = madd(&body.c, &a);
         }
+        body
     }
 
     /// `self + Xᵀ other X`: `other`, about `P + d`, added about `P`.

@@ -19,10 +19,10 @@
 //! * `shape.rs`: [`Shape3d`], the deformed chain for output.
 
 mod aba;
-mod algebra;
+pub(crate) mod algebra;
 mod beam;
 mod geometry;
-mod kinematics;
+pub(crate) mod kinematics;
 mod kinetic;
 mod loads;
 mod mass;

@@ -21,13 +21,51 @@ use crate::model::{AppliedLoads, FullModel, StructuralModel};
 pub struct Chain3d {
     pub(crate) beam: Beam3d,
     pub(crate) n: usize,
+    /// The fluid's inertia (apparent mass) of an aeroelastic model, `None` in vacuo
+    /// (`model::aero::fluid`; its terms in the recursions, `kinematics.rs` and `mass.rs`).
+    pub(crate) fluid: Option<crate::model::aero::FluidInertia>,
 }
 
 impl Chain3d {
     /// The 3-D chain of a beam.
     pub fn new(beam: Beam3d) -> Self {
         let n = beam.n_elements();
-        Self { beam, n }
+        Self {
+            beam,
+            n,
+            fluid: None,
+        }
+    }
+
+    /// The same chain with the fluid's inertia added to its kinetic energy: per element a
+    /// directional mass `m_a` along the section normal `n` at the mid-chord point
+    /// `P_i + R_i (ℓ_i/2, 0, ζ_m)` and a polar inertia `J_a` about `t` (docs/chain3d-model.md,
+    /// "Strip aerodynamics").
+    ///
+    /// # Panics
+    /// If the vectors of `fluid` do not have one entry per element.
+    pub(crate) fn with_fluid(mut self, fluid: crate::model::aero::FluidInertia) -> Self {
+        let n = self.n;
+        assert!(
+            fluid.mass.len() == n && fluid.station.len() == n && fluid.inertia.len() == n,
+            "fluid inertia needs one entry per element"
+        );
+        self.fluid = Some(fluid);
+        self
+    }
+
+    /// The chain without the fluid's inertia.
+    pub(crate) fn dry(&self) -> Self {
+        Self {
+            beam: self.beam.clone(),
+            n: self.n,
+            fluid: None,
+        }
+    }
+
+    /// Whether the chain carries the fluid's inertia (an aeroelastic model's structure).
+    pub fn has_fluid_inertia(&self) -> bool {
+        self.fluid.is_some()
     }
     /// The beam this chain was built from.
     pub fn beam(&self) -> &Beam3d {
@@ -192,6 +230,8 @@ struct DualScratch {
     out: Vec<Dual64>,
     own_f: Vec<V3<Dual64>>,
     own_n: Vec<V3<Dual64>>,
+    /// Leading elements of `fr` holding the real kinematics of the base configuration.
+    lifted: usize,
 }
 
 impl DualScratch {
@@ -207,6 +247,7 @@ impl DualScratch {
             out: vec![z; 3 * n],
             own_f: vec![zero(); n],
             own_n: vec![zero(); n],
+            lifted: 0,
         }
     }
 
@@ -216,6 +257,23 @@ impl DualScratch {
             *d = Dual64::from(v);
         }
         self.x[k].eps = 1.0;
+    }
+
+    /// The kinematics along `x + ε e_k` into `self.fr`, from the real kinematics `base` of `x`:
+    /// the elements inboard of joint `k / 3` are `base`'s, the rest configured with dual
+    /// numbers (O(n − k/3)). Called for `k = 0, 1, …` in turn with one base (`k = 0` starts a
+    /// new one), so only the elements between consecutive joints are lifted.
+    fn configure_along(&mut self, model: &Chain3d, base: &Frames<f64>, x: &[f64], k: usize) {
+        self.seed(x, k);
+        let start = k / 3;
+        if start == 0 {
+            self.lifted = 0;
+        }
+        if start > self.lifted {
+            self.fr.lift_range(base, self.lifted, start, true);
+        }
+        model.configure_from(&self.x, &mut self.fr, start, true);
+        self.lifted = start;
     }
 }
 
@@ -333,10 +391,11 @@ impl StructuralModel for Chain3d {
             return;
         }
         // Column k: Q along x + ε e_k (exact; O(n) per column).
-        let d = ws.dual(self.n);
+        ws.configure(self, x);
+        let Workspace3d { fr, dual, .. } = ws;
+        let d = dual.get_or_insert_with(|| Box::new(DualScratch::new(self.n)));
         for k in 0..nd {
-            d.seed(x, k);
-            self.configure(&d.x, &mut d.fr);
+            d.configure_along(self, fr, x, k);
             self.forces_frames(&d.fr, loads, scales, &mut d.own_f, &mut d.own_n, &mut d.out);
             for (r, v) in d.out.iter().enumerate() {
                 out[(r, k)] = v.eps;
@@ -389,13 +448,14 @@ impl StructuralModel for Chain3d {
         dgamma: &mut DMatrix<f64>,
     ) {
         let nd = self.n_dofs();
-        let d = ws.dual(self.n);
+        ws.configure(self, x);
+        let Workspace3d { fr, dual, .. } = ws;
+        let d = dual.get_or_insert_with(|| Box::new(DualScratch::new(self.n)));
         for (v, &r) in d.xdot.iter_mut().zip(xdot) {
             *v = Dual64::from(r);
         }
         for k in 0..nd {
-            d.seed(x, k);
-            self.configure(&d.x, &mut d.fr);
+            d.configure_along(self, fr, x, k);
             self.kinetic_terms(&d.fr, &d.xdot, &mut d.mo, Some(&mut d.p), Some(&mut d.out));
             for r in 0..nd {
                 dp[(r, k)] = d.p[r].eps;
@@ -426,6 +486,7 @@ impl StructuralModel for Chain3d {
         for k in 0..nd {
             d.seed(x, k);
             self.configure(&d.x, &mut d.fr);
+            d.lifted = 0;
             if !self.factor_mass(&d.fr, &mut d.ab) {
                 return false;
             }

@@ -17,11 +17,20 @@
 //! iteration" of Ruhe, SIAM J. Numer. Anal. 10 (1973) 674–689): with `x = S(s)⁻¹ S'(s) v` and the
 //! normalization `uᴴv = 1`, `s ← s − 1/(uᴴx)`, `v ← x/(uᴴx)`; quadratic convergence at simple
 //! eigenvalues.
+//!
+//! In the p-k method `T = C(|Im s|/r_i)` depends on `Im s` alone: `S(σ, ω)` with `s = σ + iω` is
+//! smooth but not analytic, and Newton's iteration is that of the real system `S v = 0`,
+//! `uᴴv = 1` in `(v, σ, ω)`: with `x_σ = S⁻¹ ∂S/∂σ v` and `x_ω = S⁻¹ ∂S/∂ω v`
+//! (`∂S/∂σ = S'` with `C` frozen, `∂S/∂ω = i S' − Σ_g dT_g/dω (P_g + s Q_g)`), the steps solve
+//! `uᴴx_σ dσ + uᴴx_ω dω = −1` (one complex equation, two real unknowns), and
+//! `v ← −(x_σ dσ + x_ω dω)`. It converges quadratically to the p-k fixed point (`C` at the
+//! frequency it yields), which iterating "freeze `C`, solve, update the frequency" reaches only
+//! linearly; when `T` is analytic (`x_ω = i x_σ`) it is Ruhe's step above.
 
 use nalgebra::{Complex, DMatrix, DVector};
 
 use super::clu::ComplexLu;
-use crate::model::aero::{theodorsen, Lag};
+use crate::model::aero::{theodorsen, theodorsen_derivative, Lag};
 
 type C64 = Complex<f64>;
 
@@ -30,12 +39,23 @@ type C64 = Complex<f64>;
 pub(crate) enum Transfer {
     /// The finite-state lag of the model (`T = 1` without lag): the exact eigenvalues.
     Model,
-    /// Theodorsen's `C(k)` at the fixed reduced frequency `k_i = ω r_i⁻¹` of each strip (p-k).
-    Theodorsen {
+    /// The p-k method: Theodorsen's `C(k_i)` at each strip's reduced frequency
+    /// `k_i = |Im s| / r_i`, the branch's own frequency. `S` is then a smooth function of
+    /// `(Re s, Im s)` but not analytic in `s`, and Newton's iteration is done in the two real
+    /// variables (module documentation).
+    Theodorsen,
+    /// Theodorsen's `C(k_i)` frozen at `k_i = ω / r_i` for a given `ω`: the inner problem of the
+    /// classical p-k iteration ("freeze `C`, solve, update the frequency"), analytic in `s`.
+    TheodorsenAt {
         /// Circular frequency `ω` (rad/s) at which `C` is evaluated.
         omega: f64,
     },
 }
+
+/// The largest relative change of the frequency `|Im s|` in one p-k Newton step (a trust region:
+/// from a start 1 m/s away on a heavily damped branch at `k ≈ 0.05`, full steps ran off to
+/// `|Im s| = 100` and failed to converge in 12 iterations; a frequency is followed by halving).
+const PK_MAX_FREQUENCY_CHANGE: f64 = 0.5;
 
 /// Strips sharing one lag rate `r = V/b`: `P = G_g W_x,g`, `Q = G_g W_v,g` (`n × n`), so that
 /// their term of `S(s)` is `T(s/r) (P + s Q)` whatever the number of strips in the group.
@@ -74,6 +94,16 @@ impl NewtonWorkspace {
             transfers: Vec::new(),
         }
     }
+
+    /// `S⁻¹ b` with the factorization in the workspace.
+    fn solve(&mut self, b: &DVector<C64>) -> DVector<C64> {
+        for (i, bi) in b.iter().enumerate() {
+            self.xr[i] = bi.re;
+            self.xi[i] = bi.im;
+        }
+        self.lu.solve(&mut self.xr, &mut self.xi);
+        DVector::from_fn(b.len(), |i, _| C64::new(self.xr[i], self.xi[i]))
+    }
 }
 
 /// An eigenpair of `S(s) v = 0`.
@@ -82,6 +112,10 @@ pub(crate) struct EigenPair {
     pub(crate) s: C64,
     pub(crate) v: DVector<C64>,
     pub(crate) iterations: usize,
+    /// For the p-k method, `|dω'/dω|` at the root, `ω'` the frequency that freezing `C` at `ω`
+    /// yields: the classical p-k iteration converges to the root if it is below 1 and is
+    /// repelled from it otherwise (0 for the other transfers).
+    pub(crate) pk_contraction: f64,
 }
 
 impl Linearization {
@@ -122,10 +156,6 @@ impl Linearization {
             groups,
             lag,
         }
-    }
-
-    pub(crate) fn n(&self) -> usize {
-        self.mass.nrows()
     }
 
     /// The linearization at speed `u` of a wing whose equilibrium is the undeformed state at
@@ -173,14 +203,26 @@ impl Linearization {
         d
     }
 
-    /// `T(s/r)` and `dT/ds` of every group into `out`.
+    /// `T` of every group and its derivative into `out`: `(T(s/r), dT/ds)` for the model's lag,
+    /// `(C(|Im s|/r), dC/dω)` for the p-k method.
     fn transfers(&self, s: C64, how: Transfer, out: &mut Vec<(C64, C64)>) {
         out.clear();
         let zero = C64::new(0.0, 0.0);
         for gr in &self.groups {
             let r = gr.rate;
             out.push(match (how, &self.lag) {
-                (Transfer::Theodorsen { omega }, _) => {
+                (Transfer::Theodorsen, _) => {
+                    if r > 0.0 {
+                        let (c, dc) = theodorsen_derivative(s.im.abs() / r);
+                        // d|ω|/dω = sign ω; none at ω = 0, where C' is singular (a real root
+                        // stays real).
+                        let sign = if s.im == 0.0 { 0.0 } else { s.im.signum() };
+                        (c, dc * (sign / r))
+                    } else {
+                        (C64::new(0.5, 0.0), zero)
+                    }
+                }
+                (Transfer::TheodorsenAt { omega }, _) => {
                     let c = if r > 0.0 {
                         theodorsen(omega / r)
                     } else {
@@ -225,24 +267,49 @@ impl Linearization {
         }
     }
 
-    /// `S'(s) v = 2s M v + C̃ v − Σ_g [T'_g (P_g + s Q_g) v + T_g Q_g v]`.
-    fn derivative_times(&self, s: C64, v: &DVector<C64>, transfers: &[(C64, C64)]) -> DVector<C64> {
+    /// `S'(s) v = 2s M v + C̃ v − Σ_g [T'_g (P_g + s Q_g) v + T_g Q_g v]` for the model's lag;
+    /// for the p-k method (`how`), `∂S/∂σ v` (the same with `T'_g = 0`) and `∂S/∂ω v =
+    /// i ∂S/∂σ v − Σ_g dT_g/dω (P_g + s Q_g) v`. Returns `(∂S/∂σ v, ∂S/∂ω v)`, the second `None`
+    /// for the model's lag (it is `i` times the first).
+    fn derivative_times(
+        &self,
+        s: C64,
+        v: &DVector<C64>,
+        transfers: &[(C64, C64)],
+        how: Transfer,
+    ) -> (DVector<C64>, Option<DVector<C64>>) {
         let vc = |m: &DMatrix<f64>| -> DVector<C64> {
             let re = m * v.map(|x| x.re);
             let im = m * v.map(|x| x.im);
             DVector::from_fn(v.len(), |i, _| C64::new(re[i], im[i]))
         };
         let mut out = vc(&self.mass) * (s * 2.0) + vc(&self.damping);
+        let mut along_omega = DVector::zeros(v.len());
         for (gr, &(t, dt)) in self.groups.iter().zip(transfers) {
             let pv = vc(&gr.px);
             let qv = vc(&gr.pv);
-            out -= (pv + &qv * s) * dt + qv * t;
+            match how {
+                Transfer::Model | Transfer::TheodorsenAt { .. } => {
+                    out -= (pv + &qv * s) * dt + qv * t
+                }
+                Transfer::Theodorsen => {
+                    along_omega -= (pv + &qv * s) * dt;
+                    out -= qv * t;
+                }
+            }
         }
-        out
+        match how {
+            Transfer::Model | Transfer::TheodorsenAt { .. } => (out, None),
+            Transfer::Theodorsen => {
+                let i_out = &out * C64::new(0.0, 1.0);
+                (out, Some(along_omega + i_out))
+            }
+        }
     }
 
     /// Newton's method from `(s0, v0)` to relative tolerance `tol` on `s`, at most
-    /// `max_iterations`; `None` if it does not converge or `S` is singular along the way.
+    /// `max_iterations`; `None` if it does not converge or `S` is singular along the way. For the
+    /// p-k method (`how`), Newton's iteration in `(Re s, Im s)` (module documentation).
     pub(crate) fn newton(
         &self,
         s0: C64,
@@ -252,35 +319,62 @@ impl Linearization {
         max_iterations: usize,
         ws: &mut NewtonWorkspace,
     ) -> Option<EigenPair> {
-        let n = self.n();
         let u = v0.clone() / C64::new(v0.norm().max(1e-300), 0.0);
         let mut v = v0.clone() / u.dotc(v0);
         let mut s = s0;
         let mut transfers = std::mem::take(&mut ws.transfers);
         let mut result = None;
         let mut prev_step: Option<f64> = None;
+        let mut pk_contraction = 0.0;
         for it in 1..=max_iterations {
             self.transfers(s, how, &mut transfers);
-            let rhs = self.derivative_times(s, &v, &transfers);
+            let (rhs, rhs_omega) = self.derivative_times(s, &v, &transfers, how);
             ws.transfers = std::mem::take(&mut transfers);
             self.fill(s, ws);
             transfers = std::mem::take(&mut ws.transfers);
             if !ws.lu.factor() {
                 break;
             }
-            for i in 0..n {
-                ws.xr[i] = rhs[i].re;
-                ws.xi[i] = rhs[i].im;
-            }
-            ws.lu.solve(&mut ws.xr, &mut ws.xi);
-            let x = DVector::from_fn(n, |i, _| C64::new(ws.xr[i], ws.xi[i]));
+            let x = ws.solve(&rhs);
             let ux = u.dotc(&x);
             if !(ux.norm() > 0.0) || !ux.re.is_finite() {
                 break;
             }
-            let step = ux.inv();
-            s -= step;
-            v = x / ux;
+            let step = match rhs_omega {
+                None => {
+                    v = x / ux;
+                    -ux.inv()
+                }
+                Some(rhs_omega) => {
+                    // uᴴx_σ dσ + uᴴx_ω dω = −1 in real (dσ, dω); v ← −(x_σ dσ + x_ω dω).
+                    let x_omega = ws.solve(&rhs_omega);
+                    let uw = u.dotc(&x_omega);
+                    let det = ux.re * uw.im - uw.re * ux.im;
+                    if !(det.abs() > 0.0) || !det.is_finite() {
+                        break;
+                    }
+                    let (mut d_sigma, mut d_omega) = (-uw.im / det, ux.im / det);
+                    // C(k) bends sharply at small k (like k ln k) and has a kink at ω = 0:
+                    // Newton's linear model holds only for moderate changes of the frequency, so
+                    // a step is cut to change ω by at most half (v is renormalized below).
+                    let cut = (PK_MAX_FREQUENCY_CHANGE * s.im.abs() / d_omega.abs()).min(1.0);
+                    if cut < 1.0 {
+                        d_sigma *= cut;
+                        d_omega *= cut;
+                    }
+                    // Freezing C: ds/dω_C = −uᴴx_C / uᴴx_σ with x_C = x_ω − i x_σ (exact at the
+                    // root, where S⁻¹ is dominated by its eigenvector's pole).
+                    let x_c = &x_omega - &x * C64::new(0.0, 1.0);
+                    pk_contraction = (u.dotc(&x_c) / ux).im.abs();
+                    v = x * C64::new(-d_sigma, 0.0) + x_omega * C64::new(-d_omega, 0.0);
+                    if cut < 1.0 {
+                        let uv = u.dotc(&v);
+                        v /= uv;
+                    }
+                    C64::new(d_sigma, d_omega)
+                }
+            };
+            s += step;
             if !s.re.is_finite() || !s.im.is_finite() {
                 break;
             }
@@ -295,6 +389,7 @@ impl Linearization {
                     s,
                     v: v.clone(),
                     iterations: it,
+                    pk_contraction,
                 });
                 break;
             }

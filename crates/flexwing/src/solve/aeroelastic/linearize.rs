@@ -34,7 +34,7 @@ use super::signals::{Input, Output, Signal, StateBasis};
 use super::statics::SteadyAeroModel;
 use crate::error::{Error, InputError};
 use crate::model::aero::{
-    strip_loads, AeroStructure, Aerodynamics, Aeroelastic, FlightCondition, Motion,
+    strip_loads, Aerodynamics, Aeroelastic, FlightCondition, Motion, PlanarStructure,
 };
 use crate::model::{DistributedForce, Force, Load, StructuralModel};
 use crate::solve::integrate::OdeSystem;
@@ -98,7 +98,7 @@ pub struct StateSpace {
 /// Invalid input: a flight condition, speed not positive, loads, no input or output, an output
 /// the model cannot give (the root shear with follower loads). A solve error if no stable
 /// static equilibrium is found (past the divergence speed: `SolveError::StaticUnstable`).
-pub fn linearize<M: AeroStructure>(
+pub fn linearize<M: PlanarStructure>(
     aero: &Aeroelastic<M>,
     options: &LinearizeOptions,
     field: &str,
@@ -204,7 +204,7 @@ pub fn poles(a: &DMatrix<f64>) -> Option<Vec<nalgebra::Complex<f64>>> {
 
 /// The static aeroelastic equilibrium of `options` (the steady model, load stepping in dynamic
 /// pressure from rest), as the flutter analysis' and the responses'.
-fn equilibrium<M: AeroStructure>(
+fn equilibrium<M: PlanarStructure>(
     aero: &Aeroelastic<M>,
     options: &LinearizeOptions,
     field: &str,
@@ -234,7 +234,7 @@ fn equilibrium<M: AeroStructure>(
 }
 
 /// The names and units of the states.
-fn state_signals<M: AeroStructure>(
+fn state_signals<M: PlanarStructure>(
     aero: &Aeroelastic<M>,
     options: &LinearizeOptions,
 ) -> Vec<Signal> {
@@ -337,7 +337,7 @@ struct WindDerivative {
 
 /// The linearization point: the evaluation of the strips at the equilibrium and what the rows
 /// and columns of inputs and outputs need.
-struct Point<'a, M: AeroStructure> {
+struct Point<'a, M: PlanarStructure> {
     aero: &'a Aeroelastic<M>,
     eval: AeroEvaluator<'a, M>,
     x: Vec<f64>,
@@ -349,7 +349,7 @@ struct Point<'a, M: AeroStructure> {
     ws: M::Workspace,
 }
 
-impl<'a, M: AeroStructure> Point<'a, M> {
+impl<'a, M: PlanarStructure> Point<'a, M> {
     fn new(
         aero: &'a Aeroelastic<M>,
         x: &[f64],
@@ -575,7 +575,7 @@ impl<'a, M: AeroStructure> Point<'a, M> {
             let dq: Vec<Dual64> = direction.iter().map(|&v| Dual64::new(0.0, v)).collect();
             aero.set_rates(&dq, &mut dsc);
         } else {
-            aero.set_configuration_along(sc, direction, &mut dsc);
+            aero.set_configuration_along(sc, self.eval.coordinates(), direction, &mut dsc);
             aero.set_rates(&vec![Dual64::from(0.0); nf], &mut dsc);
         }
         aero.set_flow(&self.eval.air, &mut dsc);
@@ -869,7 +869,7 @@ struct VerticalForce {
 }
 
 /// `Φᵀ v` (model coordinates) of full-model coordinates `v`.
-fn project<M: AeroStructure>(aero: &Aeroelastic<M>, v: &[f64]) -> DVector<f64> {
+fn project<M: PlanarStructure>(aero: &Aeroelastic<M>, v: &[f64]) -> DVector<f64> {
     match aero.structure().basis() {
         None => DVector::from_column_slice(v),
         Some(phi) => phi.transpose() * DVector::from_column_slice(v),

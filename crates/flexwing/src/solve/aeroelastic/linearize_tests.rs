@@ -69,7 +69,7 @@ struct Perturbed {
     flight: FlightHistory,
 }
 
-fn perturbed<M: AeroStructure>(
+fn perturbed<M: PlanarStructure>(
     aero: &Aeroelastic<M>,
     o: &LinearizeOptions,
     j: usize,
@@ -113,7 +113,7 @@ fn perturbed<M: AeroStructure>(
 
 /// The right-hand side and the outputs of the non-linear model at state `y` (momentum basis)
 /// with input `j` changed by `h` (`None`: no change).
-fn nonlinear<M: AeroStructure>(
+fn nonlinear<M: PlanarStructure>(
     aero: &Aeroelastic<M>,
     o: &LinearizeOptions,
     y: &[f64],
@@ -214,7 +214,7 @@ fn nonlinear<M: AeroStructure>(
 }
 
 /// `∂P_y/∂ẋ` (model coordinates) from `Point::shear_parts`.
-fn momentum_row<M: AeroStructure>(aero: &Aeroelastic<M>, x: &[f64]) -> DVector<f64> {
+fn momentum_row<M: PlanarStructure>(aero: &Aeroelastic<M>, x: &[f64]) -> DVector<f64> {
     let flight = FlightCondition::at_speed(1.0);
     let n = aero.structure().n_dofs();
     let a = vec![0.0; aero.n_aero_states()];
@@ -245,7 +245,7 @@ fn b_c_d_agree_with_finite_differences() {
     }
 }
 
-fn check<M: AeroStructure>(aero: &Aeroelastic<M>) {
+fn check<M: PlanarStructure>(aero: &Aeroelastic<M>) {
     let o = options(StateBasis::Momenta, aero.n_strips());
     let ss = linearize(aero, &o, "linearize").unwrap();
     let y0 = ss.state_values.clone();
@@ -372,7 +372,7 @@ fn the_vertical_momentum_is_that_of_the_positions() {
 fn both_bases_have_one_transfer_function() {
     let wing = test_wing(5, Aerodynamics::Peters { states: 3 });
     let rom: Aeroelastic<ReducedModel> = wing.reduced(&[0, 1, 2]).unwrap();
-    fn transfer<M: AeroStructure>(
+    fn transfer<M: PlanarStructure>(
         aero: &Aeroelastic<M>,
         basis: StateBasis,
     ) -> DMatrix<Complex<f64>> {
