@@ -129,7 +129,7 @@ struct LinearizeArgs {
     case: CaseArgs,
 
     /// Free-stream speed of the equilibrium (m/s); overrides `aero.flight.speed`.
-    #[arg(long, value_name = "U")]
+    #[arg(long, value_name = "U", allow_negative_numbers = true)]
     speed: Option<f64>,
 
     /// Inputs, comma-separated (`gust,force[16]`); override `linearize.inputs`.
@@ -161,9 +161,18 @@ fn main() -> ExitCode {
             };
             (a.case.json, driver::run(Analysis::Modes, &a.case, &o))
         }
-        Command::Static(a) => (a.json, driver::run(Analysis::Static, a, &Overrides::default())),
-        Command::Dynamic(a) => (a.json, driver::run(Analysis::Dynamic, a, &Overrides::default())),
-        Command::Flutter(a) => (a.json, driver::run(Analysis::Flutter, a, &Overrides::default())),
+        Command::Static(a) => (
+            a.json,
+            driver::run(Analysis::Static, a, &Overrides::default()),
+        ),
+        Command::Dynamic(a) => (
+            a.json,
+            driver::run(Analysis::Dynamic, a, &Overrides::default()),
+        ),
+        Command::Flutter(a) => (
+            a.json,
+            driver::run(Analysis::Flutter, a, &Overrides::default()),
+        ),
         Command::Linearize(a) => {
             let o = Overrides {
                 speed: a.speed,

@@ -33,7 +33,10 @@ fn matrix(out: &mut Vec<u8>, class: u32, flags: u32, dims: &[usize], name: &str,
     f.extend_from_slice(&(class | flags).to_le_bytes());
     f.extend_from_slice(&0u32.to_le_bytes());
     element(&mut m, MI_UINT32, &f);
-    let d: Vec<u8> = dims.iter().flat_map(|&v| (v as i32).to_le_bytes()).collect();
+    let d: Vec<u8> = dims
+        .iter()
+        .flat_map(|&v| (v as i32).to_le_bytes())
+        .collect();
     element(&mut m, MI_INT32, &d);
     element(&mut m, MI_INT8, name.as_bytes());
     m.extend_from_slice(body);
@@ -116,6 +119,9 @@ mod tests {
         assert_eq!(tag(152), (MI_INT32, 8));
         assert_eq!(tag(168), (MI_INT8, 1));
         assert_eq!(tag(184), (MI_DOUBLE, 16));
-        assert_eq!(f64::from_le_bytes(b[200..208].try_into().unwrap()), 2.0 - 1.0);
+        assert_eq!(
+            f64::from_le_bytes(b[200..208].try_into().unwrap()),
+            2.0 - 1.0
+        );
     }
 }

@@ -47,7 +47,12 @@ fn array(value: &Value) -> Vec<u8> {
         }
         Value::Strings(list) => {
             // Fixed-width UTF-32: NumPy's '<U' dtype.
-            let width = list.iter().map(|s| s.chars().count()).max().unwrap_or(0).max(1);
+            let width = list
+                .iter()
+                .map(|s| s.chars().count())
+                .max()
+                .unwrap_or(0)
+                .max(1);
             let mut bytes = Vec::with_capacity(list.len() * width * 4);
             for s in list {
                 let mut k = 0;
@@ -65,8 +70,8 @@ fn array(value: &Value) -> Vec<u8> {
 /// The bytes of an `.npz` archive holding `variables` (`NAME.npy` each).
 pub fn bytes(variables: &[(&str, Value)]) -> Result<Vec<u8>> {
     let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
-    let options = zip::write::SimpleFileOptions::default()
-        .compression_method(zip::CompressionMethod::Stored);
+    let options =
+        zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
     for (name, value) in variables {
         zip.start_file(format!("{name}.npy"), options)?;
         zip.write_all(&array(value))?;
@@ -93,7 +98,9 @@ mod tests {
         assert_eq!(b.len(), 10 + len + 48);
         let s = array(&Value::Strings(vec!["ab".into(), "m/s²".into()]));
         let len = u16::from_le_bytes([s[8], s[9]]) as usize;
-        assert!(std::str::from_utf8(&s[10..10 + len]).unwrap().contains("'<U4'"));
+        assert!(std::str::from_utf8(&s[10..10 + len])
+            .unwrap()
+            .contains("'<U4'"));
         assert_eq!(s.len(), 10 + len + 2 * 4 * 4);
     }
 }

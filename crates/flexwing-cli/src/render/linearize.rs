@@ -84,7 +84,11 @@ fn units(signals: &[Signal]) -> Vec<String> {
 }
 
 /// The named values of a model's MAT and NPZ files.
-fn variables(plan: &LinearizePlan, run: &LinearizeRun, m: &StateSpace) -> Vec<(&'static str, Value)> {
+fn variables(
+    plan: &LinearizePlan,
+    run: &LinearizeRun,
+    m: &StateSpace,
+) -> Vec<(&'static str, Value)> {
     vec![
         ("A", Value::matrix(&m.a)),
         ("B", Value::matrix(&m.b)),
@@ -157,7 +161,13 @@ pub fn text(s: &mut String, plan: &LinearizePlan, outcome: &LinearizeOutcome) {
     );
     for r in &outcome.runs {
         let _ = writeln!(s);
-        let _ = writeln!(s, "{} ({} dofs, {} lag states):", r.kind.label(), r.dofs, r.aero_states);
+        let _ = writeln!(
+            s,
+            "{} ({} dofs, {} lag states):",
+            r.kind.label(),
+            r.dofs,
+            r.aero_states
+        );
         let Some(m) = &r.model else {
             let _ = writeln!(s, "no model: {}", r.status.message().unwrap_or_default());
             continue;
@@ -258,7 +268,11 @@ pub fn json(ctx: &Context, plan: &LinearizePlan, outcome: &LinearizeOutcome) -> 
                     u0: column(&m.input_values),
                     y0: column(&m.output_values),
                 }),
-                poles: r.poles.iter().map(|p| [finite(p.re), finite(p.im)]).collect(),
+                poles: r
+                    .poles
+                    .iter()
+                    .map(|p| [finite(p.re), finite(p.im)])
+                    .collect(),
             })
             .collect(),
     }
