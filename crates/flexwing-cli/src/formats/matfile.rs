@@ -7,11 +7,11 @@
 use super::Value;
 
 const MI_INT8: u32 = 1;
-const MI_UINT16: u32 = 4;
 const MI_INT32: u32 = 5;
 const MI_UINT32: u32 = 6;
 const MI_DOUBLE: u32 = 9;
 const MI_MATRIX: u32 = 14;
+const MI_UTF8: u32 = 16;
 const MX_CELL: u32 = 1;
 const MX_CHAR: u32 = 4;
 const MX_DOUBLE: u32 = 6;
@@ -47,13 +47,12 @@ fn doubles(values: impl Iterator<Item = f64>) -> Vec<u8> {
     values.flat_map(f64::to_le_bytes).collect()
 }
 
-/// A 1 × n char array (UTF-16 code units).
+/// A 1 × n char array, its data in UTF-8 (`miUTF8`, as `scipy.io.savemat` writes them; MATLAB
+/// reads it too): `n` characters, not bytes (`m/s²` is 4 characters in 5 bytes).
 fn string(out: &mut Vec<u8>, name: &str, s: &str) {
-    let units: Vec<u16> = s.encode_utf16().collect();
     let mut body = Vec::new();
-    let data: Vec<u8> = units.iter().flat_map(|u| u.to_le_bytes()).collect();
-    element(&mut body, MI_UINT16, &data);
-    matrix(out, MX_CHAR, 0, &[1, units.len()], name, &body);
+    element(&mut body, MI_UTF8, s.as_bytes());
+    matrix(out, MX_CHAR, 0, &[1, s.chars().count()], name, &body);
 }
 
 /// The variable `name` = `value`.
