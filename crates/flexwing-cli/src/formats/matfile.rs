@@ -100,7 +100,9 @@ pub fn bytes(description: &str, variables: &[(&str, Value)]) -> Vec<u8> {
 mod tests {
     use super::*;
 
-    /// The layout of the specification's example: a 2 × 1 double named `a`.
+    /// The layout of a 2 × 1 double named `a` as the specification lays it out (regression test
+    /// of the byte layout; SciPy reading the files back is the independent check,
+    /// crates/flexwing-py/tests/test_linearize.py).
     #[test]
     fn a_matrix_is_laid_out_as_the_specification() {
         let b = bytes("test", &[("a", Value::column(&[1.0, 2.0]))]);
@@ -118,9 +120,8 @@ mod tests {
         assert_eq!(tag(152), (MI_INT32, 8));
         assert_eq!(tag(168), (MI_INT8, 1));
         assert_eq!(tag(184), (MI_DOUBLE, 16));
-        assert_eq!(
-            f64::from_le_bytes(b[200..208].try_into().unwrap()),
-            2.0 - 1.0
-        );
+        let value = |at: usize| f64::from_le_bytes(b[at..at + 8].try_into().unwrap());
+        assert_eq!((value(192), value(200)), (1.0, 2.0));
+        assert_eq!(b.len(), 128 + 8 + 72);
     }
 }
