@@ -65,6 +65,7 @@ from ._aero_results import (
     FlutterRun,
     Stability,
 )
+from ._linear import LinearizeResult, LinearModel
 from ._progress import tqdm_progress
 from ._results import (
     Batch,
@@ -97,6 +98,8 @@ __all__ = [
     "Stability",
     "AeroDynamicRun",
     "AeroDynamicResult",
+    "LinearModel",
+    "LinearizeResult",
     "BatchItem",
     "Batch",
     "tqdm_progress",

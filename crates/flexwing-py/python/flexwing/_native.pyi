@@ -16,6 +16,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ._aero_results import AeroDynamicResult, AeroStaticResult, FlutterResult
+from ._linear import LinearizeResult
 from ._results import Batch, DynamicResult, ModesResult, StaticResult
 
 __version__: str
@@ -29,7 +30,7 @@ Load = Mapping[str, Any]
 #: ``callback(done, label)``: ``done`` the fraction of the analysis (0 to 1), ``label`` the model
 #: running (``"full"``, ``"reduced-r2"``, …).
 ProgressCallback = Callable[[float, str], Any]
-AnalysisName = Literal["modes", "static", "dynamic", "flutter"]
+AnalysisName = Literal["modes", "static", "dynamic", "flutter", "linearize"]
 
 class Case:
     """A flexwing case: the beam, the loads and the settings of its analyses, with the keys of
@@ -95,6 +96,20 @@ class Case:
         data (1/s, rad/s), flutter speeds (m/s) and frequencies (rad/s), divergence speeds,
         equilibria and the p-k check, per model. ``check`` raises if an eigen-analysis stopped
         before the last speed."""
+    def linearize(
+        self,
+        *,
+        speed: Optional[float] = None,
+        inputs: Optional[Sequence[str]] = None,
+        outputs: Optional[Sequence[str]] = None,
+        states: Optional[Literal["velocities", "momenta"]] = None,
+        progress: Optional[ProgressCallback] = None,
+        check: bool = True,
+    ) -> LinearizeResult:
+        """Linear state-space models ``A, B, C, D`` (SI units, docs/control.md) about the static
+        aeroelastic equilibrium at ``speed`` (m/s, default ``aero.flight.speed``) for the full
+        and reduced models of ``[linearize]``; ``inputs``, ``outputs``, ``states`` override
+        its keys. ``check`` raises ``SolverError`` past the divergence speed."""
     def run(
         self,
         analysis: AnalysisName,
@@ -102,7 +117,13 @@ class Case:
         progress: Optional[ProgressCallback] = None,
         check: bool = True,
     ) -> Union[
-        ModesResult, StaticResult, DynamicResult, AeroStaticResult, AeroDynamicResult, FlutterResult
+        ModesResult,
+        StaticResult,
+        DynamicResult,
+        AeroStaticResult,
+        AeroDynamicResult,
+        FlutterResult,
+        LinearizeResult,
     ]:
         """Run the analysis named ``analysis`` (as the method of the same name)."""
     def __eq__(self, other: object) -> bool: ...

@@ -23,7 +23,7 @@ use nalgebra::{DMatrix, DVector};
 use super::newton::Directional;
 use super::{Chain3d, Workspace3d};
 use crate::error::InputError;
-use crate::model::{AppliedLoads, FullModel, StructuralModel};
+use crate::model::{AppliedLoads, StructuralModel};
 use crate::solve::Damping;
 
 /// The 3-D chain projected on `r` of its modes: `M_r(η) = Φᵀ M(Φη) Φ`, `K_r = Φᵀ K Φ`,
@@ -386,11 +386,5 @@ impl StructuralModel for ReducedChain3d {
     /// The full chain's measure of the rotations of `Φ dη`.
     fn element_rotations(&self, deta: &[f64]) -> Vec<f64> {
         self.full.element_rotations(&self.full_coordinates(deta))
-    }
-
-    /// # Panics
-    /// Always: the 3-D chain has no planar full model underneath (as [`Chain3d`]).
-    fn full_model(&self) -> &FullModel {
-        panic!("the reduced 3-D chain has no planar full model (StructuralModel::full_model)")
     }
 }
