@@ -359,6 +359,24 @@ impl PyCase {
         })
     }
 
+    /// An ``AeroStepper`` of the case's aeroelastic response (``[aero]``, ``[dynamic]``): the run
+    /// ``dynamics()`` makes, advanced by ``step(dt, inputs)`` with named inputs set between calls
+    /// (docs/python.md, docs/fmu.md). Keyword arguments: ``inputs`` (names; default
+    /// ``["root_angle", "speed", "gust"]``; also ``"force[k]"``, ``"torque[k]"`` at node k),
+    /// ``outputs`` (names; default tip position and twist, root bending moment and torque,
+    /// lift), ``hold`` (``"linear"``, default, or ``"zero"``), ``model`` (index among the
+    /// case's models, default 0).
+    #[pyo3(signature = (**kwargs))]
+    fn stepper(
+        &self,
+        py: Python<'_>,
+        kwargs: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<crate::aero_stepper::PyAeroStepper> {
+        errors::guard(py, || {
+            crate::aero_stepper::PyAeroStepper::build(py, &self.case, kwargs)
+        })
+    }
+
     /// Run the analysis ``"modes"``, ``"static"``, ``"dynamic"`` or ``"flutter"`` (as the
     /// methods of the same names).
     #[pyo3(signature = (analysis, **kwargs))]

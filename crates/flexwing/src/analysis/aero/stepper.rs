@@ -479,7 +479,10 @@ impl AeroStepper {
         };
         let name = input.name();
         if !value.is_finite() {
-            return Err(InputError::new(name, format!("must be finite, got {value}")));
+            return Err(InputError::new(
+                name,
+                format!("must be finite, got {value}"),
+            ));
         }
         crate::magnitude::check(&name, "", value)?;
         if *input == Input::Speed && value < 0.0 {
@@ -499,7 +502,13 @@ impl AeroStepper {
 
     /// The offsets of the flight and the load inputs' time functions over `[t0, t1]` from
     /// `from` (the values in force at `t0`) to `to`.
-    fn forcing(&self, from: &[f64], to: &[f64], t0: f64, t1: f64) -> (FlightOffsets, Vec<TimeFunction>) {
+    fn forcing(
+        &self,
+        from: &[f64],
+        to: &[f64],
+        t0: f64,
+        t1: f64,
+    ) -> (FlightOffsets, Vec<TimeFunction>) {
         let segment = |i: usize| match self.hold {
             Hold::Linear => Segment {
                 t0,
@@ -567,11 +576,10 @@ impl AeroStepper {
             e.0.set_time_functions(functions, "inputs")?;
             let r = integrate(method, settings, e, t0, y0, &[t0, t1], poll);
             let failed = |e: &mut Scaled<'_, _>, error: SolveError| {
-                let mut balance = e
-                    .0
-                    .energy_balance()
-                    .cloned()
-                    .unwrap_or_else(|| EnergyBalance::start(limits, 0.0));
+                let mut balance =
+                    e.0.energy_balance()
+                        .cloned()
+                        .unwrap_or_else(|| EnergyBalance::start(limits, 0.0));
                 balance.finish();
                 let stop = match status_of(&balance, Some(error), Some(&self.halt)) {
                     Status::Stopped(stop) => stop,
@@ -588,13 +596,7 @@ impl AeroStepper {
             Ok(match r {
                 Ok((mut trajectory, stats)) => match trajectory.y.pop() {
                     Some(y) if y.iter().all(|v| v.is_finite()) => Ok((y, stats)),
-                    _ => Err((
-                        failed(
-                            e,
-                            SolveError::NonFinite { time: t1 },
-                        ),
-                        stats,
-                    )),
+                    _ => Err((failed(e, SolveError::NonFinite { time: t1 }), stats)),
                 },
                 Err(f) => Err((failed(e, f.error), f.stats)),
             })
@@ -653,8 +655,8 @@ impl AeroStepper {
 
     /// The energy balance from the start, finished (its largest error so far).
     fn balance(&self) -> EnergyBalance {
-        let mut b = with_eqs_ref(&self.cell)
-            .unwrap_or_else(|| EnergyBalance::start(self.limits, 0.0));
+        let mut b =
+            with_eqs_ref(&self.cell).unwrap_or_else(|| EnergyBalance::start(self.limits, 0.0));
         b.finish();
         b
     }

@@ -32,7 +32,11 @@ fn table(f: fn(f64) -> f64) -> TimeFunction {
     TimeFunction::Table { t, value }
 }
 
-fn plan(flight: FlightHistory, loads: Vec<Load>, time: Vec<Option<TimeFunction>>) -> AeroDynamicPlan {
+fn plan(
+    flight: FlightHistory,
+    loads: Vec<Load>,
+    time: Vec<Option<TimeFunction>>,
+) -> AeroDynamicPlan {
     let (model, aero) = patil(8, Aerodynamics::Wagner);
     let times: Vec<f64> = (0..=STEPS).map(|k| k as f64 * DT).collect();
     let mut s = DynamicPlan::new(model, loads, STEPS as f64 * DT, times);
@@ -172,7 +176,12 @@ fn zero_hold_and_direct_feedthrough() {
     for sample in &out.runs[0].samples[1..] {
         stepper.step(DT, &mut |_| {}).unwrap();
         let v = stepper.output_values();
-        assert!((v[1] - sample.tip_y).abs() < 1e-6, "{} {}", v[1], sample.tip_y);
+        assert!(
+            (v[1] - sample.tip_y).abs() < 1e-6,
+            "{} {}",
+            v[1],
+            sample.tip_y
+        );
     }
 }
 
@@ -222,16 +231,28 @@ fn errors_and_a_stopped_step_leave_the_stepper_as_it_was() {
     }
     let mut stepper = AeroStepper::new(&p, &StepperOptions::new(true)).unwrap();
     let cases = [
-        (stepper.set_input(0, f64::NAN).unwrap_err(), "root_angle: must be finite"),
-        (stepper.set_input(1, -1.0).unwrap_err(), "speed: must be non-negative"),
-        (stepper.set_input(7, 1.0).unwrap_err(), "inputs: index 7 is out of range"),
+        (
+            stepper.set_input(0, f64::NAN).unwrap_err(),
+            "root_angle: must be finite",
+        ),
+        (
+            stepper.set_input(1, -1.0).unwrap_err(),
+            "speed: must be non-negative",
+        ),
+        (
+            stepper.set_input(7, 1.0).unwrap_err(),
+            "inputs: index 7 is out of range",
+        ),
     ];
     for (e, expected) in cases {
         assert!(e.to_string().starts_with(expected), "{e}");
     }
     for dt in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         let e = stepper.step(dt, &mut |_| {}).unwrap_err().to_string();
-        assert!(e.starts_with("dt: must be a finite positive interval"), "{e}");
+        assert!(
+            e.starts_with("dt: must be a finite positive interval"),
+            "{e}"
+        );
     }
     stepper.step(DT, &mut |_| {}).unwrap();
     let (t, y) = (stepper.t(), stepper.state().to_vec());
@@ -241,8 +262,14 @@ fn errors_and_a_stopped_step_leave_the_stepper_as_it_was() {
     let e = stepper
         .step(DT, &mut |_| halt.store(true, Ordering::Relaxed))
         .unwrap_err();
-    assert!(matches!(e, StepError::Stopped(Stop::Interrupted { .. })), "{e}");
-    assert!(matches!(stepper.status(), Status::Stopped(Stop::Interrupted { .. })));
+    assert!(
+        matches!(e, StepError::Stopped(Stop::Interrupted { .. })),
+        "{e}"
+    );
+    assert!(matches!(
+        stepper.status(),
+        Status::Stopped(Stop::Interrupted { .. })
+    ));
     assert_eq!((stepper.t(), stepper.state()), (t, &y[..]));
     assert_eq!(stepper.energy_audit(), audit);
     // A retry goes on from there.

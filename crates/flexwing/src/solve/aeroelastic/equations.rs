@@ -521,8 +521,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         let alpha = self.root_angle(t);
         let flight = &self.flight;
         let uniform = self.offsets.gust.at(t);
-        self.eval
-            .set_air(u, alpha, |s| flight.gust(s, t) + uniform);
+        self.eval.set_air(u, alpha, |s| flight.gust(s, t) + uniform);
     }
 
     fn gravity_scale(&self, t: f64) -> [f64; 1] {
