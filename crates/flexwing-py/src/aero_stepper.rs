@@ -122,7 +122,7 @@ fn step_error(py: Python<'_>, e: &StepError) -> PyErr {
     match e {
         StepError::Input(e) => errors::library_input(py, e),
         StepError::Stopped(stop) => {
-            let described = crate::convert::status::described(py, stop)
+            let described = crate::convert::status::described(py, &**stop)
                 .ok()
                 .map(|d| d.into_any().unbind());
             errors::solver(py, &stop.to_string(), None, described, None)

@@ -156,7 +156,7 @@ pub enum StepError {
     Input(#[from] InputError),
     /// The integration stopped inside the interval (the stepper is as before the call).
     #[error("{0}")]
-    Stopped(Stop),
+    Stopped(Box<Stop>),
 }
 
 /// The wing the equations borrow, and the loads (the plan's active ones, then one unit load per
@@ -166,11 +166,15 @@ struct Owner {
     loads: AppliedLoads,
 }
 
+/// Built once per stepper: the variants' sizes do not matter.
+#[allow(clippy::large_enum_variant)]
 enum Wing {
     Full(Aeroelastic<FullModel>),
     Reduced(Box<Aeroelastic<ReducedModel>>),
 }
 
+/// Built once per stepper: the variants' sizes do not matter.
+#[allow(clippy::large_enum_variant)]
 enum Eqs<'a> {
     Full(Scaled<'a, FullModel>),
     Reduced(Scaled<'a, ReducedModel>),
@@ -615,7 +619,7 @@ impl AeroStepper {
             Err((stop, stats)) => {
                 self.stats += stats;
                 self.stop = Some(stop.clone());
-                Err(StepError::Stopped(stop))
+                Err(StepError::Stopped(Box::new(stop)))
             }
         }
     }

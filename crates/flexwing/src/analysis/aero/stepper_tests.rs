@@ -263,7 +263,7 @@ fn errors_and_a_stopped_step_leave_the_stepper_as_it_was() {
         .step(DT, &mut |_| halt.store(true, Ordering::Relaxed))
         .unwrap_err();
     assert!(
-        matches!(e, StepError::Stopped(Stop::Interrupted { .. })),
+        matches!(&e, StepError::Stopped(s) if matches!(**s, Stop::Interrupted { .. })),
         "{e}"
     );
     assert!(matches!(
