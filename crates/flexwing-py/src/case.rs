@@ -359,6 +359,24 @@ impl PyCase {
         })
     }
 
+    /// An ``AeroStepper`` of the case's aeroelastic response (``[aero]``, ``[dynamic]``): the run
+    /// ``dynamics()`` makes, advanced by ``step(dt, inputs)`` with named inputs set between calls
+    /// (docs/python.md). Keyword arguments: ``inputs`` (names; default
+    /// ``["root_angle", "speed", "gust"]``; also ``"force[k]"``, ``"torque[k]"`` at node k),
+    /// ``outputs`` (names; default tip position and twist, root bending moment and torque,
+    /// lift), ``hold`` (``"linear"``, default, or ``"zero"``), ``model`` (index among the
+    /// case's models, default 0).
+    #[pyo3(signature = (**kwargs))]
+    fn stepper(
+        &self,
+        py: Python<'_>,
+        kwargs: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<crate::aero_stepper::PyAeroStepper> {
+        errors::guard(py, || {
+            crate::aero_stepper::PyAeroStepper::build(py, &self.case, kwargs)
+        })
+    }
+
     /// The linear state-space models ``x' = A x + B u``, ``y = C x + D u`` about the static
     /// aeroelastic equilibrium at ``aero.flight.speed`` (m/s) of the full and reduced models
     /// of ``[linearize]``, as a ``LinearizeResult`` of ``LinearModel``s (as ``flexwing

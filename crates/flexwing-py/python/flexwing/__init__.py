@@ -47,6 +47,7 @@ from ._errors import (
     SolverError,
 )
 from ._native import (
+    AeroStepper,
     Beam,
     Case,
     Equations,
@@ -84,6 +85,7 @@ __all__ = [
     "ReducedModel",
     "Equations",
     "Stepper",
+    "AeroStepper",
     "solve_many",
     "solve",
     "ModesResult",

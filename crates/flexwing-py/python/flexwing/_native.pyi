@@ -89,6 +89,19 @@ class Case:
         """The non-linear dynamics of ``[[loads]]`` and ``[dynamic]`` (full, simplified and
         reduced models); with ``[aero]``, the aeroelastic response (``AeroDynamicResult``);
         ``check`` as ``statics`` (a suspect energy balance raises too)."""
+    def stepper(
+        self,
+        *,
+        inputs: Optional[Sequence[str]] = None,
+        outputs: Optional[Sequence[str]] = None,
+        hold: str = "linear",
+        model: int = 0,
+    ) -> AeroStepper:
+        """An ``AeroStepper`` of the case's aeroelastic response (``[aero]``, ``[dynamic]``):
+        inputs (default ``root_angle`` (rad), ``speed`` (m/s), ``gust`` (m/s); also
+        ``force[k]`` (N), ``torque[k]`` (N·m) at node k) set between calls of ``step``, outputs
+        (default ``tip_x``, ``tip_y`` (m), ``tip_twist`` (rad), ``root_bending_moment``,
+        ``root_torque`` (N·m), ``lift`` (N)) read after each."""
     def flutter(
         self, *, progress: Optional[ProgressCallback] = None, check: bool = True
     ) -> FlutterResult:
@@ -322,6 +335,46 @@ class Equations:
         """Velocities ẋ = M(x)⁻¹ p of the state y."""
     def full_coordinates(self, x: ArrayLike) -> Vector:
         """Joint rotations q (rad) of the full model for coordinates x."""
+
+class AeroStepper:
+    """An aeroelastic response advanced one communication interval per call, with named inputs
+    set between calls and named outputs read after each (``Case.stepper``): the core of the
+    co-simulation FMU (docs/python.md). Each call runs detached from the interpreter."""
+
+    def step(self, dt: float, inputs: Optional[Mapping[str, float]] = None) -> float:
+        """Advance by dt (s) with the inputs ``inputs`` (name → value, SI units; the others
+        keep theirs). Returns the new time (s). ``InputError`` names a bad input or ``dt``;
+        ``SolverError`` (``stop``) if the integration stops inside the interval; the stepper is
+        then as before the call."""
+    @property
+    def t(self) -> float:
+        """Time (s)."""
+    @property
+    def input_names(self) -> List[str]:
+        """The input names, in order."""
+    @property
+    def output_names(self) -> List[str]:
+        """The output names, in order."""
+    @property
+    def units(self) -> Dict[str, str]:
+        """The SI unit of every input and output, by name."""
+    @property
+    def inputs(self) -> Dict[str, float]:
+        """The inputs' values set (name → value, SI units)."""
+    @property
+    def outputs(self) -> Dict[str, float]:
+        """The outputs at the current time (name → value, SI units: m, rad, N·m, N)."""
+    @property
+    def status(self) -> Dict[str, Any]:
+        """``status`` (complete, suspect, stopped), ``stop`` and ``message``."""
+    @property
+    def energy_audit(self) -> Dict[str, Any]:
+        """What the energy audit found since the start (as ``DynamicRun.energy_audit``)."""
+    def energies(self) -> Dict[str, float]:
+        """Energies at t (J): kinetic, strain, work and dissipated since the start."""
+    @property
+    def stats(self) -> Dict[str, Any]:
+        """Integrator counters summed over the calls, ``calls``, ``rust_time_s`` (s)."""
 
 class Stepper:
     """A dynamic run advanced one output interval per call, with the load factors set from
