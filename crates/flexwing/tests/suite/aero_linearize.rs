@@ -106,14 +106,23 @@ fn poles_are_the_flutter_eigenvalues() {
 
 /// `G(iω) = C (iωI − A)⁻¹ B + D`, column `j`, and the periodic state `X` of the input
 /// `sin ωt` in the velocity basis.
+/// The response to input `j` (`u_j = e^{iωt}`); the gust drives `gust_rate = iω gust` with it
+/// (the gust's apparent mass) when the model has that input.
 fn frequency_response(ss: &StateSpace, j: usize, omega: f64) -> (DVector<C64>, DVector<C64>) {
     let dim = ss.a.nrows();
     let m = DMatrix::<C64>::identity(dim, dim) * C64::new(0.0, omega) - ss.a.map(C64::from);
+    let mut u = DVector::<C64>::zeros(ss.inputs.len());
+    u[j] = C64::new(1.0, 0.0);
+    if ss.inputs[j].name == "gust" {
+        if let Some(r) = ss.inputs.iter().position(|s| s.name == "gust_rate") {
+            u[r] = C64::new(0.0, omega);
+        }
+    }
     let x = m
         .lu()
-        .solve(&ss.b.column(j).map(C64::from))
+        .solve(&(ss.b.map(C64::from) * &u))
         .expect("iω is not a pole");
-    let g = ss.c.map(C64::from) * &x + ss.d.column(j).map(C64::from);
+    let g = ss.c.map(C64::from) * &x + ss.d.map(C64::from) * &u;
     (g, x)
 }
 
@@ -239,7 +248,10 @@ fn frequency_response_is_the_nonlinear_harmonic_response() {
 }
 
 fn check_response<M: PlanarStructure>(aero: &Aeroelastic<M>, label: &str) {
-    let o = options(20.0, 0.03, StateBasis::Velocities);
+    // The non-linear strips carry the gust's apparent mass `πρb² v̇_g` (uniform penetration):
+    // the linear model's `gust_rate` input, driven as `iω gust` by `frequency_response`.
+    let mut o = options(20.0, 0.03, StateBasis::Velocities);
+    o.inputs.push(Input::GustRate);
     let ss = linearize(aero, &o, "linearize").unwrap();
     let names: Vec<&str> = ss.outputs.iter().map(|s| s.name.as_str()).collect();
     for (j, epsilons) in [(0, [1e-3, 1e-4]), (1, [0.05, 0.005])] {

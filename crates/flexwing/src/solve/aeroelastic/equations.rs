@@ -25,7 +25,7 @@ use nalgebra::{Complex, DMatrix, DVector};
 
 use super::audit::{dot, AeroAudit};
 use super::evaluator::{AeroDerivatives, AeroEvaluator};
-use super::flight::{FlightHistory, GustPenetration};
+use super::flight::{FlightHistory, FlightOffsets, GustPenetration};
 use super::linear::Linearization;
 use super::schur::{AeroNewtonSystems, LagSchur, StructuredJacobian};
 use crate::error::InputError;
@@ -69,6 +69,8 @@ pub struct AeroelasticEquations<'a, M: AeroStructure> {
     time_functions: Vec<TimeFunction>,
     eval: AeroEvaluator<'a, M>,
     flight: FlightHistory,
+    /// Inputs added to the flight history (a stepper's), zero by default.
+    offsets: FlightOffsets,
     gravity: Option<AppliedLoads>,
     ws: M::Workspace,
     pub(super) n: usize,
@@ -158,6 +160,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
             time_functions,
             eval: AeroEvaluator::new(aero),
             flight,
+            offsets: FlightOffsets::default(),
             gravity,
             ws: model.workspace(),
             n,
@@ -245,7 +248,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     /// Total aerodynamic force along the ground's vertical (N) of the last right-hand side
     /// evaluated at time `t`.
     pub(crate) fn vertical_aerodynamic_force(&self, t: f64) -> f64 {
-        let (sa, ca) = self.flight.root_angle(t).sin_cos();
+        let (sa, ca) = self.root_angle(t).sin_cos();
         self.eval
             .sc
             .force
@@ -325,6 +328,48 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     pub(crate) fn set_flight(&mut self, flight: FlightHistory) {
         self.gust_delays = gust_delays(self.aero, &flight);
         self.flight = flight;
+    }
+
+    /// The aeroelastic model.
+    pub(crate) fn aero(&self) -> &'a Aeroelastic<M> {
+        self.aero
+    }
+
+    /// The other loads' time functions.
+    pub(crate) fn time_functions(&self) -> &[TimeFunction] {
+        &self.time_functions
+    }
+
+    /// Set the increments added to the flight history (a stepper's inputs).
+    pub(crate) fn set_flight_offsets(&mut self, offsets: FlightOffsets) {
+        self.offsets = offsets;
+    }
+
+    /// The increments added to the flight history.
+    pub(crate) fn flight_offsets(&self) -> FlightOffsets {
+        self.offsets
+    }
+
+    /// Free-stream speed at `t` (m/s): the history's and the offset's.
+    pub fn speed(&self, t: f64) -> f64 {
+        self.flight.speed(t) + self.offsets.speed.at(t)
+    }
+
+    /// Root angle at `t` (rad): the history's and the offset's.
+    pub fn root_angle(&self, t: f64) -> f64 {
+        self.flight.root_angle(t) + self.offsets.root_angle.at(t)
+    }
+
+    /// Replace the other loads' time functions (one per load); errors name `field`.
+    pub(crate) fn set_time_functions(
+        &mut self,
+        functions: Vec<TimeFunction>,
+        field: &str,
+    ) -> Result<(), InputError> {
+        self.structural
+            .set_time_functions(functions.clone(), field)?;
+        self.time_functions = functions;
+        Ok(())
     }
 
     /// The system linearized at the static equilibrium `(x, p = 0, a)` at time 0
@@ -499,26 +544,27 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     }
 
     fn set_air(&mut self, t: f64) {
-        let u = self.flight.speed(t);
-        let alpha = self.flight.root_angle(t);
+        let u = self.speed(t);
+        let alpha = self.root_angle(t);
         let flight = &self.flight;
-        let Some(g) = &flight.gust else {
-            return self.eval.set_air(u, alpha, |_| 0.0);
-        };
+        // The stepper's uniform gust (its offset) with its rate, then the case's gust.
+        let (offset, offset_rate) = (self.offsets.gust.at(t), self.offsets.gust.rate(t));
         let u0 = flight.initial.speed;
         let [v, rate, lagged] = &mut self.gust_now;
-        for (i, s) in self.aero.strips.iter().enumerate() {
-            let amplitude = g.amplitude * g.spanwise.at(s.station);
-            match g.penetration {
-                GustPenetration::Uniform => {
-                    v[i] = amplitude * g.factor(t, u0);
-                    rate[i] = amplitude * g.rate(t, u0);
-                    lagged[i] = 0.0;
-                }
-                GustPenetration::Kussner => {
-                    v[i] = 0.0;
-                    rate[i] = 0.0;
-                    lagged[i] = amplitude * g.kussner_factor(t, u0, s.b, self.gust_delays[i]);
+        v.fill(offset);
+        rate.fill(offset_rate);
+        lagged.fill(0.0);
+        if let Some(g) = &flight.gust {
+            for (i, s) in self.aero.strips.iter().enumerate() {
+                let amplitude = g.amplitude * g.spanwise.at(s.station);
+                match g.penetration {
+                    GustPenetration::Uniform => {
+                        v[i] += amplitude * g.factor(t, u0);
+                        rate[i] += amplitude * g.rate(t, u0);
+                    }
+                    GustPenetration::Kussner => {
+                        lagged[i] = amplitude * g.kussner_factor(t, u0, s.b, self.gust_delays[i]);
+                    }
                 }
             }
         }
@@ -526,7 +572,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     }
 
     fn gravity_scale(&self, t: f64) -> [f64; 1] {
-        [self.flight.root_angle(t).cos()]
+        [self.root_angle(t).cos()]
     }
 }
 

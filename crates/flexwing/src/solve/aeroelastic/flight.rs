@@ -337,13 +337,15 @@ impl FlightHistory {
     }
 }
 
-/// `f'(t)` of a time function, away from its jumps and kinks (one-sided there).
+/// `f'(t)` of a time function, away from its jumps; at a kink the left limit (the rate over the
+/// interval ending at `t`, as an integration or a stepper's interval reaching `t` used it: the
+/// outputs at a table's times are then those at the end of each interval).
 fn time_function_rate(f: &TimeFunction, t: f64) -> f64 {
     match f {
         TimeFunction::Constant | TimeFunction::Step { .. } => 0.0,
         TimeFunction::Sine { omega, phase } => omega * (omega * t + phase).cos(),
         TimeFunction::Ramp { start, end } => {
-            if t >= *start && t < *end {
+            if t > *start && t <= *end {
                 1.0 / (end - start)
             } else {
                 0.0
@@ -351,13 +353,68 @@ fn time_function_rate(f: &TimeFunction, t: f64) -> f64 {
         }
         TimeFunction::Table { t: ts, value } => {
             let last = ts.len() - 1;
-            if t < ts[0] || t >= ts[last] {
+            if t <= ts[0] || t > ts[last] {
                 return 0.0;
             }
-            let k = ts.partition_point(|&s| s <= t);
+            let k = ts.partition_point(|&s| s < t);
             (value[k] - value[k - 1]) / (ts[k] - ts[k - 1])
         }
     }
+}
+
+/// A value linear in time over `[t0, t1]` and held outside it: an input of a stepper over one
+/// communication interval (first-order hold), or held (`t0 = t1`: zero-order hold).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct Segment {
+    pub t0: f64,
+    pub t1: f64,
+    pub v0: f64,
+    pub v1: f64,
+}
+
+impl Segment {
+    /// `value` at every time.
+    pub fn held(value: f64) -> Self {
+        Self {
+            t0: 0.0,
+            t1: 0.0,
+            v0: value,
+            v1: value,
+        }
+    }
+
+    /// The value at `t`.
+    pub fn at(&self, t: f64) -> f64 {
+        if self.t1 > self.t0 {
+            let s = ((t - self.t0) / (self.t1 - self.t0)).clamp(0.0, 1.0);
+            self.v0 + (self.v1 - self.v0) * s
+        } else {
+            self.v1
+        }
+    }
+
+    /// The rate at `t`: the slope over `[t0, t1]` (both ends: the interval a stepper integrates,
+    /// its last stage at `t1`), zero outside it and for a held value.
+    pub fn rate(&self, t: f64) -> f64 {
+        if self.t1 > self.t0 && t >= self.t0 && t <= self.t1 {
+            (self.v1 - self.v0) / (self.t1 - self.t0)
+        } else {
+            0.0
+        }
+    }
+}
+
+/// Increments of the flight condition set from outside between integrations (a stepper's or an
+/// FMU's inputs, `analysis::aero::stepper`), added to the flight history's root angle, speed and
+/// uniform gust; zero by default.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct FlightOffsets {
+    /// Root angle (rad).
+    pub root_angle: Segment,
+    /// Free-stream speed (m/s).
+    pub speed: Segment,
+    /// Uniform vertical gust velocity (m/s, up).
+    pub gust: Segment,
 }
 
 #[cfg(test)]
