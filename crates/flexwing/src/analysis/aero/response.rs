@@ -438,6 +438,21 @@ impl<M: AeroStructure> OdeSystem for Scaled<'_, M> {
     fn step_accepted(&mut self, t: f64, y: &[f64]) -> ControlFlow<()> {
         self.0.step_accepted(t, y)
     }
+    fn quadrature_states(&self) -> usize {
+        self.0.quadrature_states()
+    }
+    fn quadrature_step_real(&mut self, c: f64, lead: &[f64], dy: &[f64], q: &mut [f64]) {
+        self.0.quadrature_step_real(c, lead, dy, q)
+    }
+    fn quadrature_step_complex(
+        &mut self,
+        c: nalgebra::Complex<f64>,
+        lead: (&[f64], &[f64]),
+        dy: (&[f64], &[f64]),
+        q: (&mut [f64], &mut [f64]),
+    ) {
+        self.0.quadrature_step_complex(c, lead, dy, q)
+    }
 }
 
 /// Each model's largest tip distance from the first model's, over the times both reached.

@@ -8,6 +8,7 @@ use nalgebra::Complex;
 use super::EquationsOfMotion;
 use crate::model::StructuralModel;
 use crate::solve::integrate::{IntegratorSettings, Method, NewtonSolver};
+use nalgebra::DMatrix;
 
 /// From this many coordinates on, [`NewtonSystems::Auto`] solves the full model's Newton systems
 /// by O(n) chain sweeps instead of dense LU factorizations of the exact Jacobian (measured on
@@ -69,16 +70,28 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
         for (s, f) in self.scales.iter_mut().zip(&self.time_functions) {
             *s = f.at(t);
         }
-        chain.linearize(full, self.loads, &self.scales, &y[..2 * self.n])
+        let ok = chain.linearize(full, self.loads, &self.scales, &y[..2 * self.n]);
+        if ok && self.audit.is_some() {
+            // The load stiffness along ẋ for the audit's quadrature step: `(∂Q/∂x) ẋ`, the
+            // transposed product `(∂Q/∂x)ᵀ ẋ` for conservative loads (symmetric ∂Q/∂x); for
+            // follower loads its antisymmetric part is left out (`ode.rs`).
+            let n = self.n;
+            let (x, p) = y.split_at(n);
+            if self.solve_velocities(x, &p[..n]) {
+                let kin = full.kinematics(x);
+                let v = DMatrix::from_column_slice(n, 1, &self.xdot);
+                let mut out = DMatrix::zeros(n, 1);
+                full.load_jacobian_times_kin_into(&kin, self.loads, &self.scales, &v, &mut out);
+                self.load_rate = out.as_slice().to_vec();
+            }
+        }
+        ok
     }
 
     fn factor_real(&mut self, slot: usize, c: f64) -> bool {
         let model = self.model;
         match (model.as_full_model(), self.chain.as_mut()) {
-            (Some(full), Some(chain)) => {
-                set_slot(&mut self.shifts.0, slot, c);
-                chain.factor_real(full, slot, c)
-            }
+            (Some(full), Some(chain)) => chain.factor_real(full, slot, c),
             _ => false,
         }
     }
@@ -86,42 +99,22 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
     fn factor_complex(&mut self, slot: usize, c: Complex<f64>) -> bool {
         let model = self.model;
         match (model.as_full_model(), self.chain.as_mut()) {
-            (Some(full), Some(chain)) => {
-                set_slot(&mut self.shifts.1, slot, c);
-                chain.factor_complex(full, slot, c)
-            }
+            (Some(full), Some(chain)) => chain.factor_complex(full, slot, c),
             _ => false,
         }
     }
 
     fn solve_real(&mut self, slot: usize, b: &mut [f64]) {
         let model = self.model;
-        let n2 = 2 * self.n;
         if let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) {
-            chain.solve_real(full, slot, &mut b[..n2]);
-        }
-        // The audit's quadrature states: zero rows of the Jacobian, so `c Δ = r`.
-        let c = self.shifts.0.get(slot).copied().unwrap_or(1.0);
-        for v in &mut b[n2..] {
-            *v /= c;
+            chain.solve_real(full, slot, b);
         }
     }
 
     fn solve_complex(&mut self, slot: usize, re: &mut [f64], im: &mut [f64]) {
         let model = self.model;
-        let n2 = 2 * self.n;
         if let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) {
-            chain.solve_complex(full, slot, &mut re[..n2], &mut im[..n2]);
-        }
-        let c = self
-            .shifts
-            .1
-            .get(slot)
-            .copied()
-            .unwrap_or(Complex::new(1.0, 0.0));
-        for (r, i) in re[n2..].iter_mut().zip(&mut im[n2..]) {
-            let v = Complex::new(*r, *i) / c;
-            (*r, *i) = (v.re, v.im);
+            chain.solve_complex(full, slot, re, im);
         }
     }
 
@@ -141,12 +134,4 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
     fn newton_tolerance(&self) -> Option<f64> {
         self.chain.as_ref().map(|c| c.newton_tolerance())
     }
-}
-
-/// `slots[slot] = value`, growing `slots` as needed.
-fn set_slot<T: Copy + Default>(slots: &mut Vec<T>, slot: usize, value: T) {
-    if slots.len() <= slot {
-        slots.resize(slot + 1, T::default());
-    }
-    slots[slot] = value;
 }

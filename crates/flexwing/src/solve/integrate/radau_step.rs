@@ -350,10 +350,7 @@ impl Scratch {
                 z2[i] = T21 * f1 + T22 * f2 + T23 * f3;
                 z3[i] = T31 * f1 + f2;
             }
-            // Quadrature states (infinite tolerance, such as the energy audit's work integrals)
-            // take their stage values from the previous iterate: a second iteration gives them
-            // converged stages (super::min_newton_iterations).
-            if newt >= super::min_newton_iterations(&self.scal) && st.faccon * dyno <= set.fnewt {
+            if st.faccon * dyno <= set.fnewt {
                 return Newton::Converged(newt);
             }
         }
