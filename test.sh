@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# The project's tests, in one command: the Rust workspace (`cargo test --workspace --release`),
+# The project's tests, in one command: the Rust workspace (`cargo test --workspace --release
+# --lib --bins --tests`),
 # then the Python package — built with maturin from the same release build and installed into a
 # virtual environment (`.venv`, created if missing; `FLEXWING_VENV` picks another), where pytest
 # runs its suite (crates/flexwing-py/tests) against the `flexwing` binary of the same build.
 # Needs only Rust and Python ≥ 3.11 with its venv module (the pinned numpy needs 3.11; the
-# package itself runs on ≥ 3.9); maturin, numpy, pytest and
-# dask[distributed] come from PyPI (crates/flexwing-py/requirements-test.txt).
+# package itself runs on ≥ 3.9); maturin, numpy, pytest, hypothesis, dask[distributed] and the
+# optional extras the views use come from PyPI (crates/flexwing-py/requirements-test.txt).
 #
 #   ./test.sh                 everything
 #   ./test.sh --python-only   the Python part alone (after a Rust build)
@@ -25,7 +26,9 @@ while [ $# -gt 0 ]; do
 done
 
 if [ "$rust" = 1 ]; then
-    cargo test --workspace --release
+    # Libraries, binaries and test targets: the examples are left out (they hold no tests; .ci/run's
+    # clippy --all-targets still compiles them) and there are no doctests.
+    cargo test --workspace --release --lib --bins --tests
 fi
 
 venv="${FLEXWING_VENV:-.venv}"

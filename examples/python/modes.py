@@ -16,7 +16,7 @@ HERE = pathlib.Path(__file__).resolve().parent
 case = flexwing.Case.load(HERE.parent / "table1.toml")
 result = case.modes()  # a ModesResult: arrays by increasing frequency
 print(f"{case.title}: {result.n_elements} elements, {result.n_dofs} coordinates")
-for k, f, b in zip(result.mode, result.frequency_hz, result.bending_fraction):
+for k, f, b in zip(result.mode, result.frequency_hz, result.bending_energy_fraction):
     print(f"  mode {k:2d}: {f:10.4f} Hz  ({100 * b:5.1f} % bending)")
 
 # The same from a beam built from arrays: 30 elements, EI falling linearly along the span.

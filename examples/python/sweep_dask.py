@@ -8,9 +8,11 @@ Dask's per-task overhead (about a millisecond) on cases that take a fraction of 
 elements (docs/python.md gives the measured costs). Each worker also reduces its results to
 the numbers the study needs (here the tip, ``tip``) before sending them back: a whole result
 holds a dozen NumPy arrays, and pickling them costs more than solving these small cases. Each case comes back with its
-status, result and error as data: a case that fails does not stop the sweep.
+status, result and error as data: a case that fails does not stop the sweep. The sweep comes
+back as a pandas DataFrame indexed by the swept parameters (F, EI): ``sweep()``.
 
     python examples/python/sweep_dask.py                       # 200 cases on 2 local workers
+                                                               # (rounded up to a multiple of 4)
     python examples/python/sweep_dask.py --cases 10000 --workers 8 --chunk 200
     python examples/python/sweep_dask.py --scheduler tcp://head-node:8786   # a running cluster
 
@@ -23,7 +25,8 @@ have ``pip install flexwing`` done), or build the cluster in Python with dask-jo
     cluster.scale(jobs=10)
     client = Client(cluster)
 
-Nothing is written to disk; the summary is printed. Units: N, N m², m.
+Nothing is written to disk; the summary is printed. Units: N, N m², m. Needs pandas and dask
+(``pip install "flexwing[pandas]" "dask[distributed]"``).
 """
 
 from __future__ import annotations
@@ -68,18 +71,18 @@ def solve_chunk(cases, start: int, analysis: str = "static", keep=None):
     """The task a worker runs: ``flexwing.solve_many`` on one chunk of cases, numbered from
     ``start``; with ``keep``, each ``BatchItem`` is reduced on the worker to what ``keep``
     returns (a few numbers travel back instead of every array of the result)."""
-    items = flexwing.solve_many(cases, analysis)
-    for item in items:
-        item.index += start  # solve_many numbers the cases of its own chunk
+    items = flexwing.solve_many(cases, analysis, start=start)  # indices in the whole sweep
     return items if keep is None else [keep(item) for item in items]
 
 
 def tip(item: flexwing.BatchItem):
-    """A ``keep`` function: the case's index, status, message and final tip (x, y) in m."""
-    if item.result is None or not len(item.result.full.tip_y):
-        return item.index, item.status, item.message, None
-    full = item.result.full
-    return item.index, item.status, item.message, (float(full.tip_x[-1]), float(full.tip_y[-1]))
+    """A ``keep`` function: one row of the sweep's table — the case's index, status, message
+    and final tip position ``tip_x``, ``tip_y`` (m; None where the case has no result)."""
+    row = {"index": item.index, "status": item.status, "message": item.message, "tip_x": None, "tip_y": None}
+    if item.result is not None and len(item.result.full.tip_y):
+        full = item.result.full
+        row.update(tip_x=float(full.tip_x[-1]), tip_y=float(full.tip_y[-1]))
+    return row
 
 
 def run_sweep(client, cases: Sequence[flexwing.Case], chunk: int = 50, analysis: str = "static", keep=None):
@@ -93,9 +96,33 @@ def run_sweep(client, cases: Sequence[flexwing.Case], chunk: int = 50, analysis:
     return [item for batch in client.gather(futures) for item in batch]
 
 
+def sweep_index(forces: Sequence[float], stiffnesses: Sequence[float]):
+    """The swept parameters of ``sweep_cases``, in its order: a pandas MultiIndex (F in N, EI
+    in N m²)."""
+    import pandas as pd
+
+    return pd.MultiIndex.from_product([list(forces), list(stiffnesses)], names=["F", "EI"])
+
+
+def sweep(client, forces, stiffnesses, chunk: int = 50, elements: int = 20, full_results: bool = False):
+    """The whole study: the cases of every (F, EI), solved on ``client``'s workers, as a pandas
+    DataFrame indexed by (F, EI). Reduced on the workers to the rows of ``tip`` (columns
+    ``status``, ``message``, ``tip_x``, ``tip_y``), or with ``full_results`` the whole results
+    brought back and tabulated by ``flexwing.Batch.to_pandas`` (``full.tip_y``, … for every
+    model)."""
+    import pandas as pd
+
+    cases = sweep_cases(forces, stiffnesses, elements)
+    index = sweep_index(forces, stiffnesses)
+    if full_results:
+        return flexwing.Batch(run_sweep(client, cases, chunk=chunk)).to_pandas(index=index)
+    rows = run_sweep(client, cases, chunk=chunk, keep=tip)
+    return pd.DataFrame(rows, index=index).drop(columns="index")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--cases", type=int, default=200, help="number of cases (default 200)")
+    parser.add_argument("--cases", type=int, default=200, help="number of cases, rounded up to a multiple of 4 (default 200)")
     parser.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
     parser.add_argument("--chunk", type=int, default=50, help="cases per task (default 50)")
     parser.add_argument("--elements", type=int, default=20, help="elements of the beam (default 20)")
@@ -108,7 +135,6 @@ def main() -> None:
 
     stiffnesses = [40.0, 50.0, 60.0, 80.0]
     forces = np.linspace(10.0, 200.0, max(1, -(-args.cases // len(stiffnesses))))
-    cases = sweep_cases(forces, stiffnesses, args.elements)[: args.cases]
 
     if args.scheduler:
         client = Client(args.scheduler)
@@ -120,27 +146,22 @@ def main() -> None:
         client = Client(cluster)
     try:
         start = time.perf_counter()
-        items = run_sweep(client, cases, chunk=args.chunk, keep=None if args.full_results else tip)
+        frame = sweep(client, forces, stiffnesses, args.chunk, args.elements, args.full_results)
         wall = time.perf_counter() - start
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
 
-    rows = [tip(item) for item in items] if args.full_results else items
-    statuses = {s: sum(r[1] == s for r in rows) for s in ("complete", "stopped", "error")}
+    tip_y = "full.tip_y" if args.full_results else "tip_y"
+    statuses = frame["status"].value_counts().to_dict()
     where = f"{args.workers} local workers" if cluster is not None else args.scheduler
-    print(f"{len(rows)} cases on {where} in {wall:.3f} s: {statuses}")
-    for index, status, message, at in rows[:: max(1, len(rows) // 5)]:
-        d = cases[index].to_dict()
-        f, ei = d["loads"][0]["fy"], d["beam"]["section"]["EI"]
-        if at is not None:
-            print(f"  F = {f:6.1f} N, EI = {ei:4.1f} N m^2: tip at ({at[0]:.5f}, {at[1]:.5f}) m")
-        else:
-            print(f"  F = {f:6.1f} N, EI = {ei:4.1f} N m^2: {status}: {message}")
+    print(f"{len(frame)} cases on {where} in {wall:.3f} s: {statuses}")
+    print(frame[["status", tip_y]].iloc[:: max(1, len(frame) // 5)].to_string())
     if args.compare:
-        serial = [tip(item) for item in flexwing.solve_many(cases, "static")]
-        same = serial == rows  # bit for bit: the same binary on the same input
+        cases = sweep_cases(forces, stiffnesses, args.elements)
+        serial = flexwing.solve_many(cases, "static").to_pandas(index=sweep_index(forces, stiffnesses))
+        same = serial["full.tip_y"].equals(frame[tip_y].rename("full.tip_y"))  # bit for bit
         print(f"equal to the serial sweep: {'yes' if same else 'NO'}")
         if not same:
             raise SystemExit(1)

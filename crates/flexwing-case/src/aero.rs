@@ -24,7 +24,7 @@ use super::statics::evenly_spaced;
 use crate::CaseError;
 
 /// The case file's names of an aeroelastic plan's parts, the analysis being `analysis`.
-fn fields(analysis: &str) -> Fields<'_> {
+pub(crate) fn fields(analysis: &str) -> Fields<'_> {
     Fields {
         loads: "loads",
         aero: "aero",
@@ -187,7 +187,7 @@ impl Case {
     }
 
     /// `[aero]`, the full model and the library's aerodynamics of the case.
-    fn aero_parts(&self) -> Result<(&AeroSpec, FullModel, Aero), InputError> {
+    pub(crate) fn aero_parts(&self) -> Result<(&AeroSpec, FullModel, Aero), InputError> {
         let spec = self.aero.as_ref().ok_or_else(|| {
             InputError::new(
                 "aero",
@@ -240,7 +240,7 @@ impl Case {
 
     /// The loads of an aeroelastic run: gravity belongs to the flight (it follows the root
     /// angle), not to `[[loads]]`.
-    fn aero_loads(&self, model: &FullModel) -> Result<Vec<Load>, InputError> {
+    pub(crate) fn aero_loads(&self, model: &FullModel) -> Result<Vec<Load>, InputError> {
         if let Some(i) = self
             .loads
             .iter()
@@ -256,7 +256,7 @@ impl Case {
     }
 
     /// The static solver's options of `[static]`.
-    fn static_options(&self) -> StaticOptions {
+    pub(crate) fn static_options(&self) -> StaticOptions {
         let s = &self.statics;
         let mut o = StaticOptions::default();
         o.tolerance = s.tolerance.unwrap_or(o.tolerance);
@@ -272,7 +272,7 @@ fn or_zero(p: Option<&crate::Property>) -> Profile {
 }
 
 /// The flight condition of `[aero.flight]` at speed `speed`.
-fn condition(f: &FlightSpec, speed: f64) -> FlightCondition {
+pub(crate) fn condition(f: &FlightSpec, speed: f64) -> FlightCondition {
     FlightCondition {
         speed,
         root_angle: f.root_angle.unwrap_or(0.0),

@@ -37,7 +37,22 @@ impl Case {
 
     /// The lumped-mass beam of `[beam]`, validated by [`Beam::new`].
     pub(crate) fn to_beam(&self) -> Result<Beam, InputError> {
-        let b = &self.beam;
+        self.beam.to_beam()
+    }
+}
+
+impl BeamSpec {
+    /// The full model of this `[beam]` table; errors name `beam.length`, `beam.section.EI`, ….
+    ///
+    /// # Errors
+    /// As [`Case::model`].
+    pub fn model(&self) -> Result<FullModel, InputError> {
+        self.to_beam().map(FullModel::new)
+    }
+
+    /// The lumped-mass beam of this `[beam]` table, validated by [`Beam::new`].
+    pub(crate) fn to_beam(&self) -> Result<Beam, InputError> {
+        let b = self;
         let section = section(&b.section)?;
         let beam = Beam::named(
             "beam",

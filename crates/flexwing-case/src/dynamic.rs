@@ -5,14 +5,14 @@
 
 use flexwing::analysis::dynamics::{DynamicPlan, Initial, MAX_OUTPUT_TIMES};
 use flexwing::model::FullModel;
-use flexwing::solve::integrate::Method;
+use flexwing::solve::integrate::{IntegratorSettings, Method};
 use flexwing::solve::{Damping, Gyroscopic, TimeFunction};
 use flexwing::text::short;
 use flexwing::InputError;
 
 use super::spec::{
-    Case, DampingKindSpec, DampingSpec, DynamicSpec, GyroscopicSpec, InitialKindSpec, InitialSpec,
-    TimeKindSpec, TimeSpec,
+    Case, DampingKindSpec, DynamicSpec, EquationsSpec, GyroscopicSpec, InitialKindSpec,
+    InitialSpec, IntegrationSpec, TimeKindSpec, TimeSpec,
 };
 use crate::CaseError;
 
@@ -45,23 +45,16 @@ impl Case {
         plan.simplified = d.simplified;
         plan.reduced.clone_from(&d.reduced);
         plan.reduced_modes.clone_from(&d.reduced_modes);
-        plan.gyroscopic = gyroscopic(d)?;
-        plan.integrator = d.integrator.method();
-        check_integrator_keys(d, plan.integrator)?;
-        let s = &mut plan.settings;
-        s.rtol = d.rtol.unwrap_or(s.rtol);
-        s.atol = d.atol.unwrap_or(s.atol);
-        s.max_order = d.max_order.unwrap_or(s.max_order);
-        s.spectral_radius = d.spectral_radius.unwrap_or(s.spectral_radius);
-        s.step = d.step;
-        s.max_steps = d.max_steps.unwrap_or(s.max_steps);
-        s.max_step = d.max_step;
+        let equations = d.equations();
+        plan.gyroscopic = equations.to_gyroscopic("dynamic")?;
+        (plan.integrator, plan.settings) = d.integration().to_settings("dynamic")?;
         plan.audit.tolerance = d.energy_tolerance;
         if let Some(r) = d.energy_runaway {
             plan.audit.runaway = r;
         }
-        plan.damping = damping(d.damping.as_ref())?;
+        plan.damping = equations.to_damping("dynamic")?;
         plan.initial = self.initial(d.initial.as_ref(), n_dofs)?;
+        plan.load_names = self.load_names();
         plan.validate("loads", "dynamic")?;
         Ok(plan)
     }
@@ -149,6 +142,15 @@ impl Case {
         }
     }
 
+    /// Each load's name for messages: its `name`, or `loads[i]`.
+    pub(crate) fn load_names(&self) -> Vec<String> {
+        self.loads
+            .iter()
+            .enumerate()
+            .map(|(i, l)| l.name.clone().unwrap_or_else(|| format!("loads[{i}]")))
+            .collect()
+    }
+
     /// The reason for an unknown load name, listing the known ones.
     pub(super) fn unknown_load(&self, name: &str) -> String {
         let names: Vec<String> = self
@@ -162,6 +164,15 @@ impl Case {
             format!("the named loads are {}", names.join(", "))
         };
         format!("no load named {name:?} ({known})")
+    }
+}
+
+/// `prefix.key`, or `key` alone with an empty prefix.
+fn field(prefix: &str, key: &str) -> String {
+    if prefix.is_empty() {
+        key.to_string()
+    } else {
+        format!("{prefix}.{key}")
     }
 }
 
@@ -220,102 +231,124 @@ fn output_times(d: &DynamicSpec) -> Result<Vec<f64>, InputError> {
     }
 }
 
-/// The options that belong to one integrator need it.
-fn check_integrator_keys(d: &DynamicSpec, method: Method) -> Result<(), InputError> {
-    if d.max_order.is_some() && method != Method::Bdf {
-        return Err(InputError::new(
-            "dynamic.max_order",
-            "is an option of the BDF integrator; it needs integrator = \"bdf\"",
-        ));
-    }
-    if d.step.is_some() && !matches!(method, Method::Midpoint | Method::GeneralizedAlpha) {
-        return Err(InputError::new(
-            "dynamic.step",
-            "is the fixed step of the implicit midpoint rule and generalized-α; it needs \
+impl IntegrationSpec {
+    /// The integrator and its settings (the library's defaults where a key is not given), after
+    /// checking that the options that belong to one integrator have it; errors name
+    /// `{prefix}.max_order`, … (`prefix` empty: the keys alone).
+    pub fn to_settings(&self, prefix: &str) -> Result<(Method, IntegratorSettings), InputError> {
+        let d = self;
+        let field = |k: &str| field(prefix, k);
+        let method = d.integrator.method();
+        if d.max_order.is_some() && method != Method::Bdf {
+            return Err(InputError::new(
+                field("max_order"),
+                "is an option of the BDF integrator; it needs integrator = \"bdf\"",
+            ));
+        }
+        if d.step.is_some() && !matches!(method, Method::Midpoint | Method::GeneralizedAlpha) {
+            return Err(InputError::new(
+                field("step"),
+                "is the fixed step of the implicit midpoint rule and generalized-α; it needs \
              integrator = \"midpoint\" or \"generalized-alpha\" (the other integrators choose \
              their steps)",
-        ));
-    }
-    if d.spectral_radius.is_some() && method != Method::GeneralizedAlpha {
-        return Err(InputError::new(
-            "dynamic.spectral_radius",
-            "is an option of the generalized-α integrator; it needs \
-             integrator = \"generalized-alpha\"",
-        ));
-    }
-    if d.max_step.is_some() && d.step.is_some() {
-        return Err(InputError::new(
-            "dynamic.max_step",
-            "caps the steps of the adaptive integrators; it cannot be given with the fixed \
-             step `step`",
-        ));
-    }
-    Ok(())
-}
-
-fn gyroscopic(d: &DynamicSpec) -> Result<Gyroscopic, InputError> {
-    Ok(match (d.gyroscopic, d.gyroscopic_step) {
-        (GyroscopicSpec::FiniteDifference, step) => Gyroscopic::FiniteDifference {
-            step: step.unwrap_or(Gyroscopic::DEFAULT_STEP),
-        },
-        (_, Some(_)) => {
+            ));
+        }
+        if d.spectral_radius.is_some() && method != Method::GeneralizedAlpha {
             return Err(InputError::new(
-                "dynamic.gyroscopic_step",
-                "is the step of the finite-difference gyroscopic term; it needs \
-                 gyroscopic = \"finite-difference\"",
-            ))
+                field("spectral_radius"),
+                "is an option of the generalized-α integrator; it needs \
+             integrator = \"generalized-alpha\"",
+            ));
         }
-        (GyroscopicSpec::Exact, None) => Gyroscopic::Exact,
-        (GyroscopicSpec::Neglected, None) => Gyroscopic::Neglected,
-    })
+        if d.max_step.is_some() && d.step.is_some() {
+            return Err(InputError::new(
+                field("max_step"),
+                "caps the steps of the adaptive integrators; it cannot be given with the fixed \
+             step `step`",
+            ));
+        }
+        let mut s = IntegratorSettings::default();
+        s.rtol = d.rtol.unwrap_or(s.rtol);
+        s.atol = d.atol.unwrap_or(s.atol);
+        s.max_order = d.max_order.unwrap_or(s.max_order);
+        s.spectral_radius = d.spectral_radius.unwrap_or(s.spectral_radius);
+        s.step = d.step;
+        s.max_steps = d.max_steps.unwrap_or(s.max_steps);
+        s.max_step = d.max_step;
+        Ok((method, s))
+    }
 }
 
-fn damping(spec: Option<&DampingSpec>) -> Result<Damping, InputError> {
-    let Some(s) = spec else {
-        return Ok(Damping::None);
-    };
-    let field = |key: &str| format!("dynamic.damping.{key}");
-    let (name, allowed, takes): (&str, &[&str], &str) = match s.kind {
-        DampingKindSpec::None => ("none", &[], "no other key"),
-        DampingKindSpec::Rayleigh => ("rayleigh", &["alpha", "beta"], "alpha and beta"),
-        DampingKindSpec::Modal => ("modal", &["ratios"], "ratios"),
-    };
-    let given = [
-        ("alpha", s.alpha.is_some()),
-        ("beta", s.beta.is_some()),
-        ("ratios", s.ratios.is_some()),
-    ];
-    if let Some((key, _)) = given.iter().find(|(k, g)| *g && !allowed.contains(k)) {
-        return Err(InputError::new(
-            field(key),
-            format!("is not a key of {name:?} damping, which takes {takes}"),
-        ));
+impl EquationsSpec {
+    /// The gyroscopic option; errors name `{prefix}.gyroscopic_step`.
+    pub fn to_gyroscopic(&self, prefix: &str) -> Result<Gyroscopic, InputError> {
+        let d = self;
+        Ok(match (d.gyroscopic, d.gyroscopic_step) {
+            (GyroscopicSpec::FiniteDifference, step) => Gyroscopic::FiniteDifference {
+                step: step.unwrap_or(Gyroscopic::DEFAULT_STEP),
+            },
+            (_, Some(_)) => {
+                return Err(InputError::new(
+                    field(prefix, "gyroscopic_step"),
+                    "is the step of the finite-difference gyroscopic term; it needs \
+                 gyroscopic = \"finite-difference\"",
+                ))
+            }
+            (GyroscopicSpec::Exact, None) => Gyroscopic::Exact,
+            (GyroscopicSpec::Neglected, None) => Gyroscopic::Neglected,
+        })
     }
-    match s.kind {
-        DampingKindSpec::None => Ok(Damping::None),
-        DampingKindSpec::Rayleigh => {
-            if s.alpha.is_none() && s.beta.is_none() {
-                return Err(InputError::new(
-                    field("alpha"),
-                    "missing: Rayleigh damping C = alpha M(0) + beta K needs alpha (1/s) \
-                     and/or beta (s)",
-                ));
-            }
-            Ok(Damping::Rayleigh {
-                alpha: s.alpha.unwrap_or(0.0),
-                beta: s.beta.unwrap_or(0.0),
-            })
+
+    /// The structural damping (none without `damping`); errors name `{prefix}.damping.alpha`,
+    /// ….
+    pub fn to_damping(&self, prefix: &str) -> Result<Damping, InputError> {
+        let Some(s) = &self.damping else {
+            return Ok(Damping::None);
+        };
+        let damping = field(prefix, "damping");
+        let field = |key: &str| format!("{damping}.{key}");
+        let (name, allowed, takes): (&str, &[&str], &str) = match s.kind {
+            DampingKindSpec::None => ("none", &[], "no other key"),
+            DampingKindSpec::Rayleigh => ("rayleigh", &["alpha", "beta"], "alpha and beta"),
+            DampingKindSpec::Modal => ("modal", &["ratios"], "ratios"),
+        };
+        let given = [
+            ("alpha", s.alpha.is_some()),
+            ("beta", s.beta.is_some()),
+            ("ratios", s.ratios.is_some()),
+        ];
+        if let Some((key, _)) = given.iter().find(|(k, g)| *g && !allowed.contains(k)) {
+            return Err(InputError::new(
+                field(key),
+                format!("is not a key of {name:?} damping, which takes {takes}"),
+            ));
         }
-        DampingKindSpec::Modal => {
-            let ratios = s.ratios.clone().unwrap_or_default();
-            if ratios.is_empty() {
-                return Err(InputError::new(
-                    field("ratios"),
-                    "missing: modal damping needs the damping ratios of modes 1, 2, … \
-                     (e.g. ratios = [0.02, 0.02])",
-                ));
+        match s.kind {
+            DampingKindSpec::None => Ok(Damping::None),
+            DampingKindSpec::Rayleigh => {
+                if s.alpha.is_none() && s.beta.is_none() {
+                    return Err(InputError::new(
+                        field("alpha"),
+                        "missing: Rayleigh damping C = alpha M(0) + beta K needs alpha (1/s) \
+                     and/or beta (s)",
+                    ));
+                }
+                Ok(Damping::Rayleigh {
+                    alpha: s.alpha.unwrap_or(0.0),
+                    beta: s.beta.unwrap_or(0.0),
+                })
             }
-            Ok(Damping::Modal { ratios })
+            DampingKindSpec::Modal => {
+                let ratios = s.ratios.clone().unwrap_or_default();
+                if ratios.is_empty() {
+                    return Err(InputError::new(
+                        field("ratios"),
+                        "missing: modal damping needs the damping ratios of modes 1, 2, … \
+                     (e.g. ratios = [0.02, 0.02])",
+                    ));
+                }
+                Ok(Damping::Modal { ratios })
+            }
         }
     }
 }

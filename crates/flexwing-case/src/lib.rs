@@ -6,8 +6,9 @@
 //! `docs/case-file.md` (a test keeps the two in step).
 //!
 //! The data flow of every front end: a case (TOML text, a file, or any serde data format with the
-//! same keys, such as a Python dict) → [`Case`] → a plan ([`Case::modes_plan`],
-//! [`Case::static_plan`], [`Case::dynamic_plan`]) → `flexwing::analysis::*::run` → an outcome.
+//! same keys, such as a Python dict) → [`Case`] → a plan ([`Case::plan`] of an [`Analysis`]: the
+//! library's `flexwing::analysis::Plan`, aeroelastic when the case has `[aero]`) →
+//! `flexwing::analysis::run` → an outcome.
 //!
 //! ```
 //! use flexwing::analysis::{modes, NoProgress};
@@ -37,7 +38,9 @@ mod aero;
 mod beam;
 mod dynamic;
 mod error;
+mod linearize;
 mod loads;
+mod plan;
 mod property;
 mod spec;
 mod spec_aero;
@@ -50,17 +53,19 @@ use serde::Deserialize;
 
 pub use error::{one_line, CaseError};
 pub use loads::library_loads;
+pub use plan::Analysis;
 pub use property::Property;
 pub use spec::{
     BeamSpec, CalibrationSpec, Case, DampingKindSpec, DampingSpec, DirectionSpec, DynamicSpec,
-    GyroscopicSpec, InertiaAxisSpec, InitialKindSpec, InitialSpec, IntegratorSpec, LoadKindSpec,
-    LoadSpec, ModesSpec, SectionSpec, StaticSpec, SweepSpec, TimeKindSpec, TimeSpec,
+    EquationsSpec, GyroscopicSpec, InertiaAxisSpec, InitialKindSpec, InitialSpec, IntegrationSpec,
+    IntegratorSpec, LoadKindSpec, LoadSpec, ModesSpec, SectionSpec, StaticSpec, SweepSpec,
+    TimeKindSpec, TimeSpec,
 };
 pub use spec_aero::{
     AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustShapeSpec, GustSpec,
-    SpeedSweepSpec,
+    LinearizeSpec, SpeedSweepSpec, StatesSpec,
 };
-pub use words::{in_user_terms, JARGON};
+pub use words::{in_user_terms, keys, JARGON};
 
 /// Largest case file read (bytes): 16 MiB, a thousand times the largest example; tables of
 /// 100 000 stations fit.
@@ -245,6 +250,27 @@ mod tests {
             .modes_plan()
             .unwrap_err();
         assert_eq!(e.key.as_deref(), Some("beam.section.rotary_inertia"), "{e}");
+    }
+
+    #[test]
+    fn the_keys_of_a_table_are_its_serde_names() {
+        assert_eq!(
+            keys::<SectionSpec>(),
+            [
+                "EI",
+                "mass_per_length",
+                "GJ",
+                "polar_inertia",
+                "polar_inertia_about",
+                "d0",
+                "rotary_inertia"
+            ]
+        );
+        assert!(keys::<IntegrationSpec>().contains(&"spectral_radius"));
+        assert_eq!(
+            keys::<EquationsSpec>(),
+            ["gyroscopic", "gyroscopic_step", "damping"]
+        );
     }
 
     #[test]

@@ -7,7 +7,7 @@ use flexwing::solve::integrate::Method;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::property::Property;
-use super::spec_aero::{AeroSpec, FlutterSpec};
+use super::spec_aero::{AeroSpec, FlutterSpec, LinearizeSpec};
 use super::words::word_enum;
 
 /// The whole case file.
@@ -37,6 +37,9 @@ pub struct Case {
     /// `[flutter]`, optional, for `flexwing flutter`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub flutter: Option<FlutterSpec>,
+    /// `[linearize]`, optional, for `flexwing linearize`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub linearize: Option<LinearizeSpec>,
     /// The file the case was read from, for messages; not a key.
     #[serde(skip)]
     pub(crate) file: Option<String>,
@@ -531,3 +534,76 @@ pub enum InitialKindSpec {
 }
 
 word_enum!(InitialKindSpec { Rest = "rest", Static = "static", Given = "given" });
+
+/// The options of the equations of motion a front end sets at the model level (Python's
+/// `model.equations(…)` and `model.stepper(…)`): the keys of `[dynamic]` that make the
+/// equations, with the same names, defaults and checks.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct EquationsSpec {
+    /// As `dynamic.gyroscopic`.
+    #[serde(default)]
+    pub gyroscopic: GyroscopicSpec,
+    /// As `dynamic.gyroscopic_step`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gyroscopic_step: Option<f64>,
+    /// As `dynamic.damping`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping: Option<DampingSpec>,
+}
+
+/// The integrator and its options at the model level (Python's `model.stepper(…)`): the keys of
+/// `[dynamic]` that choose and tune the integrator, with the same names, defaults and checks.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct IntegrationSpec {
+    /// As `dynamic.integrator`.
+    #[serde(default)]
+    pub integrator: IntegratorSpec,
+    /// As `dynamic.rtol`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rtol: Option<f64>,
+    /// As `dynamic.atol`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub atol: Option<f64>,
+    /// As `dynamic.max_order`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_order: Option<usize>,
+    /// As `dynamic.step`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub step: Option<f64>,
+    /// As `dynamic.spectral_radius`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spectral_radius: Option<f64>,
+    /// As `dynamic.max_steps`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_steps: Option<usize>,
+    /// As `dynamic.max_step`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_step: Option<f64>,
+}
+
+impl DynamicSpec {
+    /// The keys of `[dynamic]` that make the equations.
+    pub fn equations(&self) -> EquationsSpec {
+        EquationsSpec {
+            gyroscopic: self.gyroscopic,
+            gyroscopic_step: self.gyroscopic_step,
+            damping: self.damping.clone(),
+        }
+    }
+
+    /// The keys of `[dynamic]` that choose and tune the integrator.
+    pub fn integration(&self) -> IntegrationSpec {
+        IntegrationSpec {
+            integrator: self.integrator,
+            rtol: self.rtol,
+            atol: self.atol,
+            max_order: self.max_order,
+            step: self.step,
+            spectral_radius: self.spectral_radius,
+            max_steps: self.max_steps,
+            max_step: self.max_step,
+        }
+    }
+}

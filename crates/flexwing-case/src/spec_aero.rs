@@ -175,6 +175,56 @@ pub struct FlutterSpec {
     pub pk: bool,
 }
 
+/// `[linearize]`: the models, signals and states of `flexwing linearize` (the equilibrium's
+/// flight condition is `[aero.flight]`).
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct LinearizeSpec {
+    /// Linearize the full model.
+    #[serde(default = "yes")]
+    pub full: bool,
+    /// Reduced models on the first `r` wet modes, one per entry.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub reduced: Vec<usize>,
+    /// Reduced models on explicit 1-based lists of wet modes.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub reduced_modes: Vec<Vec<usize>>,
+    /// The inputs by name.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inputs: Option<Vec<String>>,
+    /// The outputs by name.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub outputs: Option<Vec<String>>,
+    /// Velocities or momenta.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub states: Option<StatesSpec>,
+}
+
+impl Default for LinearizeSpec {
+    fn default() -> Self {
+        Self {
+            full: true,
+            reduced: Vec::new(),
+            reduced_modes: Vec::new(),
+            inputs: None,
+            outputs: None,
+            states: None,
+        }
+    }
+}
+
+/// `linearize.states`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StatesSpec {
+    /// Coordinates, rates, lag states.
+    Velocities,
+    /// Coordinates, momenta, lag states.
+    Momenta,
+}
+
+word_enum!(StatesSpec { Velocities = "velocities", Momenta = "momenta" });
+
 fn yes() -> bool {
     true
 }

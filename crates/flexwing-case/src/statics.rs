@@ -35,6 +35,7 @@ impl Case {
         o.min_step = s.min_step.unwrap_or(o.min_step);
         o.line_search = s.line_search.unwrap_or(o.line_search);
         plan.modes = s.modes;
+        plan.load_names = self.load_names();
         plan.sweep = s.sweep.as_ref().map(|spec| self.sweep(spec)).transpose()?;
         plan.validate("loads", "static")?;
         Ok(plan)

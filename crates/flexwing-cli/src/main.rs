@@ -6,9 +6,13 @@
 //! With `--json`, stdout holds exactly one JSON document whatever happens: the command's, or
 //! `{"status": "error", "error": …, "exit_status": …}` when it failed before printing one.
 
-mod commands;
+mod driver;
+mod interrupt;
 mod output;
 mod plot;
+mod progress;
+mod render;
+mod reproduce;
 
 use std::io::Write as _;
 use std::process::ExitCode;
@@ -16,7 +20,8 @@ use std::process::ExitCode;
 use clap::error::ErrorKind;
 use clap::{Parser, Subcommand};
 
-use commands::{dynamic, flutter, modes, reproduce, statics, Failure};
+use driver::{CaseArgs, Failure};
+use flexwing_case::Analysis;
 
 /// Non-linear dynamics of very flexible beams (lumped-mass model).
 #[derive(Debug, Parser)]
@@ -33,75 +38,75 @@ struct Cli {
     command: Command,
 }
 
+/// Every analysis command (`static`, `dynamic`, `flutter`) runs each model of the case: one that
+/// stops does not stop the others, the files hold what it reached, `status.txt` says which
+/// stopped where, and the exit status is 1. `--json` prints one JSON document instead of the
+/// tables. See docs/cli.md.
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Natural frequencies and mode shapes about the undeformed state.
     #[command(
-        long_about = "Natural frequencies and mode shapes about the undeformed state.\n\n\
-        Prints a table (mode, ω in rad/s, f in Hz, share of the strain energy in bending, and \
-        whether the mode is bending, torsion or coupled) and writes frequencies.csv and \
-        mode_shapes.csv (mass-normalized nodal shapes) into the output directory. \
-        With --plot also mode_shapes.svg and mode_shapes.png; with --json one JSON document \
-        replaces the table. See docs/cli.md."
+        long_about = "Natural frequencies and mode shapes about the undeformed state: a table \
+        (mode, ω, f, share of the strain energy in bending, bending/torsion/coupled), \
+        frequencies.csv and mode_shapes.csv (mass-normalized nodal shapes); with --plot \
+        mode_shapes.svg/.png. See docs/cli.md."
     )]
-    Modes(modes::ModesArgs),
+    Modes(ModesArgs),
     /// Non-linear static equilibria of the full model and of reduced models, over a load sweep.
     #[command(
-        long_about = "Non-linear static equilibria under the case's [[loads]], for the full model \
-        and the reduced models of [static], at one load level or over the load sweep of \
-        [static.sweep] (each point continued from the previous one).\n\n\
-        Prints the tip position (and twist) of every model side by side, with the difference of \
-        each reduced model from the full one, then a summary (dofs, wall time, ratio to full). \
-        Writes static_tip.csv, static_nodes.csv, static_summary.csv, loaded_frequencies.csv \
-        (with [static] modes) and status.txt into the output directory; with --plot also \
-        static_shapes.svg and static_shapes.png. If a model fails to converge, the other \
-        models still run, the files hold the points that converged, status.txt says \
-        \"incomplete\" and the exit status is 1. See docs/cli.md."
+        long_about = "Non-linear static equilibria under [[loads]] of the full and reduced models \
+        of [static], at one load level or along [static.sweep] (each point continued from the \
+        previous one); with [aero] the static aeroelastic equilibria at aero.flight.speed or \
+        along [aero.sweep] and the divergence speed. Writes static_tip.csv (static_aero.csv \
+        with [aero]), static_nodes.csv, static_summary.csv, loaded_frequencies.csv and \
+        status.txt; with --plot static_shapes.svg/.png. A model that fails to converge stops, \
+        the others still run; the exit status is then 1. See docs/cli.md."
     )]
-    Static(statics::StaticArgs),
+    Static(CaseArgs),
     /// Time histories of the full, simplified and reduced models under time-varying loads.
     #[command(
-        long_about = "Non-linear dynamics: time histories of the full model, the simplified model \
-        (gyroscopic term neglected) and the reduced models of [dynamic], from rest, from a static \
-        deflection or from a given state, under the case's [[loads]] with their time histories.\n\n\
-        Prints, side by side per model, the integrator's work (steps, rejected steps, RHS and \
-        Jacobian evaluations, factorizations), the wall time and its ratio to the first model, \
-        and the largest tip difference from the first model. Writes dynamic_tip.csv, \
-        dynamic_nodes.csv, dynamic_summary.csv and status.txt into the output directory; with \
-        --plot also dynamic_tip.svg/.png and dynamic_snapshots.svg/.png. A progress bar appears \
-        on stderr when it is a terminal and the run takes more than a second. If an integration \
-        stops, the other models still run, the files hold the output times reached, status.txt \
-        says \"incomplete\" and the exit status is 1. See docs/cli.md."
+        long_about = "Non-linear dynamics of the full, simplified (gyroscopic term neglected) and \
+        reduced models of [dynamic] under [[loads]] and their time histories; with [aero] the \
+        aeroelastic response to the gust and changes of [aero.flight]. Prints each model's \
+        integrator work, wall time and tip against the first model's; writes dynamic_tip.csv \
+        (dynamic_aero.csv with [aero]), dynamic_nodes.csv, dynamic_summary.csv and \
+        status.txt; with --plot dynamic_tip.svg/.png and dynamic_snapshots.svg/.png. A \
+        progress bar appears on a terminal's stderr after a second. An integration that stops \
+        keeps the output times reached; the exit status is then 1. See docs/cli.md."
     )]
-    Dynamic(dynamic::DynamicArgs),
+    Dynamic(CaseArgs),
     /// Divergence and flutter speeds along a sweep in free-stream speed, full and reduced models.
     #[command(
-        long_about = "Aeroelastic stability along the speeds of [aero.sweep]: for the full model and \
-        the reduced models of [flutter], the static aeroelastic equilibrium and the divergence \
-        speed, the eigenvalues of the linearized aeroelastic system about each equilibrium with \
-        the lowest wet modes tracked across speeds (V-g and V-ω data), and every crossing of the \
-        imaginary axis (flutter onset and offset) refined to [flutter] tolerance; with \
-        [flutter] pk = true also the p-k method with Theodorsen's C(k).\n\n\
-        Prints the divergence and flutter speeds and frequencies of every model with its wall \
-        time, then every crossing. Writes flutter_summary.csv, flutter_crossings.csv, \
-        flutter_vg.csv, flutter_equilibria.csv, flutter_nodes.csv and status.txt into the \
-        output directory; with --plot also flutter_vg.svg/.png (V-g and V-ω) and \
-        flutter_shapes.svg/.png (equilibria against U). A branch already unstable at the first \
-        speed (quasi-steady aerodynamics with the elastic axis at or aft of mid-chord) gets no \
-        flutter speed: it is listed as unstable at start. See docs/cli.md."
+        long_about = "Aeroelastic stability along [aero.sweep] for the full and reduced models of \
+        [flutter]: the static equilibria and the divergence speed, the eigenvalues about each \
+        equilibrium with the lowest wet modes tracked (V-g, V-ω), every crossing of the \
+        imaginary axis refined to [flutter] tolerance, and with pk = true the p-k method. \
+        Writes flutter_summary.csv, flutter_crossings.csv, flutter_vg.csv, \
+        flutter_equilibria.csv, flutter_nodes.csv and status.txt; with --plot \
+        flutter_vg.svg/.png and flutter_shapes.svg/.png. A branch unstable at the first speed \
+        gets no flutter speed. See docs/cli.md."
     )]
-    Flutter(flutter::FlutterArgs),
+    Flutter(CaseArgs),
     /// Regenerate every table and figure of the paper's results, beside the paper and references.
     #[command(
-        long_about = "Regenerate every result of the paper's section 5 (Tables 2, 3, 5, 6, 7, 8 and \
-        Figures 4, 5, 6), with the paper's numbers and independent references (continuous beam, \
-        elastica) beside ours, plus the accuracy of each reduced model against the number of \
-        modes and the energy drift of the full and simplified models.\n\n\
-        Writes one CSV per table, figure4/5/6 as SVG and PNG, and report.md into the output \
-        directory (default results/). Times are medians of --repeats samples. Progress goes to \
-        stderr. See docs/reproduce.md."
+        long_about = "Regenerate the paper's section 5 (Tables 2, 3, 5–8, Figures 4–6) beside the \
+        paper's numbers and independent references, with the accuracy of the reduced models and \
+        the energy drift: one CSV per table, figure4/5/6 as SVG and PNG, report.md (default \
+        results/). Times are medians of --repeats samples. See docs/reproduce.md."
     )]
     Reproduce(reproduce::ReproduceArgs),
+}
+
+/// Options of `flexwing modes`.
+#[derive(Debug, clap::Args)]
+struct ModesArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+
+    /// Number of modes to report, 1 to n_dofs; overrides `[modes] count` of the case
+    /// [default: min(10, n_dofs)].
+    #[arg(long, short = 'n', value_name = "N")]
+    count: Option<usize>,
 }
 
 fn main() -> ExitCode {
@@ -112,25 +117,18 @@ fn main() -> ExitCode {
             return usage_error(&e, json);
         }
     };
-    let json = match &cli.command {
-        Command::Modes(a) => a.json,
-        Command::Static(a) => a.json,
-        Command::Dynamic(a) => a.json,
-        Command::Flutter(a) => a.json,
-        Command::Reproduce(_) => false,
-    };
-    let result = match &cli.command {
-        Command::Modes(args) => modes::run(args),
-        Command::Static(args) => statics::run(args),
-        Command::Dynamic(args) => dynamic::run(args),
-        Command::Flutter(args) => flutter::run(args),
-        Command::Reproduce(args) => reproduce::run(args),
+    let (json, result) = match &cli.command {
+        Command::Modes(a) => (a.case.json, driver::run(Analysis::Modes, &a.case, a.count)),
+        Command::Static(a) => (a.json, driver::run(Analysis::Static, a, None)),
+        Command::Dynamic(a) => (a.json, driver::run(Analysis::Dynamic, a, None)),
+        Command::Flutter(a) => (a.json, driver::run(Analysis::Flutter, a, None)),
+        Command::Reproduce(a) => (false, reproduce::run(a)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(failure) => {
             report(&failure);
-            if json && !commands::JSON_PRINTED.load(std::sync::atomic::Ordering::SeqCst) {
+            if json && !driver::JSON_PRINTED.load(std::sync::atomic::Ordering::SeqCst) {
                 let message = flexwing_case::one_line(&format!("{:#}", failure.error()));
                 print_json_error(&message, failure.exit_status());
             }

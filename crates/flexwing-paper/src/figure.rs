@@ -1,5 +1,5 @@
-//! Figure data: what each figure of the study shows, as numbers and labels; the front end draws
-//! it (the CLI writes SVG and PNG).
+//! Figure data: what a figure shows, as numbers and labels; the front end draws it (the CLI
+//! writes SVG and PNG of these, for the study's figures and its own commands' plots alike).
 
 /// A figure and the stem of its files (`figure4` → `figure4.svg`, `figure4.png`).
 #[derive(Debug, Clone)]
@@ -30,6 +30,9 @@ pub struct ShapesFigure {
     pub length: f64,
     /// The models, each solid or dashed.
     pub models: Vec<ModelShapes>,
+    /// Colour the entries along a dark-to-light gradient (in order) instead of the line colours
+    /// (snapshots in time).
+    pub gradient: bool,
 }
 
 /// The shapes of one model (or reference).
@@ -50,6 +53,8 @@ pub struct HistoryFigure {
     pub title: String,
     /// End of the time axis (s).
     pub end_time: f64,
+    /// Whether to draw the twist panel.
+    pub has_torsion: bool,
     /// One series per model.
     pub series: Vec<TipSeries>,
 }
@@ -67,6 +72,8 @@ pub struct TipSeries {
     pub x: Vec<f64>,
     /// Tip y (m).
     pub y: Vec<f64>,
+    /// Tip twist (rad), drawn with `has_torsion`.
+    pub twist: Vec<f64>,
 }
 
 /// Stacked panels sharing a title.
@@ -96,6 +103,8 @@ pub struct Series {
     pub label: String,
     /// Whether it is dashed.
     pub dashed: bool,
-    /// Points `(x, y)`.
+    /// Index into the line colours; `None`: the series' position in its panel.
+    pub colour: Option<usize>,
+    /// Points `(x, y)`; non-finite ones are skipped.
     pub points: Vec<(f64, f64)>,
 }

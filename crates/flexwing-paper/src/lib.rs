@@ -23,6 +23,7 @@ pub mod release;
 pub mod report;
 pub mod sine;
 pub mod statics;
+pub mod study;
 pub mod table;
 pub mod timing;
 
@@ -31,7 +32,6 @@ pub use report::Section;
 use flexwing::analysis::dynamics::AuditedRun;
 use flexwing::analysis::Stop;
 use flexwing::model::{FullModel, StructuralModel};
-use flexwing::text::short;
 
 /// Tip position `(x, y)` (m) of the full model at joint rotations `q`.
 fn tip(full: &FullModel, q: &[f64]) -> (f64, f64) {
@@ -55,19 +55,9 @@ fn distance(a: (f64, f64), b: (f64, f64)) -> f64 {
     (a.0 - b.0).hypot(a.1 - b.1)
 }
 
-/// Why a run stopped, in the words of the tables.
+/// Why a run stopped, in the library's one wording.
 fn words(stop: &Stop) -> String {
-    match stop {
-        Stop::Integration(e) => e.to_string(),
-        Stop::EnergyRunaway { time, gain, limit } => format!(
-            "stopped at t = {} s: the energy grew to {:.3} times its initial value \
-             (a blown-up run; limit {})",
-            short(*time),
-            1.0 + gain,
-            1.0 + limit
-        ),
-        other => format!("{other:?}"),
-    }
+    stop.to_string()
 }
 
 /// Why `run` stopped, worded, if it did.

@@ -395,6 +395,7 @@ impl ReleaseStudy {
         let series = |label: &str, dashed: bool, points| Series {
             label: label.into(),
             dashed,
+            colour: None,
             points,
         };
         let errors = |y_label: &str, big_v: &[f64], small_v: &[f64]| Panel {

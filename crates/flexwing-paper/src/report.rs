@@ -180,3 +180,29 @@ pub fn report(provenance: &Provenance, sections: &[Section], conclusions: &str) 
     }
     s
 }
+
+/// The machine and build of this run, for the provenance of the report.
+pub fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|s| s.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    let threads = std::thread::available_parallelism().map_or(0, |n| n.get());
+    let build = if cfg!(debug_assertions) {
+        "debug build (timings not representative: use --release)"
+    } else {
+        "optimized build"
+    };
+    format!(
+        "{cpu}, {threads} hardware threads, {} {}, flexwing {}, {build}; every computation \
+         runs on one thread",
+        std::env::consts::OS,
+        std::env::consts::ARCH,
+        env!("CARGO_PKG_VERSION"),
+    )
+}

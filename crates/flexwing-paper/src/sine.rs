@@ -439,6 +439,7 @@ impl SineStudy {
                 title: "Figure 6: tip position under F = 10 sin(20 t) N, n = 20, full and reduced"
                     .into(),
                 end_time: 1.0,
+                has_torsion: false,
                 series: self
                     .models
                     .iter()
@@ -449,6 +450,7 @@ impl SineStudy {
                         t: m.t.clone(),
                         x: m.tips.iter().map(|p| p.0).collect(),
                         y: m.tips.iter().map(|p| p.1).collect(),
+                        twist: Vec::new(),
                     })
                     .collect(),
             }),

@@ -460,6 +460,7 @@ impl TwoForceStudy {
                 title: "Figure 4: F1 = 0, 50, 100, 150 N at the tip, −150 N at mid-span".into(),
                 length: 1.0,
                 models,
+                gradient: false,
             }),
         }
     }

@@ -116,7 +116,7 @@ fn case_b_tables_6_and_8() {
 #[test]
 fn case_a_table_7_and_the_energy() {
     // A 2 s long run instead of the report's 30 s: the energy conservation over 30 s is the
-    // library's test (tests/dynamics.rs), and `flexwing reproduce` runs the 30 s once.
+    // library's test (tests/suite/dynamics.rs), and `flexwing reproduce` runs the 30 s once.
     let study = release::run(1, 2.0).unwrap();
     assert!(study.big.full.stop().is_none());
     assert!(study.long.full.stop().is_none());

@@ -6,13 +6,13 @@ use std::path::Path;
 
 use flexwing_case::{Case, CaseError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyString, PyTuple};
-use pythonize::Depythonizer;
+use pyo3::types::{PyDict, PyList};
 
 use crate::errors;
 use crate::kwargs::Kwargs;
 use crate::model::PyFullModel;
-use crate::run::{run_case, Analysis};
+use crate::run::run_case;
+use flexwing_case::Analysis;
 
 /// A flexwing case: the beam, the loads and the settings of its analyses, with the keys of the
 /// case file (docs/case-file.md).
@@ -26,33 +26,6 @@ pub struct PyCase {
     pub case: Case,
 }
 
-/// `obj` with NumPy arrays and scalars turned into lists and Python numbers, tuples into lists:
-/// what the serde reader of the case takes.
-pub fn plain_value<'py>(obj: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
-    let py = obj.py();
-    if let Ok(d) = obj.cast::<PyDict>() {
-        let out = PyDict::new(py);
-        for (k, v) in d.iter() {
-            out.set_item(k, plain_value(&v)?)?;
-        }
-        return Ok(out.into_any());
-    }
-    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
-        let items = obj
-            .try_iter()?
-            .map(|v| v.and_then(|v| plain_value(&v)))
-            .collect::<PyResult<Vec<_>>>()?;
-        return Ok(PyList::new(py, items)?.into_any());
-    }
-    if obj.is_instance_of::<PyString>() {
-        return Ok(obj.clone());
-    }
-    if obj.hasattr("tolist")? && obj.hasattr("dtype")? {
-        return plain_value(&obj.call_method0("tolist")?);
-    }
-    Ok(obj.clone())
-}
-
 /// A case from a dict with the case file's keys; errors name the key (`beam.section.EI`).
 pub fn case_from_dict(obj: &Bound<'_, PyAny>) -> PyResult<Case> {
     let py = obj.py();
@@ -63,19 +36,24 @@ pub fn case_from_dict(obj: &Bound<'_, PyAny>) -> PyResult<Case> {
             "must be a dict with the keys of a case file",
         ));
     }
-    let value = plain_value(obj)?;
-    errors::guard(py, || {
-        let mut de = Depythonizer::from_object(&value);
-        serde_path_to_error::deserialize::<_, Case>(&mut de).map_err(|e| {
-            let path = e.path().to_string();
-            let reason = flexwing_case::one_line(&e.inner().to_string());
-            let error = CaseError {
-                key: (path != ".").then_some(path),
-                ..CaseError::new(reason)
-            };
-            errors::case(py, &error)
-        })
-    })
+    crate::values::read_or_raise(obj, "", true)
+}
+
+/// `case` if every number in it is finite (a case from TOML text may hold `nan` or `inf`),
+/// else the `CaseFileError` naming the key: a case never holds NaN, whatever it was built from.
+fn finite(py: Python<'_>, case: Case) -> PyResult<Case> {
+    let data = pythonize::pythonize(py, &case)
+        .map_err(|e| errors::internal(py, &format!("the case does not convert to a dict: {e}")))?;
+    match crate::values::first_non_finite(&data) {
+        None => Ok(case),
+        Some(e) => Err(errors::case(
+            py,
+            &CaseError {
+                file: case.file().map(str::to_string),
+                ..e
+            },
+        )),
+    }
 }
 
 /// The keys of `path` (`"beam.section.EI"`, `"loads[0].fy"`): names and list indices.
@@ -179,18 +157,20 @@ impl PyCase {
         data: Option<&Bound<'_, PyAny>>,
         kwargs: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
-        let merged = PyDict::new(py);
-        if let Some(d) = data {
-            let d = d.cast::<PyDict>().map_err(|_| {
-                errors::argument_type(py, "data", "must be a dict with the keys of a case file")
-            })?;
-            merged.update(d.as_mapping())?;
-        }
-        if let Some(k) = kwargs {
-            merged.update(k.as_mapping())?;
-        }
-        Ok(Self {
-            case: case_from_dict(merged.as_any())?,
+        errors::guard(py, || {
+            let merged = PyDict::new(py);
+            if let Some(d) = data {
+                let d = d.cast::<PyDict>().map_err(|_| {
+                    errors::argument_type(py, "data", "must be a dict with the keys of a case file")
+                })?;
+                merged.update(d.as_mapping())?;
+            }
+            if let Some(k) = kwargs {
+                merged.update(k.as_mapping())?;
+            }
+            Ok(Self {
+                case: case_from_dict(merged.as_any())?,
+            })
         })
     }
 
@@ -202,27 +182,33 @@ impl PyCase {
         text: &Bound<'_, PyAny>,
         file: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let text = crate::arrays::text(text, "text")?;
-        let file = file.map(|f| crate::arrays::text(f, "file")).transpose()?;
         errors::guard(py, || {
-            Case::parse(&text, file.as_deref())
-                .map(|case| Self { case })
-                .map_err(|e| errors::case(py, &e))
+            let text = crate::arrays::text(text, "text")?;
+            let file = file.map(|f| crate::arrays::text(f, "file")).transpose()?;
+            let case = Case::parse(&text, file.as_deref()).map_err(|e| errors::case(py, &e))?;
+            Ok(Self {
+                case: finite(py, case)?,
+            })
         })
     }
 
     /// Read the case file at ``path`` (a ``str`` or ``os.PathLike``).
     #[staticmethod]
     fn load(py: Python<'_>, path: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let path: String = py
-            .import("os")?
-            .call_method1("fspath", (path,))
-            .and_then(|p| p.extract())
-            .map_err(|_| errors::argument_type(py, "path", "must be a str or an os.PathLike"))?;
         errors::guard(py, || {
-            Case::load(Path::new(&path))
-                .map(|case| Self { case })
-                .map_err(|e| errors::case(py, &e))
+            let path: String = py
+                .import("os")?
+                .call_method1("fspath", (path,))
+                .and_then(|p| p.extract())
+                .map_err(|e| {
+                    errors::convert_error(py, e, |_| {
+                        errors::argument_type(py, "path", "must be a str or an os.PathLike")
+                    })
+                })?;
+            let case = Case::load(Path::new(&path)).map_err(|e| errors::case(py, &e))?;
+            Ok(Self {
+                case: finite(py, case)?,
+            })
         })
     }
 
@@ -230,44 +216,50 @@ impl PyCase {
     /// values).
     #[staticmethod]
     fn from_dict(data: &Bound<'_, PyAny>) -> PyResult<Self> {
-        Ok(Self {
-            case: case_from_dict(data)?,
+        errors::guard(data.py(), || {
+            Ok(Self {
+                case: case_from_dict(data)?,
+            })
         })
     }
 
     /// The case as a dict with the case file's keys (absent optional keys are left out).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        to_dict(py, &self.case)
+        errors::guard(py, || to_dict(py, &self.case))
     }
 
     /// The case as TOML text.
     fn to_toml(&self, py: Python<'_>) -> PyResult<String> {
-        self.case.to_toml_string().map_err(|e| errors::case(py, &e))
+        errors::guard(py, || {
+            self.case.to_toml_string().map_err(|e| errors::case(py, &e))
+        })
     }
 
     /// A copy with the values at key paths changed: ``case.replace({"beam.section.EI": 60.0,
     /// "loads[0].fy": 12.0})``. Missing tables are created; errors name the path.
     fn replace(&self, py: Python<'_>, changes: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let changes = changes.cast::<PyDict>().map_err(|_| {
-            errors::argument_type(py, "changes", "must be a dict of key paths and values")
-        })?;
-        let data = to_dict(py, &self.case)?;
-        for (path, value) in changes.iter() {
-            let path: String = path
-                .extract()
-                .map_err(|_| errors::argument_type(py, "changes", "keys must be strings"))?;
-            set_path(&data, &path, &value)?;
-        }
-        let mut case = case_from_dict(&data)?;
-        case = match self.case.file() {
-            // Keep the file name for messages: reparse through TOML with it.
-            Some(file) => {
-                let text = case.to_toml_string().map_err(|e| errors::case(py, &e))?;
-                Case::parse(&text, Some(file)).map_err(|e| errors::case(py, &e))?
+        errors::guard(py, || {
+            let changes = changes.cast::<PyDict>().map_err(|_| {
+                errors::argument_type(py, "changes", "must be a dict of key paths and values")
+            })?;
+            let data = to_dict(py, &self.case)?;
+            for (path, value) in changes.iter() {
+                let path: String = path
+                    .extract()
+                    .map_err(|_| errors::argument_type(py, "changes", "keys must be strings"))?;
+                set_path(&data, &path, &value)?;
             }
-            None => case,
-        };
-        Ok(Self { case })
+            let mut case = case_from_dict(&data)?;
+            case = match self.case.file() {
+                // Keep the file name for messages: reparse through TOML with it.
+                Some(file) => {
+                    let text = case.to_toml_string().map_err(|e| errors::case(py, &e))?;
+                    Case::parse(&text, Some(file)).map_err(|e| errors::case(py, &e))?
+                }
+                None => case,
+            };
+            Ok(Self { case })
+        })
     }
 
     /// The case's title, if any.
@@ -291,8 +283,10 @@ impl PyCase {
 
     /// The full model of ``[beam]``.
     fn model(&self, py: Python<'_>) -> PyResult<PyFullModel> {
-        let model = errors::guard(py, || self.case.model().map_err(|e| errors::case(py, &e)))?;
-        Ok(PyFullModel::new(model))
+        errors::guard(py, || {
+            let model = self.case.model().map_err(|e| errors::case(py, &e))?;
+            Ok(PyFullModel::of_case(self.case.beam.clone(), model))
+        })
     }
 
     /// The natural modes of ``[beam]`` (``[modes] count``, default 10), in vacuo: an ``[aero]``
@@ -300,14 +294,17 @@ impl PyCase {
     /// mass) start the branches of ``flutter()`` (``Stability.wet_frequency``).
     ///
     /// Keyword arguments: ``progress`` — ``callback(done, label)``, ``done`` the fraction of
-    /// the analysis (0 to 1), ``label`` the model running.
+    /// the analysis (0 to 1), ``label`` the model running; ``check`` (accepted as by every
+    /// analysis: a modal analysis completes or raises). Ctrl-C or a callback that raises stops
+    /// the analysis at its next check and raises that exception with the partial result as
+    /// its ``result`` attribute.
     #[pyo3(signature = (**kwargs))]
     fn modes<'py>(
         &self,
         py: Python<'py>,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.analysis(py, Analysis::Modes, kwargs, "modes")
+        errors::guard(py, || self.analysis(py, Analysis::Modes, kwargs, "modes"))
     }
 
     /// The non-linear statics of ``[[loads]]`` and ``[static]`` (sweeps, reduced models,
@@ -324,7 +321,9 @@ impl PyCase {
         py: Python<'py>,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.analysis(py, Analysis::Static, kwargs, "statics")
+        errors::guard(py, || {
+            self.analysis(py, Analysis::Static, kwargs, "statics")
+        })
     }
 
     /// The non-linear dynamics of ``[[loads]]`` and ``[dynamic]`` (full, simplified and
@@ -338,7 +337,9 @@ impl PyCase {
         py: Python<'py>,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.analysis(py, Analysis::Dynamic, kwargs, "dynamics")
+        errors::guard(py, || {
+            self.analysis(py, Analysis::Dynamic, kwargs, "dynamics")
+        })
     }
 
     /// Flutter and divergence along the speeds of ``[aero.sweep]`` (``[aero]``, ``[flutter]``)
@@ -353,7 +354,9 @@ impl PyCase {
         py: Python<'py>,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.analysis(py, Analysis::Flutter, kwargs, "flutter")
+        errors::guard(py, || {
+            self.analysis(py, Analysis::Flutter, kwargs, "flutter")
+        })
     }
 
     /// Run the analysis ``"modes"``, ``"static"``, ``"dynamic"`` or ``"flutter"`` (as the
@@ -365,22 +368,24 @@ impl PyCase {
         analysis: &Bound<'py, PyAny>,
         kwargs: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let name = crate::arrays::text(analysis, "analysis")?;
-        let analysis = Analysis::parse(py, &name, "analysis")?;
+        let name = errors::guard(py, || crate::arrays::text(analysis, "analysis"))?;
+        let analysis = crate::run::parse(py, &name, "analysis")?;
         self.analysis(py, analysis, kwargs, "run")
     }
 
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> crate::Reduce<'py, (String, Option<String>)> {
         let py = slf.py();
-        let this = slf.get();
-        let text = this
-            .case
-            .to_toml_string()
-            .map_err(|e| errors::case(py, &e))?;
-        Ok((
-            slf.get_type().getattr("from_toml")?,
-            (text, this.case.file().map(str::to_string)),
-        ))
+        errors::guard(py, || {
+            let this = slf.get();
+            let text = this
+                .case
+                .to_toml_string()
+                .map_err(|e| errors::case(py, &e))?;
+            Ok((
+                slf.get_type().getattr("from_toml")?,
+                (text, this.case.file().map(str::to_string)),
+            ))
+        })
     }
 
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
@@ -407,18 +412,21 @@ impl PyCase {
         kwargs: Option<&Bound<'py, PyDict>>,
         function: &str,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let allowed: &[&str] = match analysis {
-            Analysis::Modes => &["progress"],
-            _ => &["progress", "check"],
-        };
-        let kw = Kwargs::new(py, kwargs, allowed, function)?;
-        let progress = kw.get("progress")?.map(Bound::unbind);
-        let check = match kw.get("check")? {
-            None => true,
-            Some(v) => v
-                .extract::<bool>()
-                .map_err(|_| errors::argument_type(py, "check", "must be True or False"))?,
-        };
-        run_case(py, &self.case, analysis, progress, check)
+        errors::guard(py, || {
+            // `check` for every analysis, as the stubs declare (modes either complete or fail).
+            let kw = Kwargs::new(py, kwargs, &["progress", "check"], function)?;
+            let progress = crate::progress::callback(
+                py,
+                kw.get("progress")?,
+                "callback(done: float, label: str)",
+            )?;
+            let check = match kw.get("check")? {
+                None => true,
+                Some(v) => v
+                    .extract::<bool>()
+                    .map_err(|_| errors::argument_type(py, "check", "must be True or False"))?,
+            };
+            run_case(py, &self.case, analysis, progress, check)
+        })
     }
 }

@@ -1,9 +1,19 @@
 //! Errors across the boundary. Every error of the library and of the case crate becomes an
 //! exception of the tree defined in `python/flexwing/_errors.py` (`FlexwingError` and its
 //! subclasses, defined in Python so that they can also be `ValueError`s or `TypeError`s and
-//! pickle with their attributes), carrying its data as attributes. Every call into the library
-//! runs under [`guard`], which turns a Rust panic into `InternalError`: no `PanicException`
-//! (which is not an `Exception`) reaches Python.
+//! pickle with their attributes), carrying its data as attributes.
+//!
+//! No panic crosses into Python: the body of every method and function of the extension runs
+//! under [`guard`] (or [`detached`]), which turns a Rust panic into `InternalError` — the last
+//! line of defence (`PanicException` is not an `Exception`, and a panic in a notebook or a
+//! worker process must not take the session down). The causes are removed where they arise:
+//! counts are checked before anything is allocated from them, and every conversion of Python
+//! values is bounded in depth (`values.rs`).
+//!
+//! An exception raised by the caller's own code while an argument is converted (a `__float__`,
+//! `__index__` or `__array__` method, a progress callback) is not ours to rename: a
+//! `KeyboardInterrupt`, `MemoryError`, `RecursionError` or any class other than `TypeError`,
+//! `ValueError` and `OverflowError` propagates as itself ([`foreign`]).
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
@@ -13,7 +23,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use pyo3::IntoPyObjectExt;
 
-use crate::convert::status::solve_error_dict;
+use crate::convert::status::described;
 
 /// An instance of `flexwing._errors.{class}` with `message` and the attributes of `attributes`.
 fn exception(
@@ -103,7 +113,7 @@ pub fn solver(
 
 /// `SolverError` for a solver error outside any model's run.
 pub fn solve(py: Python<'_>, e: &SolveError) -> PyErr {
-    let stop = solve_error_dict(py, e).ok().map(|d| d.into_any().unbind());
+    let stop = described(py, e).ok().map(|d| d.into_any().unbind());
     solver(py, &e.to_string(), None, stop, None)
 }
 
@@ -127,6 +137,46 @@ pub fn internal(py: Python<'_>, what: &str) -> PyErr {
         ),
         &[],
     )
+}
+
+/// `ReentrancyError` (a `RuntimeError`): a call made from inside another flexwing call that
+/// cannot be served (an object's method from a signal handler or callback run during one of its
+/// own calls, analyses nested too deep in progress callbacks).
+pub fn reentrancy(py: Python<'_>, field: &str, reason: &str) -> PyErr {
+    exception(
+        py,
+        "ReentrancyError",
+        &format!("{field}: {reason}"),
+        &[("field", obj(py, field)), ("reason", obj(py, reason))],
+    )
+}
+
+/// Whether `e`, raised by the caller's code while one of its values was converted, is to
+/// propagate as itself rather than become an `ArgumentTypeError`/`InputError` of the argument:
+/// anything but a `TypeError`, `ValueError` or `OverflowError` (a `KeyboardInterrupt`,
+/// `MemoryError`, `RecursionError`, `SystemExit`, the caller's own exception classes).
+pub fn foreign(py: Python<'_>, e: &PyErr) -> bool {
+    use pyo3::exceptions::{PyOverflowError, PyTypeError, PyValueError};
+    !(e.is_instance_of::<PyTypeError>(py)
+        || e.is_instance_of::<PyValueError>(py)
+        || e.is_instance_of::<PyOverflowError>(py))
+}
+
+/// `e` itself if it is [`foreign`], else the error `ours` makes of it (with `e` as its cause).
+pub fn convert_error(py: Python<'_>, e: PyErr, ours: impl FnOnce(&PyErr) -> PyErr) -> PyErr {
+    if foreign(py, &e) {
+        return e;
+    }
+    let mine = ours(&e);
+    mine.set_cause(py, Some(e));
+    mine
+}
+
+/// Set `name` of the exception `e` to `value` when it can hold attributes (the partial result
+/// of an interrupted call on its `KeyboardInterrupt`); an exception class with `__slots__`
+/// is left as it is.
+pub fn set_attribute(py: Python<'_>, e: &PyErr, name: &str, value: Py<PyAny>) {
+    let _ = e.value(py).setattr(name, value);
 }
 
 /// A panic's message.

@@ -3,43 +3,17 @@
 //! (`equations.rs`). A beam is read through the case crate's `[beam]` table, so the rules are
 //! the case file's, with errors named by the keyword argument (`EI`, `elements`).
 
-use flexwing::analysis::modes::{run as run_modes, ModesPlan};
-use flexwing::analysis::NoProgress;
+use flexwing::analysis::modes::ModesPlan;
+use flexwing::analysis::Plan;
 use flexwing::model::{FullModel, ReducedModel, StructuralModel};
 use flexwing::solve::Modes;
-use flexwing_case::BeamSpec;
+use flexwing_case::{keys, BeamSpec, SectionSpec};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::arrays::{self, out1, out_matrix};
-use crate::case::case_from_dict;
+use crate::arrays::{self, finite1, finite_matrix, out1, out_matrix};
 use crate::errors;
 use crate::kwargs::Kwargs;
-
-/// The keyword arguments of `Beam`: the keys of `[beam]` and `[beam.section]`, and `x`.
-const BEAM_KEYS: &[&str] = &[
-    "length",
-    "elements",
-    "stations",
-    "calibration",
-    "element_inertia",
-    "x",
-    "EI",
-    "mass_per_length",
-    "GJ",
-    "polar_inertia",
-    "polar_inertia_about",
-    "d0",
-    "rotary_inertia",
-];
-const SECTION_KEYS: &[&str] = &[
-    "EI",
-    "mass_per_length",
-    "GJ",
-    "polar_inertia",
-    "d0",
-    "rotary_inertia",
-];
 
 /// The argument a case-file key of `[beam]` came from: `beam.section.EI` → `EI`.
 fn argument_of(key: &str) -> String {
@@ -51,28 +25,53 @@ fn argument_of(key: &str) -> String {
 
 /// The library beam of `spec` (a `[beam]` table), errors named by the keyword arguments.
 fn beam_of(py: Python<'_>, spec: &Bound<'_, PyDict>) -> PyResult<(BeamSpec, FullModel)> {
-    let case = PyDict::new(py);
-    case.set_item("beam", spec)?;
-    let rename = |e: PyErr| {
-        let value = e.value(py);
-        match value
-            .getattr("key")
-            .and_then(|k| k.extract::<Option<String>>())
-        {
-            Ok(Some(key)) => {
-                let reason: String = value
-                    .getattr("reason")
-                    .and_then(|r| r.extract())
-                    .unwrap_or_default();
-                errors::input(py, &argument_of(&key), &reason)
-            }
-            _ => e,
+    // A value of the wrong type (a text for a number) is a TypeError, as Python's own.
+    let spec: BeamSpec = crate::values::read(spec.as_any(), "beam")?.map_err(|e| match &e.key {
+        Some(key) if e.reason.starts_with("invalid type") => {
+            errors::argument_type(py, &argument_of(key), &e.reason)
         }
-    };
-    let case = case_from_dict(case.as_any()).map_err(rename)?;
-    let model =
-        errors::guard(py, || case.model().map_err(|e| errors::case(py, &e))).map_err(rename)?;
-    Ok((case.beam.clone(), model))
+        Some(key) => errors::input(py, &argument_of(key), &e.reason),
+        None => errors::case(py, &e),
+    })?;
+    let model = errors::guard(py, || {
+        spec.model()
+            .map_err(|e| errors::input(py, &argument_of(&e.field), &e.reason))
+    })?;
+    Ok((spec, model))
+}
+
+/// The value of the keyword argument `key` of `Beam` as a case-file value: a text, a count
+/// (`elements`), stations (`stations`), or a property — a number, or an array of values at the
+/// stations `x` (the table `{x, value}`).
+fn argument<'py>(
+    py: Python<'py>,
+    key: &str,
+    v: &Bound<'py, PyAny>,
+    x: Option<&[f64]>,
+) -> PyResult<Bound<'py, PyAny>> {
+    if v.is_instance_of::<pyo3::types::PyString>() {
+        return Ok(v.clone());
+    }
+    match key {
+        "elements" => return Ok(arrays::count(v, key)?.into_pyobject(py)?.into_any()),
+        "stations" => return Ok(PyList::new(py, arrays::vector(v, key, None)?)?.into_any()),
+        _ => {}
+    }
+    if !v.hasattr("__len__")? && !v.hasattr("__array__")? {
+        return Ok(arrays::number(v, key)?.into_pyobject(py)?.into_any());
+    }
+    let values = arrays::vector(v, key, x.map(<[f64]>::len))?;
+    let x = x.ok_or_else(|| {
+        errors::input(
+            py,
+            "x",
+            &format!("missing: {key} is an array of values at the stations x (m)"),
+        )
+    })?;
+    let table = PyDict::new(py);
+    table.set_item("x", x.to_vec())?;
+    table.set_item("value", values)?;
+    Ok(table.into_any())
 }
 
 /// A cantilever cut into rigid elements, with its section properties over the span.
@@ -91,12 +90,16 @@ pub struct PyBeam {
     pub model: FullModel,
 }
 
-#[pymethods]
 impl PyBeam {
-    #[new]
-    #[pyo3(signature = (**kwargs))]
-    fn new(py: Python<'_>, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
-        let kw = Kwargs::new(py, kwargs, BEAM_KEYS, "Beam")?;
+    fn build(py: Python<'_>, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        // The keys of `[beam]` and of `[beam.section]` (the case crate's), and `x`.
+        let (beam_keys, section_keys) = (keys::<BeamSpec>(), keys::<SectionSpec>());
+        let allowed: Vec<&str> = (beam_keys.iter().filter(|k| **k != "section"))
+            .chain(section_keys)
+            .chain(&["x"])
+            .copied()
+            .collect();
+        let kw = Kwargs::new(py, kwargs, &allowed, "Beam")?;
         let beam = PyDict::new(py);
         let section = PyDict::new(py);
         let required = |name: &str| {
@@ -104,76 +107,62 @@ impl PyBeam {
                 .ok_or_else(|| errors::input(py, name, "missing: a required argument"))
         };
         beam.set_item("length", arrays::number(&required("length")?, "length")?)?;
-        if let Some(n) = kw.get("elements")? {
-            beam.set_item("elements", arrays::count(&n, "elements")?)?;
-        }
-        if let Some(s) = kw.get("stations")? {
-            beam.set_item("stations", arrays::vector(&s, "stations", None)?)?;
-        }
-        if let Some(c) = kw.get("calibration")? {
-            beam.set_item("calibration", arrays::text(&c, "calibration")?)?;
-        }
-        if let Some(c) = kw.get("element_inertia")? {
-            beam.set_item("element_inertia", arrays::text(&c, "element_inertia")?)?;
+        for key in ["EI", "mass_per_length"] {
+            required(key)?;
         }
         let x = kw
             .get("x")?
             .map(|x| arrays::vector(&x, "x", None))
             .transpose()?;
-        for key in SECTION_KEYS {
-            let Some(v) = kw.get(key)? else {
-                if matches!(*key, "EI" | "mass_per_length") {
-                    return Err(errors::input(py, key, "missing: a required argument"));
-                }
+        for key in beam_keys.iter().chain(section_keys) {
+            let (Some(v), true) = (kw.get(key)?, *key != "length") else {
                 continue;
             };
-            let is_number = v.extract::<f64>().is_ok() && !v.hasattr("__len__")?;
-            if is_number {
-                section.set_item(key, arrays::number(&v, key)?)?;
+            let into = if section_keys.contains(key) {
+                &section
             } else {
-                let values = arrays::vector(&v, key, x.as_ref().map(Vec::len))?;
-                let x = x.as_ref().ok_or_else(|| {
-                    errors::input(
-                        py,
-                        "x",
-                        &format!("missing: {key} is an array of values at the stations x (m)"),
-                    )
-                })?;
-                let table = PyDict::new(py);
-                table.set_item("x", x.clone())?;
-                table.set_item("value", values)?;
-                section.set_item(key, table)?;
-            }
-        }
-        if let Some(a) = kw.get("polar_inertia_about")? {
-            section.set_item(
-                "polar_inertia_about",
-                arrays::text(&a, "polar_inertia_about")?,
-            )?;
+                &beam
+            };
+            into.set_item(key, argument(py, key, &v, x.as_deref())?)?;
         }
         beam.set_item("section", section)?;
         let (spec, model) = beam_of(py, &beam)?;
         Ok(Self { spec, model })
     }
+}
+
+#[pymethods]
+impl PyBeam {
+    #[new]
+    #[pyo3(signature = (**kwargs))]
+    fn new(py: Python<'_>, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        errors::guard(py, || Self::build(py, kwargs))
+    }
 
     /// A beam from a ``[beam]`` table (a dict with the case file's keys).
     #[staticmethod]
     fn from_dict(py: Python<'_>, table: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let table = table
-            .cast::<PyDict>()
-            .map_err(|_| errors::argument_type(py, "table", "must be a dict"))?;
-        let (spec, model) = beam_of(py, table)?;
-        Ok(Self { spec, model })
+        errors::guard(py, || {
+            let table = table
+                .cast::<PyDict>()
+                .map_err(|_| errors::argument_type(py, "table", "must be a dict"))?;
+            let (spec, model) = beam_of(py, table)?;
+            Ok(Self { spec, model })
+        })
     }
 
     /// The beam as a ``[beam]`` table (a dict with the case file's keys).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        pythonize::pythonize(py, &self.spec).map_err(|e| errors::internal(py, &e.to_string()))
+        errors::guard(py, || {
+            pythonize::pythonize(py, &self.spec).map_err(|e| errors::internal(py, &e.to_string()))
+        })
     }
 
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> crate::Reduce<'py, (Bound<'py, PyAny>,)> {
-        let table = slf.get().to_dict(slf.py())?;
-        Ok((slf.get_type().getattr("from_dict")?, (table,)))
+        errors::guard(slf.py(), || {
+            let table = slf.get().to_dict(slf.py())?;
+            Ok((slf.get_type().getattr("from_dict")?, (table,)))
+        })
     }
 
     /// Span ``L`` (m).
@@ -250,59 +239,90 @@ impl PyBeam {
 /// torsion coordinates with torsion.
 #[pyclass(module = "flexwing", name = "FullModel", frozen)]
 pub struct PyFullModel {
-    pub spec: Option<BeamSpec>,
+    pub spec: BeamSpec,
     pub model: FullModel,
 }
 
 impl PyFullModel {
-    /// The model of a case's beam.
-    pub fn new(model: FullModel) -> Self {
-        Self { spec: None, model }
+    /// The model of a case's `[beam]` table `spec`: it pickles as that table, as a model built
+    /// from a `Beam` does.
+    pub fn of_case(spec: BeamSpec, model: FullModel) -> Self {
+        Self { spec, model }
     }
 }
 
-/// The shape of `q` as a dict of node arrays.
-fn shape_dict<'py>(py: Python<'py>, model: &FullModel, q: &[f64]) -> PyResult<Bound<'py, PyDict>> {
+/// The shape of `q` as a dict of node arrays; a non-finite position (a `q` beyond the model's
+/// range) is an error naming `argument`.
+fn shape_dict<'py>(
+    py: Python<'py>,
+    model: &FullModel,
+    q: &[f64],
+    argument: &str,
+) -> PyResult<Bound<'py, PyDict>> {
     let shape = model.shape(q);
     let d = PyDict::new(py);
-    d.set_item("x", out1(py, shape.x))?;
-    d.set_item("y", out1(py, shape.y))?;
-    d.set_item("twist", out1(py, shape.twist))?;
+    d.set_item("x", finite1(py, shape.x, "x", argument)?)?;
+    d.set_item("y", finite1(py, shape.y, "y", argument)?)?;
+    d.set_item("twist", finite1(py, shape.twist, "twist", argument)?)?;
     Ok(d)
 }
 
-/// The 1-based modes of `modes` (an int `r`: the first `r`; or a list).
+/// The 1-based modes of `modes` (an int `r`: the first `r`; or a list), each checked against
+/// `n_dofs` as it is read: nothing is allocated from an unchecked count.
 fn mode_list(py: Python<'_>, modes: &Bound<'_, PyAny>, n_dofs: usize) -> PyResult<Vec<usize>> {
-    let list: Vec<usize> = if modes.is_instance_of::<PyList>() || modes.hasattr("__len__")? {
-        modes
-            .try_iter()?
-            .enumerate()
-            .map(|(i, m)| arrays::count(&m?, &format!("modes[{i}]")))
-            .collect::<PyResult<_>>()?
+    let out_of_range = |field: &str, m: usize| {
+        errors::input(
+            py,
+            field,
+            &format!("mode numbers run from 1 to {n_dofs} (the model's coordinates), got {m}"),
+        )
+    };
+    let mut list: Vec<usize> = Vec::new();
+    if modes.is_instance_of::<PyList>() || modes.hasattr("__len__")? {
+        for (i, m) in modes.try_iter()?.enumerate() {
+            let field = format!("modes[{i}]");
+            let m = arrays::count(&m?, &field)?;
+            if !(1..=n_dofs).contains(&m) {
+                return Err(out_of_range(&field, m));
+            }
+            if list.contains(&m) {
+                return Err(errors::input(
+                    py,
+                    &field,
+                    &format!("mode {m} is listed twice"),
+                ));
+            }
+            list.push(m);
+        }
     } else {
         let r = arrays::count(modes, "modes")?;
-        (1..=r).collect()
-    };
+        if r > n_dofs {
+            return Err(errors::input(
+                py,
+                "modes",
+                &format!("at most {n_dofs} modes (the model's coordinates), got {r}"),
+            ));
+        }
+        list.extend(1..=r);
+    }
     if list.is_empty() {
         return Err(errors::input(py, "modes", "needs at least one mode"));
     }
-    for (i, &m) in list.iter().enumerate() {
-        if !(1..=n_dofs).contains(&m) {
-            return Err(errors::input(
-                py,
-                &format!("modes[{i}]"),
-                &format!("mode numbers run from 1 to {n_dofs} (the model's coordinates), got {m}"),
-            ));
-        }
-        if list[..i].contains(&m) {
-            return Err(errors::input(
-                py,
-                &format!("modes[{i}]"),
-                &format!("mode {m} is listed twice"),
-            ));
-        }
-    }
     Ok(list)
+}
+
+/// The mass matrix of `model` at `x`, checked finite (naming `argument`).
+fn mass_matrix<'py, M: StructuralModel>(
+    py: Python<'py>,
+    model: &M,
+    x: &[f64],
+    argument: &str,
+) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+    let n = model.n_dofs();
+    let mut m = nalgebra::DMatrix::zeros(n, n);
+    let mut ws = model.workspace();
+    model.mass_matrix_into(x, &mut ws, &mut m);
+    finite_matrix(py, &m, "mass_matrix", argument)
 }
 
 #[pymethods]
@@ -311,37 +331,31 @@ impl PyFullModel {
     fn py_new(beam: &Bound<'_, PyBeam>) -> Self {
         let b = beam.get();
         Self {
-            spec: Some(b.spec.clone()),
+            spec: b.spec.clone(),
             model: b.model.clone(),
         }
     }
 
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> crate::Reduce<'py, (Bound<'py, PyAny>,)> {
         let py = slf.py();
-        let beam = slf.get().beam(py)?;
-        Ok((slf.get_type().into_any(), (beam.into_any(),)))
+        errors::guard(py, || {
+            let beam = slf.get().beam(py)?;
+            Ok((slf.get_type().into_any(), (beam.into_any(),)))
+        })
     }
 
-    /// The beam.
+    /// The beam (for a case's model, the beam of its ``[beam]`` table).
     #[getter]
     fn beam<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBeam>> {
-        let spec = match &self.spec {
-            Some(s) => s.clone(),
-            None => {
-                return Err(errors::input(
-                    py,
-                    "beam",
-                    "this model was built by a case: use case.to_dict()['beam']",
-                ))
-            }
-        };
-        Bound::new(
-            py,
-            PyBeam {
-                spec,
-                model: self.model.clone(),
-            },
-        )
+        errors::guard(py, || {
+            Bound::new(
+                py,
+                PyBeam {
+                    spec: self.spec.clone(),
+                    model: self.model.clone(),
+                },
+            )
+        })
     }
 
     /// Number of coordinates.
@@ -362,8 +376,7 @@ impl PyFullModel {
 
     /// Stiffness matrix ``K`` (N·m/rad), ``(n_dofs, n_dofs)``.
     fn stiffness_matrix<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-        let k = errors::guard(py, || Ok(self.model.stiffness_matrix()))?;
-        Ok(out_matrix(py, &k))
+        errors::guard(py, || Ok(out_matrix(py, &self.model.stiffness_matrix())))
     }
 
     /// Mass matrix ``M(q)`` (kg·m²) at joint rotations ``q`` (rad), ``(n_dofs, n_dofs)``.
@@ -372,50 +385,45 @@ impl PyFullModel {
         py: Python<'py>,
         q: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-        let q = arrays::vector(q, "q", Some(self.model.n_dofs()))?;
-        let m = errors::guard(py, || {
-            let n = self.model.n_dofs();
-            let mut m = nalgebra::DMatrix::zeros(n, n);
-            let mut ws = self.model.workspace();
-            self.model.mass_matrix_into(&q, &mut ws, &mut m);
-            Ok(m)
-        })?;
-        Ok(out_matrix(py, &m))
+        errors::guard(py, || {
+            let q = arrays::vector(q, "q", Some(self.model.n_dofs()))?;
+            mass_matrix(py, &self.model, &q, "q")
+        })
     }
 
     /// The deformed shape at joint rotations ``q`` (rad): a dict of node arrays ``x``, ``y``
     /// (m) and ``twist`` (rad).
     fn shape<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
-        let q = arrays::vector(q, "q", Some(self.model.n_dofs()))?;
-        errors::guard(py, || shape_dict(py, &self.model, &q))
+        errors::guard(py, || {
+            let q = arrays::vector(q, "q", Some(self.model.n_dofs()))?;
+            shape_dict(py, &self.model, &q, "q")
+        })
     }
 
     /// The lowest ``count`` natural modes about the undeformed state (default
-    /// ``min(10, n_dofs)``), as a ``ModesResult``.
+    /// ``min(10, n_dofs)``), as a ``ModesResult``. Ctrl-C stops it as an analysis of a case.
     #[pyo3(signature = (count = None))]
     fn modes<'py>(
         &self,
         py: Python<'py>,
         count: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let count = count.map(|c| arrays::count(c, "count")).transpose()?;
-        let plan = ModesPlan::new(self.model.clone(), count, "count")
-            .map_err(|e| errors::library_input(py, &e))?;
-        let (outcome, rust_time_s) = errors::detached(py, || {
-            let start = std::time::Instant::now();
-            let outcome = run_modes(&plan, &mut NoProgress);
-            (outcome, start.elapsed().as_secs_f64())
-        })?;
-        let outcome = outcome.map_err(|e| errors::solve(py, &e))?;
-        let raw = crate::convert::modes::raw(py, &self.model, &outcome)?;
-        raw.set_item("rust_time_s", rust_time_s)?;
-        crate::convert::build(py, "modes", raw)
+        errors::guard(py, || {
+            let count = count.map(|c| arrays::count(c, "count")).transpose()?;
+            let plan = ModesPlan::new(self.model.clone(), count, "count")
+                .map_err(|e| errors::library_input(py, &e))?;
+            crate::run::run_detached(py, None, true, |p| {
+                crate::run::execute_plan(Plan::Modes(plan), p)
+            })
+        })
     }
 
     /// The reduced model on ``modes`` of the undeformed state: an int ``r`` (the first ``r``)
     /// or a list of 1-based mode numbers.
     fn reduced(&self, py: Python<'_>, modes: &Bound<'_, PyAny>) -> PyResult<PyReducedModel> {
-        PyReducedModel::build(py, self.spec.clone(), &self.model, modes)
+        errors::guard(py, || {
+            PyReducedModel::build(py, self.spec.clone(), &self.model, modes)
+        })
     }
 
     /// The equations of motion under ``loads`` (see ``Equations``).
@@ -426,12 +434,14 @@ impl PyFullModel {
         loads: Option<&Bound<'_, PyAny>>,
         kwargs: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<crate::equations::PyEquations> {
-        crate::equations::PyEquations::build(
-            py,
-            crate::equations::AnyModel::Full(self.model.clone()),
-            loads,
-            kwargs,
-        )
+        errors::guard(py, || {
+            crate::equations::PyEquations::build(
+                py,
+                crate::equations::AnyModel::Full(self.model.clone()),
+                loads,
+                kwargs,
+            )
+        })
     }
 
     /// A stepper of the equations of motion under ``loads`` (see ``Stepper``).
@@ -442,12 +452,14 @@ impl PyFullModel {
         loads: Option<&Bound<'_, PyAny>>,
         kwargs: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<crate::equations::PyStepper> {
-        crate::equations::PyStepper::build(
-            py,
-            crate::equations::AnyModel::Full(self.model.clone()),
-            loads,
-            kwargs,
-        )
+        errors::guard(py, || {
+            crate::equations::PyStepper::build(
+                py,
+                crate::equations::AnyModel::Full(self.model.clone()),
+                loads,
+                kwargs,
+            )
+        })
     }
 
     fn __repr__(&self) -> String {
@@ -463,7 +475,7 @@ impl PyFullModel {
 /// coordinates are modal amplitudes ``η`` with ``q = Φ η``; geometry stays non-linear.
 #[pyclass(module = "flexwing", name = "ReducedModel", frozen)]
 pub struct PyReducedModel {
-    spec: Option<BeamSpec>,
+    spec: BeamSpec,
     pub model: ReducedModel,
     modes: Vec<usize>,
 }
@@ -471,7 +483,7 @@ pub struct PyReducedModel {
 impl PyReducedModel {
     fn build(
         py: Python<'_>,
-        spec: Option<BeamSpec>,
+        spec: BeamSpec,
         full: &FullModel,
         modes: &Bound<'_, PyAny>,
     ) -> PyResult<Self> {
@@ -486,6 +498,13 @@ impl PyReducedModel {
         .map_err(|e| errors::library(py, &e))?;
         Ok(Self { spec, model, modes })
     }
+
+    fn full(&self) -> PyFullModel {
+        PyFullModel {
+            spec: self.spec.clone(),
+            model: self.model.full_model().clone(),
+        }
+    }
 }
 
 #[pymethods]
@@ -496,26 +515,24 @@ impl PyReducedModel {
         full: &Bound<'_, PyFullModel>,
         modes: &Bound<'_, PyAny>,
     ) -> PyResult<Self> {
-        let f = full.get();
-        Self::build(py, f.spec.clone(), &f.model, modes)
+        errors::guard(py, || {
+            let f = full.get();
+            Self::build(py, f.spec.clone(), &f.model, modes)
+        })
     }
 
     fn __reduce__<'py>(
         slf: &Bound<'py, Self>,
     ) -> crate::Reduce<'py, (Bound<'py, PyAny>, Vec<usize>)> {
         let py = slf.py();
-        let this = slf.get();
-        let full = Bound::new(
-            py,
-            PyFullModel {
-                spec: this.spec.clone(),
-                model: this.model.full_model().clone(),
-            },
-        )?;
-        Ok((
-            slf.get_type().into_any(),
-            (full.into_any(), this.modes.clone()),
-        ))
+        errors::guard(py, || {
+            let this = slf.get();
+            let full = Bound::new(py, this.full())?;
+            Ok((
+                slf.get_type().into_any(),
+                (full.into_any(), this.modes.clone()),
+            ))
+        })
     }
 
     /// Number of coordinates (retained modes).
@@ -531,15 +548,12 @@ impl PyReducedModel {
     /// The full model underneath.
     #[getter]
     fn full_model(&self) -> PyFullModel {
-        PyFullModel {
-            spec: self.spec.clone(),
-            model: self.model.full_model().clone(),
-        }
+        self.full()
     }
     /// The mass-normalized mode shapes ``Φ`` as columns, ``(full n_dofs, n_dofs)``.
     #[getter]
-    fn basis<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray2<f64>> {
-        out_matrix(py, self.model.basis())
+    fn basis<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+        errors::guard(py, || Ok(out_matrix(py, self.model.basis())))
     }
 
     /// Joint rotations ``q = Φ η`` (rad) of modal amplitudes ``x``.
@@ -548,9 +562,10 @@ impl PyReducedModel {
         py: Python<'py>,
         x: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
-        let x = arrays::vector(x, "x", Some(self.model.n_dofs()))?;
-        let q = errors::guard(py, || Ok(self.model.full_coordinates(&x)))?;
-        Ok(out1(py, q))
+        errors::guard(py, || {
+            let x = arrays::vector(x, "x", Some(self.model.n_dofs()))?;
+            finite1(py, self.model.full_coordinates(&x), "q", "x")
+        })
     }
 
     /// Modal amplitudes ``η = Φᵀ M(0) q`` of joint rotations ``q`` (rad).
@@ -559,15 +574,15 @@ impl PyReducedModel {
         py: Python<'py>,
         q: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
-        let q = arrays::vector(q, "q", Some(self.model.full_model().n_dofs()))?;
-        let x = errors::guard(py, || Ok(self.model.reduce_coordinates(&q)))?;
-        Ok(out1(py, x))
+        errors::guard(py, || {
+            let q = arrays::vector(q, "q", Some(self.model.full_model().n_dofs()))?;
+            finite1(py, self.model.reduce_coordinates(&q), "x", "q")
+        })
     }
 
     /// Reduced stiffness ``K_r = Φᵀ K Φ``, ``(n_dofs, n_dofs)``.
     fn stiffness_matrix<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-        let k = errors::guard(py, || Ok(self.model.stiffness_matrix()))?;
-        Ok(out_matrix(py, &k))
+        errors::guard(py, || Ok(out_matrix(py, &self.model.stiffness_matrix())))
     }
 
     /// Reduced mass matrix ``M_r(η) = Φᵀ M(Φ η) Φ`` at modal amplitudes ``x``.
@@ -576,23 +591,18 @@ impl PyReducedModel {
         py: Python<'py>,
         x: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-        let x = arrays::vector(x, "x", Some(self.model.n_dofs()))?;
-        let m = errors::guard(py, || {
-            let n = self.model.n_dofs();
-            let mut m = nalgebra::DMatrix::zeros(n, n);
-            let mut ws = self.model.workspace();
-            self.model.mass_matrix_into(&x, &mut ws, &mut m);
-            Ok(m)
-        })?;
-        Ok(out_matrix(py, &m))
+        errors::guard(py, || {
+            let x = arrays::vector(x, "x", Some(self.model.n_dofs()))?;
+            mass_matrix(py, &self.model, &x, "x")
+        })
     }
 
     /// The deformed shape at modal amplitudes ``x`` (see ``FullModel.shape``).
     fn shape<'py>(&self, py: Python<'py>, x: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
-        let x = arrays::vector(x, "x", Some(self.model.n_dofs()))?;
         errors::guard(py, || {
+            let x = arrays::vector(x, "x", Some(self.model.n_dofs()))?;
             let q = self.model.full_coordinates(&x);
-            shape_dict(py, self.model.full_model(), &q)
+            shape_dict(py, self.model.full_model(), &q, "x")
         })
     }
 
@@ -604,12 +614,14 @@ impl PyReducedModel {
         loads: Option<&Bound<'_, PyAny>>,
         kwargs: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<crate::equations::PyEquations> {
-        crate::equations::PyEquations::build(
-            py,
-            crate::equations::AnyModel::Reduced(self.model.clone()),
-            loads,
-            kwargs,
-        )
+        errors::guard(py, || {
+            crate::equations::PyEquations::build(
+                py,
+                crate::equations::AnyModel::Reduced(self.model.clone()),
+                loads,
+                kwargs,
+            )
+        })
     }
 
     /// A stepper of the equations of motion under ``loads`` (see ``Stepper``).
@@ -620,12 +632,14 @@ impl PyReducedModel {
         loads: Option<&Bound<'_, PyAny>>,
         kwargs: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<crate::equations::PyStepper> {
-        crate::equations::PyStepper::build(
-            py,
-            crate::equations::AnyModel::Reduced(self.model.clone()),
-            loads,
-            kwargs,
-        )
+        errors::guard(py, || {
+            crate::equations::PyStepper::build(
+                py,
+                crate::equations::AnyModel::Reduced(self.model.clone()),
+                loads,
+                kwargs,
+            )
+        })
     }
 
     fn __repr__(&self) -> String {

@@ -1,84 +1,47 @@
-//! Running an analysis of a case: the plan from the case crate, the run from
-//! `flexwing::analysis`, with the interpreter detached; then the outcome into its result object
-//! and, for `check=True`, the first stopped model into a `SolverError` carrying the partial
-//! result. [`Analysis`] is the one list of analyses: a new analysis is one variant, one arm in
-//! [`execute`] and one converter in `convert/`. A case with `[aero]` runs the aeroelastic
-//! static and dynamic analyses (the plans `flexwing static` and `flexwing dynamic` build for
-//! it), never the structural ones with its `[aero]` table ignored.
+//! Running an analysis of a case through the library's one dispatcher: the plan from the case
+//! crate (`Case::plan`, which picks the aeroelastic plans for a case with `[aero]`), the run from
+//! `flexwing::analysis::run` with the interpreter detached; then the outcome into its result
+//! object (`convert/`) and, for `check=True`, the first model that did not complete into a
+//! `SolverError` carrying the partial result. A new analysis of the library needs one arm in
+//! [`to_python`] and one converter in `convert/` here: its plan and run come with the library's
+//! `Plan` and the case crate's `Analysis`.
 
 use std::time::Instant;
 
-use flexwing::analysis::aero::flutter::{FlutterOutcome, FlutterPlan};
-use flexwing::analysis::aero::response::{AeroDynamicOutcome, AeroDynamicPlan};
-use flexwing::analysis::aero::statics::{AeroStaticOutcome, AeroStaticPlan};
-use flexwing::analysis::dynamics::{DynamicOutcome, DynamicPlan};
-use flexwing::analysis::modes::{ModesOutcome, ModesPlan};
-use flexwing::analysis::statics::{StaticOutcome, StaticPlan};
-use flexwing::analysis::{self, Progress, Status};
-use flexwing_case::{Case, CaseError};
+use flexwing::analysis::{self, Outcome, Plan, Progress};
+use flexwing_case::{Analysis, Case, CaseError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::convert;
 use crate::errors;
+use crate::progress::PyProgress;
 
-/// An analysis of a case.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Analysis {
-    /// Natural modes (`[modes]`).
-    Modes,
-    /// Non-linear statics (`[[loads]]`, `[static]`); static aeroelastic equilibria with
-    /// `[aero]`.
-    Static,
-    /// Non-linear dynamics (`[[loads]]`, `[dynamic]`); the aeroelastic response with `[aero]`.
-    Dynamic,
-    /// Flutter and divergence along `[aero.sweep]` (`[aero]`, `[flutter]`).
-    Flutter,
-}
-
-impl Analysis {
-    /// Every analysis, by name.
-    pub const ALL: [(&'static str, Analysis); 4] = [
-        ("modes", Analysis::Modes),
-        ("static", Analysis::Static),
-        ("dynamic", Analysis::Dynamic),
-        ("flutter", Analysis::Flutter),
-    ];
-
-    /// The analysis called `name`, or an `InputError` naming `field`.
-    pub fn parse(py: Python<'_>, name: &str, field: &str) -> PyResult<Self> {
-        Self::ALL
+/// The analysis called `name` (`"modes"`, `"static"`, `"dynamic"`, `"flutter"`), or an
+/// `InputError` naming `field`.
+pub fn parse(py: Python<'_>, name: &str, field: &str) -> PyResult<Analysis> {
+    Analysis::from_name(name).ok_or_else(|| {
+        let names: Vec<String> = Analysis::ALL
             .iter()
-            .find(|(n, _)| *n == name)
-            .map(|(_, a)| *a)
-            .ok_or_else(|| {
-                let names: Vec<String> = Self::ALL.iter().map(|(n, _)| format!("{n:?}")).collect();
-                errors::input(
-                    py,
-                    field,
-                    &format!(
-                        "unknown analysis {name:?}; expected one of {}",
-                        names.join(", ")
-                    ),
-                )
-            })
-    }
+            .map(|a| format!("{:?}", a.name()))
+            .collect();
+        errors::input(
+            py,
+            field,
+            &format!(
+                "unknown analysis {name:?}; expected one of {}",
+                names.join(", ")
+            ),
+        )
+    })
 }
 
 /// A finished analysis with its plan.
-pub enum Outcome {
-    /// Modes.
-    Modes(Box<ModesPlan>, ModesOutcome),
-    /// Statics, with the name of the swept load (for messages).
-    Static(Box<StaticPlan>, StaticOutcome, Option<String>),
-    /// Dynamics.
-    Dynamic(Box<DynamicPlan>, DynamicOutcome),
-    /// Static aeroelastic equilibria.
-    AeroStatic(Box<AeroStaticPlan>, AeroStaticOutcome),
-    /// Aeroelastic response.
-    AeroDynamic(Box<AeroDynamicPlan>, AeroDynamicOutcome),
-    /// Flutter.
-    Flutter(Box<FlutterPlan>, FlutterOutcome),
+pub struct Done {
+    /// The plan run.
+    pub plan: Plan,
+    /// What it produced.
+    pub outcome: Outcome,
 }
 
 /// Why an analysis produced no outcome.
@@ -107,49 +70,19 @@ pub fn execute(
     case: &Case,
     analysis: Analysis,
     progress: &mut dyn Progress,
-) -> Result<Outcome, Failure> {
-    let run = || -> Result<Outcome, Failure> {
-        Ok(match analysis {
-            Analysis::Modes => {
-                let plan = case.modes_plan().map_err(Failure::Case)?;
-                let outcome = analysis::modes::run(&plan, progress)
-                    .map_err(|e| Failure::Library(e.into()))?;
-                Outcome::Modes(Box::new(plan), outcome)
-            }
-            Analysis::Static if case.is_aeroelastic() => {
-                let plan = case.aero_static_plan().map_err(Failure::Case)?;
-                let outcome =
-                    analysis::aero::statics::run(&plan, progress).map_err(Failure::Library)?;
-                Outcome::AeroStatic(Box::new(plan), outcome)
-            }
-            Analysis::Dynamic if case.is_aeroelastic() => {
-                let plan = case.aero_dynamic_plan().map_err(Failure::Case)?;
-                let outcome =
-                    analysis::aero::response::run(&plan, progress).map_err(Failure::Library)?;
-                Outcome::AeroDynamic(Box::new(plan), outcome)
-            }
-            Analysis::Flutter => {
-                let plan = case.flutter_plan().map_err(Failure::Case)?;
-                let outcome =
-                    analysis::aero::flutter::run(&plan, progress).map_err(Failure::Library)?;
-                Outcome::Flutter(Box::new(plan), outcome)
-            }
-            Analysis::Static => {
-                let plan = case.static_plan().map_err(Failure::Case)?;
-                let outcome = analysis::statics::run(&plan, progress).map_err(Failure::Library)?;
-                let sweep = plan
-                    .sweep
-                    .as_ref()
-                    .and_then(|s| case.loads.get(s.load))
-                    .and_then(|l| l.name.clone());
-                Outcome::Static(Box::new(plan), outcome, sweep)
-            }
-            Analysis::Dynamic => {
-                let plan = case.dynamic_plan().map_err(Failure::Case)?;
-                let outcome = analysis::dynamics::run(&plan, progress).map_err(Failure::Library)?;
-                Outcome::Dynamic(Box::new(plan), outcome)
-            }
-        })
+) -> Result<Done, Failure> {
+    let plan = match errors::catch(|| case.plan(analysis)) {
+        Err(m) => return Err(Failure::Panic(m)),
+        Ok(plan) => plan.map_err(Failure::Case)?,
+    };
+    execute_plan(plan, progress)
+}
+
+/// Run `plan` (no Python here: call it detached), a panic caught as [`Failure::Panic`].
+pub fn execute_plan(plan: Plan, progress: &mut dyn Progress) -> Result<Done, Failure> {
+    let run = || -> Result<Done, Failure> {
+        let outcome = analysis::run(&plan, progress).map_err(Failure::Library)?;
+        Ok(Done { plan, outcome })
     };
     errors::catch(run).unwrap_or_else(|m| Err(Failure::Panic(m)))
 }
@@ -157,9 +90,9 @@ pub fn execute(
 /// The first thing that did not complete: the first model that stopped, else the first whose
 /// result is suspect.
 pub struct Incomplete<'py> {
-    /// `"stopped"` or `"suspect"` (or the name of a status the bindings do not know yet).
+    /// `"stopped"`, `"interrupted"` or `"suspect"`.
     pub word: String,
-    /// The model's label (`None`: not a model's run).
+    /// The model's label, or `"loaded modes"`.
     pub model: Option<String>,
     /// Where and why, as data.
     pub stop: Option<Bound<'py, PyDict>>,
@@ -167,77 +100,49 @@ pub struct Incomplete<'py> {
     pub message: String,
 }
 
-/// The first model of `runs` (label, status) that stopped, else the first that is not complete.
-fn first_incomplete<'py>(
-    py: Python<'py>,
-    runs: &[(String, &Status)],
-    sweep: Option<&str>,
-) -> PyResult<Option<Incomplete<'py>>> {
-    let stopped = runs.iter().find(|(_, s)| s.stop().is_some());
-    let first = stopped.or_else(|| runs.iter().find(|(_, s)| !convert::status::is_complete(s)));
-    let Some((label, status)) = first else {
+/// What of `outcome` did not complete first: the first entry that stopped, else the first that
+/// is not complete ([`Outcome::entries`]).
+fn first_incomplete<'py>(py: Python<'py>, outcome: &Outcome) -> PyResult<Option<Incomplete<'py>>> {
+    let incomplete = outcome.incomplete();
+    let first = incomplete
+        .iter()
+        .find(|e| e.status.stop().is_some())
+        .or_else(|| incomplete.first());
+    let Some(entry) = first else {
         return Ok(None);
     };
-    let (word, stop, message) = convert::status::status_fields(py, status, sweep)?;
+    let (word, stop, message) = convert::status::status_fields(py, &entry.status)?;
     Ok(Some(Incomplete {
         word,
-        model: Some(label.clone()),
+        model: Some(entry.label.clone()),
         stop,
-        message: format!("{label}: {}", message.unwrap_or_default()),
+        message: format!("{}: {}", entry.label, message.unwrap_or_default()),
     }))
 }
 
-/// The result object of `outcome`, and what did not complete first (if anything);
-/// `rust_time_s` is the wall time of [`execute`] (the Rust side of the call, plan included).
+/// The result object of `done`, and what did not complete first (if anything); `rust_time_s`
+/// is the wall time of [`execute`] (the Rust side of the call, plan included).
 pub fn to_python<'py>(
     py: Python<'py>,
-    outcome: &Outcome,
+    done: &Done,
     rust_time_s: f64,
 ) -> PyResult<(Bound<'py, PyAny>, Option<Incomplete<'py>>)> {
-    let (kind, raw, incomplete) = match outcome {
-        Outcome::Modes(plan, o) => ("modes", convert::modes::raw(py, &plan.model, o)?, None),
-        Outcome::Static(plan, o, sweep) => {
-            let raw = convert::statics::raw(py, plan, o, sweep.as_deref())?;
-            let runs: Vec<_> = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
-            let mut incomplete = first_incomplete(py, &runs, sweep.as_deref())?;
-            if incomplete.is_none() {
-                if let Some(Err(e)) = &o.loaded_modes {
-                    incomplete = Some(Incomplete {
-                        word: "stopped".into(),
-                        model: Some("loaded modes".into()),
-                        stop: Some(convert::status::solve_error_dict(py, e)?),
-                        message: format!("loaded modes: {e}"),
-                    });
-                }
-            }
-            ("static", raw, incomplete)
-        }
-        Outcome::Dynamic(plan, o) => {
-            let runs: Vec<_> = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
-            let raw = convert::dynamics::raw(py, plan, o)?;
-            ("dynamic", raw, first_incomplete(py, &runs, None)?)
-        }
-        Outcome::AeroStatic(plan, o) => {
-            let runs: Vec<_> = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
-            let raw = convert::aero_statics::raw(py, plan, o)?;
-            ("aero-static", raw, first_incomplete(py, &runs, None)?)
-        }
-        Outcome::AeroDynamic(plan, o) => {
-            let runs: Vec<_> = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
-            let raw = convert::aero_dynamics::raw(py, plan, o)?;
-            ("aero-dynamic", raw, first_incomplete(py, &runs, None)?)
-        }
-        Outcome::Flutter(plan, o) => {
-            // The equilibria stopping past the divergence speed is expected (the eigen-analysis
-            // goes on): only the eigen-analysis and the p-k check make a run incomplete, as in
-            // `flexwing flutter`.
-            let runs: Vec<_> = o.runs.iter().map(|r| (r.kind.label(), &r.status)).collect();
-            let raw = convert::flutter::raw(py, plan, o)?;
-            ("flutter", raw, first_incomplete(py, &runs, None)?)
+    use convert::*;
+    let raw = match (&done.plan, &done.outcome) {
+        (Plan::Modes(p), Outcome::Modes(o)) => modes::raw(py, &p.model, o)?,
+        (Plan::Static(p), Outcome::Static(o)) => statics::raw(py, p, o)?,
+        (Plan::Dynamic(p), Outcome::Dynamic(o)) => dynamics::raw(py, p, o)?,
+        (Plan::AeroStatic(p), Outcome::AeroStatic(o)) => aero_statics::raw(py, p, o)?,
+        (Plan::AeroDynamic(p), Outcome::AeroDynamic(o)) => aero_dynamics::raw(py, p, o)?,
+        (Plan::Flutter(p), Outcome::Flutter(o)) => flutter::raw(py, p, o)?,
+        (plan, _) => {
+            let what = format!("the outcome of a {} plan is of another kind", plan.name());
+            return Err(errors::internal(py, &what));
         }
     };
     raw.set_item("rust_time_s", rust_time_s)?;
-    Ok((convert::build(py, kind, raw)?, incomplete))
+    let incomplete = first_incomplete(py, &done.outcome)?;
+    Ok((convert::build(py, done.plan.name(), raw)?, incomplete))
 }
 
 /// The `SolverError` of an incomplete result.
@@ -255,8 +160,44 @@ pub fn incomplete_error(
     )
 }
 
-/// Run `analysis` of `case` detached from the interpreter, with an optional progress callback;
-/// with `check`, a model that stopped raises `SolverError` (carrying the partial result).
+/// Run `plan_and_run` (an analysis: no Python inside) detached from the interpreter, with the
+/// optional progress callback and signals polled ([`PyProgress`]), and build its result.
+/// `check`: a model that did not complete raises `SolverError` carrying the partial result. A
+/// callback's exception or a signal (Ctrl-C) stops the analysis at its next check: that
+/// exception is raised, with the partial result as its `result` attribute.
+pub fn run_detached<'py>(
+    py: Python<'py>,
+    progress: Option<Py<PyAny>>,
+    check: bool,
+    plan_and_run: impl FnOnce(&mut dyn Progress) -> Result<Done, Failure> + Send,
+) -> PyResult<Bound<'py, PyAny>> {
+    let _nesting = crate::progress::Nesting::enter(py)?;
+    let mut reporter = PyProgress::new(py, progress)?;
+    let (done, rust_time_s) = py.detach(|| {
+        let start = Instant::now();
+        let done = plan_and_run(&mut reporter);
+        (done, start.elapsed().as_secs_f64())
+    });
+    // The callback's or a signal handler's exception wins over the analysis' own failure (it
+    // may be why the analysis stopped); it is raised even when the analysis completed after
+    // the last check (the caller asked to stop), with the result.
+    let stopped_by = reporter.take_error();
+    let done = match done {
+        Err(f) => return Err(stopped_by.unwrap_or_else(|| f.to_py(py))),
+        Ok(done) => done,
+    };
+    let (result, incomplete) = to_python(py, &done, rust_time_s)?;
+    if let Some(e) = stopped_by {
+        errors::set_attribute(py, &e, "result", result.unbind());
+        return Err(e);
+    }
+    match incomplete {
+        Some(i) if check => Err(incomplete_error(py, &result, i)),
+        _ => Ok(result),
+    }
+}
+
+/// Run `analysis` of `case` (see [`run_detached`]).
 pub fn run_case<'py>(
     py: Python<'py>,
     case: &Case,
@@ -264,17 +205,5 @@ pub fn run_case<'py>(
     progress: Option<Py<PyAny>>,
     check: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let mut reporter = crate::progress::PyProgress::new(progress);
-    let (outcome, rust_time_s) = py.detach(|| {
-        let start = Instant::now();
-        let outcome = execute(case, analysis, &mut reporter);
-        (outcome, start.elapsed().as_secs_f64())
-    });
-    reporter.check()?;
-    let outcome = outcome.map_err(|f| f.to_py(py))?;
-    let (result, incomplete) = to_python(py, &outcome, rust_time_s)?;
-    match incomplete {
-        Some(i) if check => Err(incomplete_error(py, &result, i)),
-        _ => Ok(result),
-    }
+    run_detached(py, progress, check, |p| execute(case, analysis, p))
 }

@@ -33,7 +33,7 @@ def test_modes_match_the_cli(cli, tmp_path, name):
     assert list(result.mode) == [m["mode"] for m in modes]
     close(result.omega, [m["omega_rad_s"] for m in modes])
     close(result.frequency_hz, [m["frequency_hz"] for m in modes])
-    close(result.bending_fraction, [m["bending_energy_fraction"] for m in modes])
+    close(result.bending_energy_fraction, [m["bending_energy_fraction"] for m in modes])
     for k, m in enumerate(modes):
         close(result.x, m["shape"]["x_m"])
         close(result.dx[k], m["shape"]["dx_m"])
@@ -52,7 +52,7 @@ def test_statics_match_the_cli(cli, tmp_path, name):
     for run, model in zip(result.runs, expected["models"]):
         assert run.dofs == model["dofs"]
         assert run.modes == model["modes"]
-        assert run.status == ("complete" if model["status"] == "complete" else "stopped")
+        assert run.status == model["status"]
         points = model["points"]
         assert len(run.scale) == len(points)
         close(run.scale, [p["scale"] for p in points])
@@ -73,18 +73,6 @@ def test_statics_match_the_cli(cli, tmp_path, name):
         close(result.loaded_modes["frequency_hz"], [m["frequency_hz"] for m in modes])
 
 
-AUDIT_KEYS = [
-    ("balanced", "balanced"),
-    ("max_error", "max_error"),
-    ("max_error_time", "max_error_t_s"),
-    ("limit", "limit"),
-    ("exceeded_time", "exceeded_t_s"),
-    ("runaway_limit", "runaway_limit"),
-    ("runaway_time", "runaway_t_s"),
-    ("reference_energy", "reference_energy_J"),
-]
-
-
 def suspect_sine(tmp_path):
     """Case (b) with an energy tolerance far below what rtol = 1e-6 keeps (measured balance
     errors 2e-6 to 2e-5): every model runs to the end and is suspect."""
@@ -103,8 +91,7 @@ def test_dynamics_match_the_cli(cli, tmp_path, name):
     out = tmp_path / "out"
     expected = run_cli(cli, "dynamic", path, out)
     result = flexwing.Case.load(path).dynamics(check=False)
-    statuses = {"complete": "complete", "incomplete": "stopped", "suspect": "suspect"}
-    assert result.status == statuses[expected["status"]]
+    assert result.status == expected["status"]
     assert result.end_time == expected["end_time_s"]
     assert [r.label for r in result.runs] == [m["label"] for m in expected["models"]]
     for run, model in zip(result.runs, expected["models"]):
@@ -122,21 +109,18 @@ def test_dynamics_match_the_cli(cli, tmp_path, name):
         close(run.work, model["energy"]["work_J"])
         close(run.dissipated, model["energy"]["dissipated_J"])
         close(run.balance_error, model["energy"]["balance_error"])
-        assert run.status == statuses[model["status"]]
+        assert run.status == model["status"]
         assert run.message == model["error"]
-        audit = model["energy_audit"]
-        assert (run.energy_audit is None) == (audit is None)
-        for ours, theirs in AUDIT_KEYS if audit is not None else []:
-            if audit[theirs] is None or isinstance(audit[theirs], bool):
-                assert run.energy_audit[ours] == audit[theirs], ours
-            else:
-                close(run.energy_audit[ours], audit[theirs])
+        # The energy audit is the library's data in both, under the same names.
+        assert run.energy_audit == model["energy_audit"]
+        if model["max_tip_difference_m"] is None:
+            assert run.comparison is None
+        else:
+            close(run.comparison["max_tip_difference"], model["max_tip_difference_m"])
     if name == "suspect":
         assert {r.status for r in result.runs} == {"suspect"}
         assert all(r.stop["reason"] == "energy-balance" for r in result.runs)
         assert all(r.energy_audit["exceeded_time"] is not None for r in result.runs)
-        if model["max_tip_difference_m"] is not None:
-            close(run.comparison["max_tip_difference"], model["max_tip_difference_m"])
 
 
 def test_case_b_reduced_models_are_close_to_the_full_model(sine_case):

@@ -78,6 +78,21 @@ def test_the_indices_follow_the_input_order_across_chunks(client):
     assert tips == sorted(tips)
 
 
+def test_the_sweep_is_a_data_frame_indexed_by_the_swept_parameters(client):
+    forces, stiffnesses = [50.0, 100.0, 150.0], [40.0, 60.0]
+    frame = sweep_dask.sweep(client, forces, stiffnesses, chunk=2)
+    assert list(frame.index.names) == ["F", "EI"] and list(frame.index) == [(f, e) for f in forces for e in stiffnesses]
+    assert list(frame.columns) == ["status", "message", "tip_x", "tip_y"]
+    serial = flexwing.solve_many(sweep_dask.sweep_cases(forces, stiffnesses), "static")
+    for (f, ei), item in zip(frame.index, serial):
+        assert frame.loc[(f, ei), "tip_y"] == item.result.full.tip_y[-1]  # bit for bit
+    # The same table from whole results, through Batch.to_pandas.
+    whole = sweep_dask.sweep(client, forces, stiffnesses, chunk=2, full_results=True)
+    assert whole.index.equals(frame.index)
+    assert whole["full.tip_y"].tolist() == frame["tip_y"].tolist()
+    assert whole.attrs["units"]["full.tip_y"] == "m"
+
+
 def test_the_example_script_runs(tmp_path):
     """examples/python/sweep_dask.py end to end at a small size (its own LocalCluster)."""
     import subprocess

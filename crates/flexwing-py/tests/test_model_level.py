@@ -108,7 +108,7 @@ def test_a_stepper_failure_says_when_and_keeps_the_state():
     before = stepper.y.copy()
     with pytest.raises(flexwing.SolverError) as info:
         stepper.step(0.5, [1.0])
-    assert 0.0 <= info.value.stop["time"] < 0.5
+    assert 0.0 <= info.value.stop["error"]["time"] < 0.5
     assert stepper.t == 0.0 and np.array_equal(stepper.y, before)
 
 
@@ -118,7 +118,7 @@ def test_rotary_inertia_in_bending():
     checked against that closed form (round-off bound 1e-12 relative). The section's rotary
     inertia ``rotary_inertia = m r^2`` (r = 0.05 m) makes the chain a Rayleigh beam: its first five
     frequencies at n = 256 against the reference of crates/flexwing/tests/data/rayleigh_beam
-    (exact frequency equation). Measured (Rust, tests/rotary_inertia.rs): at most 1.1e-5 relative,
+    (exact frequency equation). Measured (Rust, tests/suite/rotary_inertia.rs): at most 1.1e-5 relative,
     falling as 1/n^2; bound 2e-5."""
     n, m, length = 8, 0.2, 1.0
     point = flexwing.FullModel(flexwing.Beam(length=length, elements=n, EI=50.0, mass_per_length=m))

@@ -9,7 +9,7 @@
 //!   point continued from the previous one (the paper's Figure 4);
 //! * `tip 750 N`: dead vertical tip force 750 N (α = 15) in one call from rest: load control
 //!   follows the path in steps (Newton's first step from rest is refused);
-//! * `arc-length S-curve`: the compressed beam of `tests/statics_arclength.rs` (dead tip force
+//! * `arc-length S-curve`: the compressed beam of `tests/suite/statics_arclength.rs` (dead tip force
 //!   1.5 × Euler and a tip moment M = −2 → 30 N·m, through two limit points), arc-length
 //!   continuation with the default options from the equilibrium at M = −2 N·m.
 //!

@@ -103,7 +103,7 @@ fn main() {
         println!("| {n} | {} |", e.join(" | "));
     }
 
-    // Large n: the lowest ten modes by Lanczos (tests/modes_large_n.rs).
+    // Large n: the lowest ten modes by Lanczos (tests/suite/modes_large_n.rs).
     let bl10 = euler_bernoulli_roots(10);
     let eb: Vec<f64> = bl10
         .iter()

@@ -7,6 +7,7 @@ use thiserror::Error;
 
 /// Invalid input: a field of the beam, a load or an option has a value the model cannot use.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[error("{field}: {reason}")]
 pub struct InputError {
     /// Dotted path of the offending field, e.g. `beam.section.EI`.
@@ -46,8 +47,14 @@ fn seconds(t: &f64) -> String {
 }
 
 /// What failed in a static step (data of [`SolveError::StaticDiverged`] and
-/// [`SolveError::ArcLengthStalled`]).
+/// [`SolveError::ArcLengthStalled`]). Serialized as `cause` (`"newton"`, `"too-far"`) beside the
+/// error's other fields.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize),
+    serde(tag = "cause", rename_all = "kebab-case")
+)]
 pub enum StaticFailure {
     /// Newton's method did not converge (or the residual became non-finite).
     Newton,
@@ -74,8 +81,14 @@ fn divergence_detail(cause: &StaticFailure, iterations: usize, residual: f64) ->
     }
 }
 
-/// Failure of a numerical algorithm.
+/// Failure of a numerical algorithm. Serialized (feature `serde`) with its `kind`
+/// (`"static-diverged"`, `"too-many-steps"`, …) beside its values.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize),
+    serde(tag = "kind", rename_all = "kebab-case")
+)]
 #[non_exhaustive]
 pub enum SolveError {
     /// The mass matrix is not positive definite (a massless degree of freedom).
@@ -98,6 +111,7 @@ pub enum SolveError {
         /// `‖K x − Q(x)‖∞` at the end of the last failed attempt (NaN if it blew up).
         residual_norm: f64,
         /// What failed.
+        #[cfg_attr(feature = "serde", serde(flatten))]
         cause: StaticFailure,
     },
     /// Load control reached a critical point of the equilibrium path (buckling or a limit
@@ -132,6 +146,7 @@ pub enum SolveError {
         /// `‖K x − Q(x)‖∞` at the end of the last attempt.
         residual_norm: f64,
         /// What failed.
+        #[cfg_attr(feature = "serde", serde(flatten))]
         cause: StaticFailure,
     },
     /// Arc-length continuation used up its budget of points before the target load.

@@ -5,43 +5,18 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use plotters::coord::Shift;
-use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
-use super::{tick_format, titled, write_figure, DrawResult, Figure, COLOURS, FONT};
+use super::{
+    finite_points, legend, lines, mesh, titled, write_figure, DrawResult, Figure, COLOURS,
+};
 
 /// Height of one panel (px).
 const PANEL_HEIGHT: u32 = 380;
 /// Height of one legend entry (px), for the headroom left above the curves.
 const LEGEND_ROW: f64 = 26.0;
 
-/// What the figure shows.
-pub struct HistoryPlot {
-    /// Figure title.
-    pub title: String,
-    /// Time axis range (s).
-    pub end_time: f64,
-    /// Whether to draw the twist panel.
-    pub has_torsion: bool,
-    /// One entry per model.
-    pub series: Vec<HistorySeries>,
-}
-
-/// The tip history of one model.
-pub struct HistorySeries {
-    /// Legend text.
-    pub label: String,
-    /// Whether the curves are dashed.
-    pub dashed: bool,
-    /// Output times (s).
-    pub t: Vec<f64>,
-    /// Tip x (m).
-    pub x: Vec<f64>,
-    /// Tip y (m).
-    pub y: Vec<f64>,
-    /// Tip twist (rad).
-    pub twist: Vec<f64>,
-}
+pub use flexwing_paper::figure::{HistoryFigure as HistoryPlot, TipSeries as HistorySeries};
 
 /// Write `dynamic_tip.svg` and `dynamic_tip.png` into `dir`; returns the paths written.
 pub fn write_tip_history(dir: &Path, plot: &HistoryPlot) -> Result<Vec<PathBuf>> {
@@ -53,24 +28,23 @@ pub fn write_history(dir: &Path, stem: &str, plot: &HistoryPlot) -> Result<Vec<P
     write_figure(dir, stem, plot)
 }
 
-impl HistoryPlot {
-    fn panels(&self) -> u32 {
-        if self.has_torsion {
-            3
-        } else {
-            2
-        }
+/// Number of panels: tip y, tip x, and the twist with torsion.
+fn panels(plot: &HistoryPlot) -> u32 {
+    if plot.has_torsion {
+        3
+    } else {
+        2
     }
 }
 
 impl Figure for HistoryPlot {
     fn size(&self) -> (u32, u32) {
-        (1200, 60 + self.panels() * PANEL_HEIGHT)
+        (1200, 60 + panels(self) * PANEL_HEIGHT)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
         let body = titled(root, &self.title)?;
-        let panels = body.split_evenly((self.panels() as usize, 1));
+        let panels = body.split_evenly((panels(self) as usize, 1));
         panel(&panels[0], self, "tip y (m)", |s| &s.y, true)?;
         panel(&panels[1], self, "tip x (m)", |s| &s.x, false)?;
         if self.has_torsion {
@@ -85,70 +59,30 @@ fn panel<DB: DrawingBackend>(
     plot: &HistoryPlot,
     y_label: &str,
     values: impl Fn(&HistorySeries) -> &Vec<f64>,
-    legend: bool,
+    legend_entries: bool,
 ) -> DrawResult<DB> {
-    let rows = if legend { plot.series.len() } else { 0 };
+    let rows = if legend_entries { plot.series.len() } else { 0 };
     let (lo, hi) = y_range(
         plot.series.iter().flat_map(|s| values(s).iter().copied()),
         rows,
         area.dim_in_pixel().1,
     );
     let t_end = plot.end_time;
-    let x_format = tick_format(t_end);
-    let y_format = tick_format(hi - lo);
     let mut chart = ChartBuilder::on(area)
         .margin(15)
         .x_label_area_size(50)
         .y_label_area_size(95)
         .build_cartesian_2d(0.0..t_end, lo..hi)?;
-    chart
-        .configure_mesh()
-        .x_desc("t (s)")
-        .y_desc(y_label)
-        .x_label_formatter(&x_format)
-        .y_label_formatter(&y_format)
-        .label_style((FONT, 18))
-        .axis_desc_style((FONT, 20))
-        .light_line_style(RGBColor(240, 240, 240))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .draw()?;
+    mesh(&mut chart, ("t (s)", y_label), (t_end, hi - lo), (240, 215))?;
     for (k, s) in plot.series.iter().enumerate() {
         let colour = COLOURS[k % COLOURS.len()];
         let style = colour.stroke_width(if s.dashed { 2 } else { 3 });
-        let points: Vec<(f64, f64)> =
-            s.t.iter()
-                .copied()
-                .zip(values(s).iter().copied())
-                .filter(|(t, v)| t.is_finite() && v.is_finite())
-                .collect();
-        let label = s.label.clone();
-        if s.dashed {
-            let annotation =
-                chart.draw_series(std::iter::once(DashedPathElement::new(points, 9, 6, style)))?;
-            if legend {
-                annotation.label(label).legend(move |(x, y)| {
-                    DashedPathElement::new(vec![(x, y), (x + 30, y)], 9, 6, style)
-                });
-            }
-        } else {
-            let annotation = chart.draw_series(LineSeries::new(points, style))?;
-            if legend {
-                annotation
-                    .label(label)
-                    .legend(move |(x, y)| PathElement::new([(x, y), (x + 30, y)], style));
-            }
-        }
+        let points = finite_points(s.t.iter().copied().zip(values(s).iter().copied()));
+        let label = legend_entries.then(|| s.label.clone());
+        lines(&mut chart, vec![points], style, s.dashed, label)?;
     }
-    if legend {
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .legend_area_size(42)
-            .margin(10)
-            .label_font((FONT, 17))
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK.mix(0.6))
-            .draw()?;
+    if legend_entries {
+        legend(&mut chart, SeriesLabelPosition::UpperRight, 10, 17)?;
     }
     Ok(())
 }

@@ -5,43 +5,16 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use plotters::coord::Shift;
-use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
-use super::{tick_format, titled, write_figure, DrawResult, Figure, COLOURS, FONT};
+use super::{
+    finite_points, legend, lines, mesh, titled, write_figure, DrawResult, Figure, COLOURS,
+};
 
 /// Height of one panel (px).
 const PANEL_HEIGHT: u32 = 380;
 
-/// Stacked panels sharing a title.
-pub struct LinePlot {
-    /// Figure title.
-    pub title: String,
-    /// Panels, top to bottom.
-    pub panels: Vec<Panel>,
-}
-
-/// One panel.
-pub struct Panel {
-    /// Horizontal axis label.
-    pub x_label: String,
-    /// Vertical axis label.
-    pub y_label: String,
-    /// The series, drawn in order.
-    pub series: Vec<Series>,
-}
-
-/// One line.
-pub struct Series {
-    /// Legend text.
-    pub label: String,
-    /// Dashed or solid.
-    pub dashed: bool,
-    /// Index into the line colours; `None`: the series' position in its panel.
-    pub colour: Option<usize>,
-    /// Points; non-finite ones are skipped.
-    pub points: Vec<(f64, f64)>,
-}
+pub use flexwing_paper::figure::{LinesFigure as LinePlot, Panel, Series};
 
 /// Write `<stem>.svg` and `<stem>.png` into `dir`; returns the paths written.
 pub fn write_lines(dir: &Path, stem: &str, plot: &LinePlot) -> Result<Vec<PathBuf>> {
@@ -85,60 +58,26 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) 
     // Headroom above the data for the legend.
     let rows = panel.series.len() as f64;
     let top = y1 + (y1 - y0) * (0.12 + 0.08 * rows);
-    let x_format = tick_format(x1 - x0);
-    let y_format = tick_format(top - y0);
     let mut chart = ChartBuilder::on(area)
         .margin(15)
         .x_label_area_size(50)
         .y_label_area_size(95)
         .build_cartesian_2d(x0..x1, y0..top)?;
-    chart
-        .configure_mesh()
-        .x_desc(panel.x_label.as_str())
-        .y_desc(panel.y_label.as_str())
-        .x_label_formatter(&x_format)
-        .y_label_formatter(&y_format)
-        .label_style((FONT, 18))
-        .axis_desc_style((FONT, 20))
-        .light_line_style(RGBColor(240, 240, 240))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .draw()?;
+    let axes = (panel.x_label.as_str(), panel.y_label.as_str());
+    mesh(&mut chart, axes, (x1 - x0, top - y0), (240, 215))?;
     for (k, s) in panel.series.iter().enumerate() {
-        let style = COLOURS[s.colour.unwrap_or(k) % COLOURS.len()].stroke_width(if s.dashed {
-            2
-        } else {
-            3
-        });
-        let pts: Vec<(f64, f64)> = s
-            .points
-            .iter()
-            .copied()
-            .filter(|(x, y)| x.is_finite() && y.is_finite())
-            .collect();
-        let label = s.label.clone();
-        if s.dashed {
-            chart
-                .draw_series(std::iter::once(DashedPathElement::new(pts, 9, 6, style)))?
-                .label(label)
-                .legend(move |(x, y)| {
-                    DashedPathElement::new(vec![(x, y), (x + 30, y)], 9, 6, style)
-                });
-        } else {
-            chart
-                .draw_series(LineSeries::new(pts, style))?
-                .label(label)
-                .legend(move |(x, y)| PathElement::new([(x, y), (x + 30, y)], style));
-        }
+        let colour = COLOURS[s.colour.unwrap_or(k) % COLOURS.len()];
+        let style = colour.stroke_width(if s.dashed { 2 } else { 3 });
+        let points = finite_points(s.points.iter().copied());
+        lines(
+            &mut chart,
+            vec![points],
+            style,
+            s.dashed,
+            Some(s.label.clone()),
+        )?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .legend_area_size(42)
-        .margin(10)
-        .label_font((FONT, 17))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK.mix(0.6))
-        .draw()?;
+    legend(&mut chart, SeriesLabelPosition::UpperRight, 10, 17)?;
     Ok(())
 }
 

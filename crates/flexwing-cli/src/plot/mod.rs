@@ -20,7 +20,9 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use anyhow::{anyhow, Result};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
 
@@ -118,6 +120,89 @@ fn tick_format(range: f64) -> impl Fn(&f64) -> String {
         let v = if v.abs() < 1e-9 * range { 0.0 } else { *v };
         format!("{v:.decimals$}")
     }
+}
+
+/// A chart of `f64` against `f64`.
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// The grid, the tick labels (for axes spanning `spans`) and the axis names of `chart`, the
+/// grid lines in the greys `(light, bold)`.
+fn mesh<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    (x_desc, y_desc): (&str, &str),
+    spans: (f64, f64),
+    (light, bold): (u8, u8),
+) -> DrawResult<DB> {
+    let (x_format, y_format) = (tick_format(spans.0), tick_format(spans.1));
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_label_formatter(&x_format)
+        .y_label_formatter(&y_format)
+        .label_style((FONT, 18))
+        .axis_desc_style((FONT, 20))
+        .light_line_style(RGBColor(light, light, light))
+        .bold_line_style(RGBColor(bold, bold, bold))
+        .draw()
+}
+
+/// Draw the polylines `lines` in `style`, dashed or solid, with a legend entry `label` (none
+/// when `None` or empty).
+fn lines<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    lines: Vec<Vec<(f64, f64)>>,
+    style: ShapeStyle,
+    dashed: bool,
+    label: Option<String>,
+) -> DrawResult<DB> {
+    let label = label.filter(|l| !l.is_empty());
+    if dashed {
+        let drawn = chart.draw_series(
+            lines
+                .into_iter()
+                .map(|l| DashedPathElement::new(l, 9, 6, style)),
+        )?;
+        if let Some(label) = label {
+            drawn.label(label).legend(move |(x, y)| {
+                DashedPathElement::new(vec![(x, y), (x + 30, y)], 9, 6, style)
+            });
+        }
+    } else {
+        let drawn = chart.draw_series(lines.into_iter().map(|l| PathElement::new(l, style)))?;
+        if let Some(label) = label {
+            drawn
+                .label(label)
+                .legend(move |(x, y)| PathElement::new([(x, y), (x + 30, y)], style));
+        }
+    }
+    Ok(())
+}
+
+/// The legend box of `chart` at `position`, with `margin` and labels of `size` px.
+fn legend<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    position: SeriesLabelPosition,
+    margin: u32,
+    size: u32,
+) -> DrawResult<DB> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .legend_area_size(42)
+        .margin(margin)
+        .label_font((FONT, size))
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK.mix(0.6))
+        .draw()
+}
+
+/// The finite points of `points`.
+fn finite_points(points: impl IntoIterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
+    points
+        .into_iter()
+        .filter(|(x, y)| x.is_finite() && y.is_finite())
+        .collect()
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@ use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{tick_format, titled, write_figure, DrawResult, Figure, COLOURS, FONT};
+use super::{mesh, titled, write_figure, DrawResult, Figure, COLOURS, FONT};
 use crate::output;
 use flexwing::analysis::modes::ModeResult;
 
@@ -72,24 +72,17 @@ fn panel<DB: DrawingBackend>(
     values: impl Fn(&ModeResult) -> &Vec<f64>,
 ) -> DrawResult<DB> {
     let (lo, hi) = y_range(modes.iter().flat_map(|m| values(m).iter().copied()));
-    let x_format = tick_format(length);
-    let y_format = tick_format(hi - lo);
     let mut chart = ChartBuilder::on(area)
         .margin(20)
         .x_label_area_size(55)
         .y_label_area_size(90)
         .build_cartesian_2d(0.0..length, lo..hi)?;
-    chart
-        .configure_mesh()
-        .x_desc("x (m)")
-        .y_desc(y_label)
-        .x_label_formatter(&x_format)
-        .y_label_formatter(&y_format)
-        .label_style((FONT, 18))
-        .axis_desc_style((FONT, 20))
-        .light_line_style(RGBColor(235, 235, 235))
-        .bold_line_style(RGBColor(205, 205, 205))
-        .draw()?;
+    mesh(
+        &mut chart,
+        ("x (m)", y_label),
+        (length, hi - lo),
+        (235, 205),
+    )?;
     // The zero line, for reading signs.
     chart.draw_series(LineSeries::new(
         [(0.0, 0.0), (length, 0.0)],

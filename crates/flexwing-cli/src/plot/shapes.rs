@@ -6,10 +6,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use plotters::coord::Shift;
-use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
-use super::{tick_format, titled, write_figure, DrawResult, Figure, COLOURS, FONT};
+use super::{legend, lines, mesh, titled, write_figure, DrawResult, Figure, COLOURS};
 
 /// Canvas width (px).
 const WIDTH: u32 = 1200;
@@ -21,27 +20,7 @@ const TITLE_AREA: u32 = 45;
 /// Height of one legend entry (px).
 const LEGEND_ROW: f64 = 28.0;
 
-/// What the figure shows.
-pub struct ShapePlot {
-    /// Figure title.
-    pub title: String,
-    /// Span (m): the undeformed beam is drawn from 0 to `length` on `y = 0`.
-    pub length: f64,
-    /// The models (or snapshots), each drawn solid or dashed as it says.
-    pub models: Vec<ModelShapes>,
-    /// Colour the entries along a dark-to-light gradient (in order) instead of the line colours.
-    pub gradient: bool,
-}
-
-/// The deformed shapes of one model.
-pub struct ModelShapes {
-    /// Legend text; empty for no legend entry.
-    pub label: String,
-    /// Whether the curves are dashed.
-    pub dashed: bool,
-    /// One polyline of node positions `(x, y)` (m) per converged sweep point.
-    pub shapes: Vec<Vec<(f64, f64)>>,
-}
+pub use flexwing_paper::figure::{ModelShapes, ShapesFigure as ShapePlot};
 
 /// Write `<stem>.svg` and `<stem>.png` into `dir`; returns the paths written.
 pub fn write_shapes(dir: &Path, stem: &str, plot: &ShapePlot) -> Result<Vec<PathBuf>> {
@@ -55,7 +34,14 @@ struct Frame {
     y: (f64, f64),
 }
 
-impl ShapePlot {
+/// The geometry of a shape plot.
+trait Layout {
+    fn bounds(&self) -> Frame;
+    fn legend_px(&self) -> f64;
+    fn frame(&self, size: (u32, u32)) -> Frame;
+}
+
+impl Layout for ShapePlot {
     /// Bounding box of the data and the undeformed beam, with a 4 % margin.
     fn bounds(&self) -> Frame {
         let mut x = (0.0_f64, self.length);
@@ -126,19 +112,8 @@ impl Figure for ShapePlot {
             .x_label_area_size(X_LABEL_AREA)
             .y_label_area_size(Y_LABEL_AREA)
             .build_cartesian_2d(frame.x.0..frame.x.1, frame.y.0..frame.y.1)?;
-        let x_format = tick_format(frame.x.1 - frame.x.0);
-        let y_format = tick_format(frame.y.1 - frame.y.0);
-        chart
-            .configure_mesh()
-            .x_desc("x (m)")
-            .y_desc("y (m)")
-            .x_label_formatter(&x_format)
-            .y_label_formatter(&y_format)
-            .label_style((FONT, 18))
-            .axis_desc_style((FONT, 20))
-            .light_line_style(RGBColor(240, 240, 240))
-            .bold_line_style(RGBColor(215, 215, 215))
-            .draw()?;
+        let spans = (frame.x.1 - frame.x.0, frame.y.1 - frame.y.0);
+        mesh(&mut chart, ("x (m)", "y (m)"), spans, (240, 215))?;
 
         let grey = RGBColor(150, 150, 150);
         chart
@@ -165,43 +140,10 @@ impl Figure for ShapePlot {
                     .filter_map(|s| s.last())
                     .map(|&p| Circle::new(p, 3, colour.filled())),
             )?;
-            let annotation = if model.dashed {
-                chart.draw_series(
-                    model
-                        .shapes
-                        .iter()
-                        .map(|s| DashedPathElement::new(s.clone(), 9, 6, style)),
-                )?
-            } else {
-                chart.draw_series(
-                    model
-                        .shapes
-                        .iter()
-                        .map(|s| PathElement::new(s.clone(), style)),
-                )?
-            };
-            if label.is_empty() {
-                continue;
-            }
-            if model.dashed {
-                annotation.label(label).legend(move |(x, y)| {
-                    DashedPathElement::new(vec![(x, y), (x + 30, y)], 9, 6, style)
-                });
-            } else {
-                annotation
-                    .label(label)
-                    .legend(move |(x, y)| PathElement::new([(x, y), (x + 30, y)], style));
-            }
+            let shapes = model.shapes.clone();
+            lines(&mut chart, shapes, style, model.dashed, Some(label))?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .legend_area_size(42)
-            .margin(12)
-            .label_font((FONT, 18))
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK.mix(0.6))
-            .draw()?;
+        legend(&mut chart, SeriesLabelPosition::UpperLeft, 12, 18)?;
         root.present()
     }
 }

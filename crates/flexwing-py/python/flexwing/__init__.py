@@ -22,12 +22,18 @@ equilibria and the gust response.
 The batch level: ``flexwing.solve_many(cases, "static")`` returns each case's status, result
 and error as data (the unit of work of a Dask sweep, see ``examples/python/sweep_dask.py``).
 
+Every result converts with ``to_pandas()`` and ``to_xarray()`` (and a batch with
+``Batch.to_pandas(index=…)``), draws with ``plot()`` and shows as a table in a notebook; a tqdm
+bar is ``progress=flexwing.tqdm_progress()``. pandas, xarray, matplotlib and tqdm are optional
+extras (``pip install "flexwing[pandas,xarray,plot,tqdm]"``).
+
 The model level: ``Beam``, ``FullModel``, ``ReducedModel``; ``model.equations(loads)`` for
 the right-hand side, Jacobian and energies at a state; ``model.stepper(loads)`` to advance a
 run one interval at a time with the loads set between calls.
 
 Errors are ``FlexwingError`` and its subclasses (``InputError``, ``CaseFileError``,
-``ArgumentTypeError``, ``SolverError``, ``InternalError``). Units are SI. The API reference is
+``ArgumentTypeError``, ``SolverError``, ``ReentrancyError``, ``InternalError``). Units are
+SI. The API reference is
 ``docs/python.md``.
 """
 
@@ -37,6 +43,7 @@ from ._errors import (
     FlexwingError,
     InputError,
     InternalError,
+    ReentrancyError,
     SolverError,
 )
 from ._native import (
@@ -58,7 +65,9 @@ from ._aero_results import (
     FlutterRun,
     Stability,
 )
+from ._progress import tqdm_progress
 from ._results import (
+    Batch,
     BatchItem,
     DynamicResult,
     DynamicRun,
@@ -89,18 +98,27 @@ __all__ = [
     "AeroDynamicRun",
     "AeroDynamicResult",
     "BatchItem",
+    "Batch",
+    "tqdm_progress",
     "FlexwingError",
     "InputError",
     "CaseFileError",
     "ArgumentTypeError",
     "SolverError",
+    "ReentrancyError",
     "InternalError",
     "__version__",
 ]
 
 
-def solve(case, analysis="static"):
+def solve(case, analysis="static", index=None):
     """Solve one case as ``solve_many`` does: a :class:`BatchItem` with its status, result and
     error as data (never raises for the case's own failure). The function a Dask
-    ``client.map`` maps over cases."""
-    return solve_many([case], analysis)[0]
+    ``client.map`` maps over cases: ``client.map(flexwing.solve, cases, ["static"] * n,
+    range(n))`` numbers them. ``index``: the item's ``index`` (the case's position in the
+    caller's sweep), ``None`` if not given."""
+    if index is None:
+        item = solve_many([case], analysis)[0]
+        item.index = None
+        return item
+    return solve_many([case], analysis, start=index)[0]

@@ -1,7 +1,8 @@
 """The results of the aeroelastic analyses (docs/aeroelastic-model.md): static aeroelastic
 equilibria and divergence (``Case.statics()`` on a case with ``[aero]``), flutter
 (``Case.flutter()``) and the aeroelastic response (``Case.dynamics()`` with ``[aero]``). Plain
-objects of NumPy arrays, as those of ``_results.py``: they pickle, print and convert to dicts.
+objects of NumPy arrays on the base classes of ``_base.py``: they pickle, print and convert to
+dicts.
 
 The numbers are those ``flexwing static``, ``flexwing flutter`` and ``flexwing dynamic`` print
 and write for the same case file (the same plans and runs of ``flexwing::analysis::aero``).
@@ -16,7 +17,7 @@ from typing import Any, Dict, List, Optional
 
 import numpy as np
 
-from ._results import _Result, _summary
+from ._base import _Result, _Run, _Runs, _summary
 
 __all__ = [
     "AeroStaticRun",
@@ -29,29 +30,8 @@ __all__ = [
 ]
 
 
-class _Runs:
-    """What the results with one run per model share (``runs`` and ``status`` fields)."""
-
-    @property
-    def complete(self) -> bool:
-        """Whether every model completed."""
-        return self.status == "complete"
-
-    def run(self, label: str):
-        """The run of the model ``label`` (``"full"``, ``"reduced-r4"``, …)."""
-        for r in self.runs:
-            if r.label == label:
-                return r
-        raise KeyError(f"no model {label!r}; the runs are {[r.label for r in self.runs]}")
-
-    @property
-    def full(self):
-        """The full model's run, if it was analysed."""
-        return next((r for r in self.runs if r.kind == "full"), None)
-
-
 @dataclass(eq=False, repr=False)
-class AeroStaticRun(_Result):
+class AeroStaticRun(_Run):
     """The static aeroelastic equilibria of one model (steady strip theory) at the speeds of the
     analysis, up to where the sweep stopped, and the divergence speed where it found one.
 
@@ -92,6 +72,14 @@ class AeroStaticRun(_Result):
         stats: the static solver's counters per point, each ``(p,)`` (as ``StaticRun.stats``).
     """
 
+    _axis = "speed"
+    _coord = "speed"
+    _columns = (
+        "speed", "dynamic_pressure", "tip_x", "tip_y", "tip_twist", "lift", "root_bending_moment",
+        "divergence_pressure", "tip_difference",
+    )
+    _grids = {"x": "node", "y": "node", "twist": "node", "q": "dof"}
+
     label: str
     kind: str
     modes: Optional[List[int]]
@@ -120,17 +108,12 @@ class AeroStaticRun(_Result):
     stats: Dict[str, np.ndarray]
     extra: Dict[str, Any] = field(default_factory=dict)
 
-    @property
-    def complete(self) -> bool:
-        """Whether every speed was reached."""
-        return self.status == "complete"
-
     def __repr__(self) -> str:
         return _summary(self, ["label", "status", "divergence_speed"]) + f" [{len(self.speed)} speeds]"
 
 
 @dataclass(eq=False, repr=False)
-class AeroStaticResult(_Runs, _Result):
+class AeroStaticResult(_Runs):
     """What a static aeroelastic analysis found (``Case.statics()`` on a case with ``[aero]``).
 
     Attributes:
@@ -145,6 +128,9 @@ class AeroStaticResult(_Runs, _Result):
         rust_time_s: wall time of the analysis on the Rust side (s).
     """
 
+    _kind = "aero-static"
+    _nested = {"runs": AeroStaticRun}
+
     runs: List[AeroStaticRun]
     speeds: np.ndarray
     root_angle: float
@@ -153,9 +139,6 @@ class AeroStaticResult(_Runs, _Result):
     status: str
     rust_time_s: float
     extra: Dict[str, Any] = field(default_factory=dict)
-
-    def __repr__(self) -> str:
-        return f"AeroStaticResult(status={self.status!r}, runs={self.runs!r})"
 
 
 @dataclass(eq=False, repr=False)
@@ -211,7 +194,7 @@ class Stability(_Result):
 
 
 @dataclass(eq=False, repr=False)
-class FlutterRun(_Result):
+class FlutterRun(_Run):
     """The flutter analysis of one model: its static equilibria along the speeds, its
     eigen-analysis and, if asked (``[flutter] pk``), the p-k check.
 
@@ -232,7 +215,16 @@ class FlutterRun(_Result):
         eigenvalues: the model's own eigen-analysis, a :class:`Stability`.
         pk: the p-k check with Theodorsen's C(k), a :class:`Stability`, or ``None``.
         equilibria: the static equilibria along the speeds, an :class:`AeroStaticRun`.
+        notes: what the numbers mean that the status does not show, as the CLI's ``note:``
+            lines: dicts with ``kind`` (``"equilibria-stopped"`` with the ``stop``;
+            ``"unstable-at-start"`` with ``pk``, ``mode``, ``wet_frequency``, ``speed``) and
+            ``message``.
     """
+
+    _nested = {"eigenvalues": Stability, "pk": Stability, "equilibria": AeroStaticRun}
+    # Its tables and datasets are those of its eigen-analysis (the V-g/V-ω data); the
+    # equilibria and the p-k check have their own (run.equilibria.to_pandas(), run.pk…).
+    _delegate = "eigenvalues"
 
     label: str
     kind: str
@@ -252,19 +244,15 @@ class FlutterRun(_Result):
     eigenvalues: Stability
     pk: Optional[Stability]
     equilibria: AeroStaticRun
+    notes: List[Dict[str, Any]]
     extra: Dict[str, Any] = field(default_factory=dict)
-
-    @property
-    def complete(self) -> bool:
-        """Whether the eigen-analysis (and the p-k check) reached the last speed."""
-        return self.status == "complete"
 
     def __repr__(self) -> str:
         return _summary(self, ["label", "status", "flutter_speed", "divergence_speed"])
 
 
 @dataclass(eq=False, repr=False)
-class FlutterResult(_Runs, _Result):
+class FlutterResult(_Runs):
     """What a flutter analysis found (``Case.flutter()``).
 
     Attributes:
@@ -278,6 +266,9 @@ class FlutterResult(_Runs, _Result):
         rust_time_s: wall time of the analysis on the Rust side (s).
     """
 
+    _kind = "flutter"
+    _nested = {"runs": FlutterRun}
+
     runs: List[FlutterRun]
     speeds: np.ndarray
     root_angle: float
@@ -288,12 +279,9 @@ class FlutterResult(_Runs, _Result):
     rust_time_s: float
     extra: Dict[str, Any] = field(default_factory=dict)
 
-    def __repr__(self) -> str:
-        return f"FlutterResult(status={self.status!r}, runs={self.runs!r})"
-
 
 @dataclass(eq=False, repr=False)
-class AeroDynamicRun(_Result):
+class AeroDynamicRun(_Run):
     """The aeroelastic response of one model, up to where it stopped.
 
     Attributes:
@@ -326,6 +314,14 @@ class AeroDynamicRun(_Result):
         max_tip_difference: largest tip distance from the first model's (m), or ``None``.
     """
 
+    _axis = "time"
+    _coord = "t"
+    _columns = (
+        "t", "tip_x", "tip_y", "tip_twist", "root_bending_moment", "lift", "speed", "kinetic",
+        "strain", "total", "work", "dissipated", "balance_error",
+    )
+    _grids = {}
+
     label: str
     kind: str
     modes: Optional[List[int]]
@@ -356,17 +352,12 @@ class AeroDynamicRun(_Result):
     max_tip_difference: Optional[float]
     extra: Dict[str, Any] = field(default_factory=dict)
 
-    @property
-    def complete(self) -> bool:
-        """Whether every output time was reached."""
-        return self.status == "complete"
-
     def __repr__(self) -> str:
         return _summary(self, ["label", "status"]) + f" [{len(self.t)} output times]"
 
 
 @dataclass(eq=False, repr=False)
-class AeroDynamicResult(_Runs, _Result):
+class AeroDynamicResult(_Runs):
     """What an aeroelastic response produced (``Case.dynamics()`` on a case with ``[aero]``).
 
     Attributes:
@@ -380,6 +371,9 @@ class AeroDynamicResult(_Runs, _Result):
         rust_time_s: wall time of the analysis on the Rust side (s).
     """
 
+    _kind = "aero-dynamic"
+    _nested = {"runs": AeroDynamicRun}
+
     runs: List[AeroDynamicRun]
     status: str
     end_time: float
@@ -387,6 +381,3 @@ class AeroDynamicResult(_Runs, _Result):
     start: str
     rust_time_s: float
     extra: Dict[str, Any] = field(default_factory=dict)
-
-    def __repr__(self) -> str:
-        return f"AeroDynamicResult(status={self.status!r}, runs={self.runs!r})"

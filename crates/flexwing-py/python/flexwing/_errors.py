@@ -10,10 +10,20 @@ The tree::
     │                                 keyword: .field (the argument), .reason
     ├── SolverError (RuntimeError)    a solver that stopped: .stop (where and why, a dict),
     │                                 .result (the partial result, or None), .model
+    ├── ReentrancyError (RuntimeError) a call from inside another call that cannot be served:
+    │                                 .field (the object or argument), .reason
     └── InternalError (RuntimeError)  a bug of flexwing (a Rust panic caught at the boundary)
 
 Every exception pickles with its attributes, so that it travels back from a worker process
 (Dask, multiprocessing) intact.
+
+Not renamed: an exception raised by the caller's own code inside a call propagates as itself —
+a ``KeyboardInterrupt`` (Ctrl-C, which stops a long call at its next check and carries the
+partial result as its ``result`` attribute), a ``MemoryError`` or any other exception raised in
+a ``__float__``, ``__index__`` or ``__array__`` method of an argument or in a progress callback
+(which stops the call in the same way, with ``result``). Only a ``TypeError``, ``ValueError``
+or ``OverflowError`` raised while an argument is converted becomes the ``ArgumentTypeError`` or
+``InputError`` naming that argument.
 """
 
 from __future__ import annotations
@@ -26,6 +36,7 @@ __all__ = [
     "CaseFileError",
     "ArgumentTypeError",
     "SolverError",
+    "ReentrancyError",
     "InternalError",
 ]
 
@@ -102,6 +113,21 @@ class SolverError(FlexwingError, RuntimeError):
     model: Optional[str] = None
     stop: Optional[dict] = None
     result: Any = None
+
+
+class ReentrancyError(FlexwingError, RuntimeError):
+    """A call made from inside another flexwing call that cannot be served (also a
+    ``RuntimeError``): a method of a ``Stepper`` called from a signal handler or callback run
+    during that stepper's own ``step()`` on the same thread (it would wait for itself), or an
+    analysis started from a progress callback nested more than 16 deep.
+
+    Attributes:
+        field: the object or argument (``"Stepper"``, ``"progress"``).
+        reason: what happened.
+    """
+
+    field: Optional[str] = None
+    reason: str = ""
 
 
 class InternalError(FlexwingError, RuntimeError):

@@ -16,7 +16,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ._aero_results import AeroDynamicResult, AeroStaticResult, FlutterResult
-from ._results import BatchItem, DynamicResult, ModesResult, StaticResult
+from ._results import Batch, DynamicResult, ModesResult, StaticResult
 
 __version__: str
 
@@ -66,9 +66,14 @@ class Case:
         """The file the case was read from, if any."""
     def model(self) -> FullModel:
         """The full model of ``[beam]``."""
-    def modes(self, *, progress: Optional[ProgressCallback] = None) -> ModesResult:
+    def modes(
+        self, *, progress: Optional[ProgressCallback] = None, check: bool = True
+    ) -> ModesResult:
         """The natural modes of ``[beam]`` (``[modes] count``, default 10), frequencies in rad/s
-        and Hz; in vacuo (an ``[aero]`` table is not used, as ``flexwing modes``)."""
+        and Hz; in vacuo (an ``[aero]`` table is not used, as ``flexwing modes``). ``check`` is
+        accepted as by every analysis (a modal analysis completes or raises). Ctrl-C or a
+        raising ``progress`` stops any analysis at its next check and raises that exception
+        with the partial result as its ``result`` attribute."""
     def statics(
         self, *, progress: Optional[ProgressCallback] = None, check: bool = True
     ) -> Union[StaticResult, AeroStaticResult]:
@@ -305,8 +310,10 @@ class Stepper:
     def step(self, dt: float, scales: Optional[ArrayLike] = None) -> float:
         """Advance by dt (s) to the load factors ``scales`` (default: the previous ones, held);
         ``hold="linear"`` ramps them over the interval, ``hold="zero"`` switches at once.
-        Returns the new time (s). Raises ``SolverError`` (``stop["time"]``) if the integrator
-        stops inside the interval; the state then stays at its start."""
+        Returns the new time (s). Raises ``SolverError`` (``stop["error"]["time"]``) if the
+        integrator stops inside the interval, ``InputError`` (``dt``) for an interval below the
+        time's resolution, ``KeyboardInterrupt`` on Ctrl-C; after any of these the stepper is as
+        before the call (time, state, load factors)."""
     def set_state(self, x: ArrayLike, xdot: ArrayLike, t: Optional[float] = None) -> None:
         """Set the state from coordinates x and velocities xdot (and the time t, s)."""
     @property
@@ -350,8 +357,13 @@ def solve_many(
     *,
     threads: int = 1,
     progress: Optional[Callable[[int, int], Any]] = None,
-) -> List[BatchItem]:
-    """Solve ``analysis`` for every case and return one ``BatchItem`` per case, in order, with
-    its status (``"complete"``, ``"suspect"``, ``"stopped"``, ``"error"``), result, error (as data) and wall
-    time (s). No case's failure stops the others. ``threads``: threads of this process sharing
-    the cases (the interpreter released); ``progress``: ``callback(done, total)``."""
+    start: int = 0,
+) -> Batch:
+    """Solve ``analysis`` for every case and return one ``BatchItem`` per case, in order (a
+    ``Batch``: a list with ``to_pandas(index=…)`` and ``to_xarray(index=…)``), with
+    its index (``start`` + position), status (``"complete"``, ``"suspect"``, ``"stopped"``,
+    ``"interrupted"``, ``"error"``), result, error (as data) and wall time (s). No case's
+    failure stops the others. ``threads``: worker threads of this process sharing the cases
+    (the interpreter released); ``progress``: ``callback(done, total)`` on the calling thread,
+    ``done`` counting up. A raising callback or Ctrl-C stops the batch and raises with the
+    items so far as ``result``."""

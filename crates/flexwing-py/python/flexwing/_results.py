@@ -1,10 +1,5 @@
-"""The results of the analyses: plain Python objects holding NumPy arrays, so that they pickle
-(to travel back from worker processes), print, and convert to dicts (``to_dict()``).
-
-The Rust side builds one dict per result (``flexwing._native`` converts each library outcome);
-the classes here give it attributes, documentation and helpers. A field added on the Rust side
-appears in ``to_dict()`` and, once declared here, as an attribute; until then ``extra`` holds it
-(the test suite checks that every field the bindings produce is declared).
+"""The results of the structural analyses (modes, statics, dynamics) and of a batch: plain
+Python objects holding NumPy arrays (the base classes and how they are built: ``_base.py``).
 
 Units are SI throughout: m, rad, s, N, J. Arrays over points or output times have that axis
 first; node arrays have one column per node ``0 … n`` (0 = clamp).
@@ -12,7 +7,6 @@ first; node arrays have one column per node ``0 … n`` (0 = clamp).
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional
 
@@ -25,51 +19,11 @@ __all__ = [
     "DynamicRun",
     "DynamicResult",
     "BatchItem",
+    "Batch",
 ]
 
 
-_FIELDS: Dict[type, frozenset] = {}
-
-
-def _from_raw(cls, raw: Dict[str, Any]):
-    """An instance of the dataclass ``cls`` from the dict ``raw``; keys that ``cls`` does not
-    declare go to its ``extra`` dict."""
-    names = _FIELDS.get(cls)
-    if names is None:
-        names = _FIELDS[cls] = frozenset(f.name for f in dataclasses.fields(cls))
-    known = {k: v for k, v in raw.items() if k in names}
-    if "extra" in names:
-        known["extra"] = {k: v for k, v in raw.items() if k not in names}
-    return cls(**known)
-
-
-def _to_dict(value: Any) -> Any:
-    if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        out = {}
-        for f in dataclasses.fields(value):
-            v = getattr(value, f.name)
-            if f.name == "extra":
-                out.update({k: _to_dict(x) for k, x in v.items()})
-            else:
-                out[f.name] = _to_dict(v)
-        return out
-    if isinstance(value, list):
-        return [_to_dict(v) for v in value]
-    if isinstance(value, dict):
-        return {k: _to_dict(v) for k, v in value.items()}
-    return value
-
-
-class _Result:
-    def to_dict(self) -> Dict[str, Any]:
-        """The result as nested dicts, lists, NumPy arrays and numbers (the arrays are the
-        result's own, not copies)."""
-        return _to_dict(self)
-
-
-def _summary(obj, fields: List[str]) -> str:
-    parts = ", ".join(f"{f}={getattr(obj, f)!r}" for f in fields)
-    return f"{type(obj).__name__}({parts})"
+from ._base import _Result, _Run, _Runs, _summary
 
 
 @dataclass(eq=False, repr=False)
@@ -80,7 +34,7 @@ class ModesResult(_Result):
         mode: mode numbers, 1-based, shape ``(k,)``.
         omega: circular frequencies (rad/s), ``(k,)``.
         frequency_hz: frequencies (Hz), ``(k,)``.
-        bending_fraction: share of the strain energy in the bending springs (1: pure bending,
+        bending_energy_fraction: share of the strain energy in the bending springs (1: pure bending,
             0: pure torsion), ``(k,)``.
         x: node stations along the undeformed span (m), ``(n + 1,)``.
         dx, dy: nodal displacements along global x and y per unit modal amplitude, mass
@@ -91,10 +45,12 @@ class ModesResult(_Result):
             the call's time beyond it is the binding's (argument checks, NumPy conversion).
     """
 
+    _kind = "modes"
+
     mode: np.ndarray
     omega: np.ndarray
     frequency_hz: np.ndarray
-    bending_fraction: np.ndarray
+    bending_energy_fraction: np.ndarray
     x: np.ndarray
     dx: np.ndarray
     dy: np.ndarray
@@ -111,7 +67,7 @@ class ModesResult(_Result):
 
 
 @dataclass(eq=False, repr=False)
-class StaticRun(_Result):
+class StaticRun(_Run):
     """The equilibria of one model over the points of a static analysis (one point without a
     sweep), up to where it stopped.
 
@@ -136,6 +92,11 @@ class StaticRun(_Result):
             ``iterations``, ``residual_evaluations``, ``factorizations``, ``residual_norm``.
     """
 
+    _axis = "point"
+    _coord = None
+    _columns = ("scale", "tip_x", "tip_y", "tip_twist", "tip_difference")
+    _grids = {"x": "node", "y": "node", "twist": "node", "q": "dof", "scales": "load"}
+
     label: str
     kind: str
     modes: Optional[List[int]]
@@ -157,17 +118,12 @@ class StaticRun(_Result):
     stats: Dict[str, np.ndarray]
     extra: Dict[str, Any] = field(default_factory=dict)
 
-    @property
-    def complete(self) -> bool:
-        """Whether every point converged."""
-        return self.status == "complete"
-
     def __repr__(self) -> str:
         return _summary(self, ["label", "status"]) + f" [{len(self.scale)} points]"
 
 
 @dataclass(eq=False, repr=False)
-class StaticResult(_Result):
+class StaticResult(_Runs):
     """What a static analysis found.
 
     Attributes:
@@ -184,6 +140,9 @@ class StaticResult(_Result):
             included (see ``ModesResult.rust_time_s``).
     """
 
+    _kind = "static"
+    _nested = {"runs": StaticRun}
+
     runs: List[StaticRun]
     loaded_modes: Optional[Dict[str, np.ndarray]]
     loaded_modes_error: Optional[Dict[str, Any]]
@@ -192,28 +151,9 @@ class StaticResult(_Result):
     rust_time_s: float
     extra: Dict[str, Any] = field(default_factory=dict)
 
-    @property
-    def complete(self) -> bool:
-        return self.status == "complete"
-
-    def run(self, label: str) -> StaticRun:
-        """The run of the model ``label`` (``"full"``, ``"reduced-r2"``, …)."""
-        for r in self.runs:
-            if r.label == label:
-                return r
-        raise KeyError(f"no model {label!r}; the runs are {[r.label for r in self.runs]}")
-
-    @property
-    def full(self) -> Optional[StaticRun]:
-        """The full model's run, if it was solved."""
-        return next((r for r in self.runs if r.kind == "full"), None)
-
-    def __repr__(self) -> str:
-        return f"StaticResult(status={self.status!r}, runs={self.runs!r})"
-
 
 @dataclass(eq=False, repr=False)
-class DynamicRun(_Result):
+class DynamicRun(_Run):
     """The simulation of one model, up to where it stopped.
 
     Attributes:
@@ -256,7 +196,15 @@ class DynamicRun(_Result):
             ``t`` ``(S,)``, and ``x``, ``y`` (m), ``twist`` (rad), each ``(S, n + 1)``.
         comparison: differences from the first model's tip history (not for the first model):
             a dict with ``max_tip_difference`` (m), ``relative_x``, ``relative_y``; or ``None``.
+        notes: what made the run slow that its status does not show, as the CLI's ``note:``
+            lines: dicts with ``kind`` (``"newton-failures"``: ``failed``, ``steps``,
+            ``advice``) and ``message``.
     """
+
+    _axis = "time"
+    _coord = "t"
+    _columns = ("t", "tip_x", "tip_y", "tip_twist", "kinetic", "strain", "total", "work", "dissipated", "balance_error")
+    _grids = {}
 
     label: str
     kind: str
@@ -282,19 +230,15 @@ class DynamicRun(_Result):
     energy_audit: Optional[Dict[str, Any]]
     snapshots: Dict[str, np.ndarray]
     comparison: Optional[Dict[str, Optional[float]]]
+    notes: List[Dict[str, Any]]
     extra: Dict[str, Any] = field(default_factory=dict)
-
-    @property
-    def complete(self) -> bool:
-        """Whether every output time was reached."""
-        return self.status == "complete"
 
     def __repr__(self) -> str:
         return _summary(self, ["label", "status"]) + f" [{len(self.t)} output times]"
 
 
 @dataclass(eq=False, repr=False)
-class DynamicResult(_Result):
+class DynamicResult(_Runs):
     """What a dynamic analysis produced.
 
     Attributes:
@@ -307,30 +251,14 @@ class DynamicResult(_Result):
             model included (see ``ModesResult.rust_time_s``).
     """
 
+    _kind = "dynamic"
+    _nested = {"runs": DynamicRun}
+
     runs: List[DynamicRun]
     status: str
     end_time: float
     rust_time_s: float
     extra: Dict[str, Any] = field(default_factory=dict)
-
-    @property
-    def complete(self) -> bool:
-        return self.status == "complete"
-
-    def run(self, label: str) -> DynamicRun:
-        """The run of the model ``label`` (``"full"``, ``"reduced-r2"``, …)."""
-        for r in self.runs:
-            if r.label == label:
-                return r
-        raise KeyError(f"no model {label!r}; the runs are {[r.label for r in self.runs]}")
-
-    @property
-    def full(self) -> Optional[DynamicRun]:
-        """The full model's run, if it was simulated."""
-        return next((r for r in self.runs if r.kind == "full"), None)
-
-    def __repr__(self) -> str:
-        return f"DynamicResult(status={self.status!r}, runs={self.runs!r})"
 
 
 @dataclass(eq=False, repr=False)
@@ -338,10 +266,13 @@ class BatchItem(_Result):
     """The outcome of one case of :func:`flexwing.solve_many`.
 
     Attributes:
-        index: the case's position in the input.
+        index: the case's position in the input plus ``solve_many``'s ``start``; for
+            ``flexwing.solve`` the ``index`` given, else ``None``.
         status: ``"complete"``, ``"suspect"`` (every model ran to the end but one's energy
             balance exceeded its limit), ``"stopped"`` (a model stopped; ``result`` holds what
-            it reached) or ``"error"`` (bad input or a failed set-up; ``result`` is ``None``).
+            it reached), ``"interrupted"`` (the batch was stopped while the case ran: Ctrl-C or
+            a raising progress callback) or ``"error"`` (bad input or a failed set-up;
+            ``result`` is ``None``).
         result: the analysis result (``ModesResult``, ``StaticResult``, ``DynamicResult``,
             ``AeroStaticResult``, ``AeroDynamicResult``, ``FlutterResult``), or ``None``.
         error: the exception the case would have raised (a :class:`flexwing.FlexwingError`),
@@ -350,7 +281,9 @@ class BatchItem(_Result):
         wall_time_s: wall time of the case (s), set-up included.
     """
 
-    index: int
+    _kind = "batch"
+
+    index: Optional[int]
     status: str
     result: Any
     error: Optional[BaseException]
@@ -372,38 +305,33 @@ class BatchItem(_Result):
         return _summary(self, ["index", "status", "message"])
 
 
-def _build(kind: str, raw: Dict[str, Any]):
-    """Build a result from the bindings' dict (called by ``flexwing._native``)."""
-    if kind == "modes":
-        return _from_raw(ModesResult, raw)
-    if kind == "static":
-        raw = dict(raw)
-        raw["runs"] = [_from_raw(StaticRun, r) for r in raw["runs"]]
-        return _from_raw(StaticResult, raw)
-    if kind == "dynamic":
-        raw = dict(raw)
-        raw["runs"] = [_from_raw(DynamicRun, r) for r in raw["runs"]]
-        return _from_raw(DynamicResult, raw)
-    if kind in ("aero-static", "aero-dynamic", "flutter"):
-        from . import _aero_results as aero
+class Batch(list):
+    """What :func:`flexwing.solve_many` returns: a list of :class:`BatchItem`, in input order,
+    with the views of a sweep.
 
-        raw = dict(raw)
-        if kind == "aero-static":
-            raw["runs"] = [_from_raw(aero.AeroStaticRun, r) for r in raw["runs"]]
-            return _from_raw(aero.AeroStaticResult, raw)
-        if kind == "aero-dynamic":
-            raw["runs"] = [_from_raw(aero.AeroDynamicRun, r) for r in raw["runs"]]
-            return _from_raw(aero.AeroDynamicResult, raw)
-        runs = []
-        for r in raw["runs"]:
-            r = dict(r)
-            r["eigenvalues"] = _from_raw(aero.Stability, r["eigenvalues"])
-            if r["pk"] is not None:
-                r["pk"] = _from_raw(aero.Stability, r["pk"])
-            r["equilibria"] = _from_raw(aero.AeroStaticRun, r["equilibria"])
-            runs.append(_from_raw(aero.FlutterRun, r))
-        raw["runs"] = runs
-        return _from_raw(aero.FlutterResult, raw)
-    if kind == "batch":
-        return _from_raw(BatchItem, raw)
-    raise ValueError(f"unknown result kind {kind!r}")
+    ``to_pandas(index=None)``: one row per case — ``status``, ``message``, ``wall_time_s`` and
+    the scalars of its result, flat (the result's ``status``; per model, prefixed with its label,
+    its scalars and the last value of each of its columns: ``full.tip_y`` at the last point or
+    output time, ``full.flutter_speed``, ``full.divergence_speed``; a modal analysis'
+    ``frequency_hz[k]``), NaN where a case has none; rows indexed by ``case`` (the items'
+    ``index``) or by ``index``: labels of the swept parameters, one per item (a list, a list of
+    tuples, or a ``pandas.Index``/``MultiIndex`` such as ``MultiIndex.from_product([forces,
+    stiffnesses], names=["F", "EI"])``). ``to_xarray(index=None)``: the same as a dataset
+    whose dimensions are the index' levels (a product sweep becomes a grid ``F × EI``). Units
+    in ``frame.attrs["units"]`` and on each variable."""
+
+    def to_pandas(self, index=None):
+        from . import _frames
+
+        return _frames.batch_frame(self, index)
+
+    def to_xarray(self, index=None):
+        from . import _frames
+
+        return _frames.batch_dataset(self, index)
+
+    def _repr_html_(self) -> str:
+        from . import _html
+
+        return _html.batch_html(self)
+

@@ -1,6 +1,6 @@
 //! [`AeroDynamicOutcome`] into `AeroDynamicResult` and its `AeroDynamicRun`s: the columns of the
 //! CLI's `dynamic_aero.csv` and `dynamic_summary.csv`
-//! (crates/flexwing-cli/src/commands/dynamic/aero.rs), as arrays.
+//! (crates/flexwing-cli/src/render/aero_dynamic.rs), as arrays.
 
 use flexwing::analysis::aero::response::{AeroDynamicOutcome, AeroDynamicPlan, AeroSample};
 use flexwing::analysis::aero::response::{AeroDynamicRun, AeroStart};
@@ -8,9 +8,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::aero_statics::aerodynamics;
-use super::dynamics::{audit, snapshots};
+use super::dynamics::snapshots;
 use super::statics::kind_name;
-use super::status::{overall, status_fields};
+use super::status::{data, overall, set_status};
 use crate::arrays::out1;
 
 /// The aeroelastic response as the dict of `AeroDynamicResult`.
@@ -56,10 +56,7 @@ fn run<'py>(
     d.set_item("stats", super::dynamics::integrator_stats(py, &r.stats)?)?;
     d.set_item("wall_time_s", r.wall_time_s)?;
     d.set_item("ratio_to_first", ratio_to_first)?;
-    let (status, stop, message) = status_fields(py, &r.status, None)?;
-    d.set_item("status", status)?;
-    d.set_item("stop", stop)?;
-    d.set_item("message", message)?;
+    set_status(&d, &r.status)?;
     let column = |f: fn(&AeroSample) -> f64| out1(py, r.samples.iter().map(f).collect());
     d.set_item("t", column(|s| s.t))?;
     d.set_item("tip_x", column(|s| s.tip_x))?;
@@ -76,7 +73,7 @@ fn run<'py>(
     d.set_item("balance_error", column(|s| s.balance_error))?;
     d.set_item(
         "energy_audit",
-        r.energy.as_ref().map(|e| audit(py, e)).transpose()?,
+        r.energy_audit.as_ref().map(|e| data(py, e)).transpose()?,
     )?;
     d.set_item("snapshots", snapshots(py, &r.snapshots, nodes)?)?;
     d.set_item("max_tip_difference", r.max_tip_difference)?;

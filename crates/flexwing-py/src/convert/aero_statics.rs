@@ -1,6 +1,6 @@
 //! [`AeroStaticOutcome`] into `AeroStaticResult` and its `AeroStaticRun`s; the equilibria of a
 //! flutter run use the same `AeroStaticRun` ([`equilibria`]). The columns are those of the CLI's
-//! `static_aero.csv` and `static_nodes.csv` (crates/flexwing-cli/src/commands/statics/aero.rs).
+//! `static_aero.csv` and `static_nodes.csv` (crates/flexwing-cli/src/render/aero_static.rs).
 
 use flexwing::analysis::aero::statics::{AeroPoint, AeroStaticOutcome, AeroStaticPlan};
 use flexwing::analysis::aero::Aero;
@@ -13,7 +13,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::statics::{kind_name, stats_dict};
-use super::status::{overall, status_fields};
+use super::status::{overall, set_status};
 use crate::arrays::{out1, out_rows};
 
 /// The aerodynamics as a dict: `model` (the case file's name), `states` per strip (Peters
@@ -91,10 +91,7 @@ pub fn equilibria<'py>(
     d.set_item("modes", r.kind.modes())?;
     d.set_item("dofs", r.dofs)?;
     d.set_item("wall_time_s", r.wall_time_s)?;
-    let (status, stop, message) = status_fields(py, r.status, None)?;
-    d.set_item("status", status)?;
-    d.set_item("stop", stop)?;
-    d.set_item("message", message)?;
+    set_status(&d, r.status)?;
     d.set_item("divergence_speed", r.divergence.map(|v| v.speed))?;
     d.set_item(
         "divergence_dynamic_pressure",
@@ -139,7 +136,7 @@ pub fn equilibria<'py>(
             .filter(|_| r.kind.modes().is_some())
             .map(|v| out1(py, v)),
     )?;
-    let stats: Vec<&StaticStats> = points.iter().map(|p| &p.stats).collect();
+    let stats: Vec<StaticStats> = points.iter().map(|p| p.stats).collect();
     d.set_item("stats", stats_dict(py, &stats)?)?;
     Ok(d)
 }

@@ -1,14 +1,14 @@
 //! [`DynamicOutcome`] into `DynamicResult` and its `DynamicRun`s.
 
-use flexwing::analysis::dynamics::{DynamicOutcome, DynamicPlan, ModelRun, Sample, Snapshot};
+use flexwing::analysis::dynamics::{DynamicOutcome, DynamicPlan, DynamicRun, Sample, Snapshot};
 use flexwing::solve::integrate::IntegratorStats;
-use flexwing::solve::{EnergyBalance, Gyroscopic};
+use flexwing::solve::Gyroscopic;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::statics::kind_name;
-use super::status::{overall, status_fields};
+use super::status::{data, overall, set_status};
 use crate::arrays::{out1, out_rows};
 
 /// The case-file name of a way to get the gyroscopic term.
@@ -38,35 +38,10 @@ pub fn raw<'py>(
     Ok(d)
 }
 
-/// An integrator's counters (`DynamicRun.stats`, `AeroDynamicRun.stats`).
+/// An integrator's counters (`DynamicRun.stats`, `AeroDynamicRun.stats`, `Stepper.stats`):
+/// the library's `IntegratorStats`, field for field.
 pub fn integrator_stats<'py>(py: Python<'py>, s: &IntegratorStats) -> PyResult<Bound<'py, PyDict>> {
-    let stats = PyDict::new(py);
-    stats.set_item("steps", s.steps)?;
-    stats.set_item("rejected_steps", s.rejected_steps)?;
-    stats.set_item("newton_failures", s.newton_failures)?;
-    stats.set_item("rhs_evaluations", s.rhs_evaluations)?;
-    stats.set_item("jacobian_evaluations", s.jacobian_evaluations)?;
-    stats.set_item("factorizations", s.factorizations)?;
-    stats.set_item("newton_iterations", s.newton_iterations)?;
-    Ok(stats)
-}
-
-/// What the energy audit found (the CLI's `energy_audit`, docs/validation.md "Energy audit"):
-/// `balanced` (whether the model has an energy balance: all but the simplified model),
-/// `max_error` and `max_error_time` (s), `limit` (`None` without a balance), `exceeded_time`
-/// (s, the first time the error passed `limit`), `runaway_limit`, `runaway_time` (s), and
-/// `reference_energy` (J, the largest energy held or given).
-pub fn audit<'py>(py: Python<'py>, e: &EnergyBalance) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("balanced", e.limits.balance.is_some())?;
-    d.set_item("max_error", e.max_error)?;
-    d.set_item("max_error_time", e.max_error_time)?;
-    d.set_item("limit", e.limits.balance)?;
-    d.set_item("exceeded_time", e.exceeded_at)?;
-    d.set_item("runaway_limit", e.limits.runaway)?;
-    d.set_item("runaway_time", e.runaway_at)?;
-    d.set_item("reference_energy", e.reference)?;
-    Ok(d)
+    Ok(data(py, s)?.cast_into::<PyDict>()?)
 }
 
 /// The snapshots as a dict: `index` and `t` `(S,)`, `x`, `y`, `twist` `(S, nodes)`.
@@ -91,7 +66,7 @@ pub fn snapshots<'py>(
     Ok(d)
 }
 
-fn run<'py>(py: Python<'py>, plan: &DynamicPlan, r: &ModelRun) -> PyResult<Bound<'py, PyDict>> {
+fn run<'py>(py: Python<'py>, plan: &DynamicPlan, r: &DynamicRun) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("label", r.kind.label())?;
     d.set_item("kind", kind_name(&r.kind))?;
@@ -101,10 +76,7 @@ fn run<'py>(py: Python<'py>, plan: &DynamicPlan, r: &ModelRun) -> PyResult<Bound
     d.set_item("gyroscopic", gyroscopic_name(r.gyroscopic))?;
     d.set_item("stats", integrator_stats(py, &r.stats)?)?;
     d.set_item("wall_time_s", r.wall_time_s)?;
-    let (status, stop, message) = status_fields(py, &r.status, None)?;
-    d.set_item("status", status)?;
-    d.set_item("stop", stop)?;
-    d.set_item("message", message)?;
+    set_status(&d, &r.status)?;
     let column = |f: fn(&Sample) -> f64| out1(py, r.samples.iter().map(f).collect());
     d.set_item("t", column(|s| s.t))?;
     d.set_item("tip_x", column(|s| s.tip_x))?;
@@ -118,7 +90,7 @@ fn run<'py>(py: Python<'py>, plan: &DynamicPlan, r: &ModelRun) -> PyResult<Bound
     d.set_item("balance_error", column(|s| s.balance_error))?;
     d.set_item(
         "energy_audit",
-        r.energy.as_ref().map(|e| audit(py, e)).transpose()?,
+        r.energy_audit.as_ref().map(|e| data(py, e)).transpose()?,
     )?;
     let nodes = plan.model.beam().nodes().len();
     d.set_item("snapshots", snapshots(py, &r.snapshots, nodes)?)?;
@@ -133,5 +105,17 @@ fn run<'py>(py: Python<'py>, plan: &DynamicPlan, r: &ModelRun) -> PyResult<Bound
         }
     };
     d.set_item("comparison", comparison)?;
+    d.set_item("notes", notes(py, &r.notes)?)?;
     Ok(d)
+}
+
+/// The notes of a run: one dict per note, its `kind`, values and `message`.
+pub fn notes<'py>(
+    py: Python<'py>,
+    notes: &[flexwing::analysis::Note],
+) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    notes
+        .iter()
+        .map(|n| super::status::described(py, n))
+        .collect()
 }

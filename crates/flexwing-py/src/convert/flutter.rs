@@ -1,7 +1,7 @@
 //! [`FlutterOutcome`] into `FlutterResult`, its `FlutterRun`s and their `Stability` (the
 //! eigen-analysis, and the p-k check): the data of the CLI's `flutter_summary.csv`,
 //! `flutter_crossings.csv`, `flutter_vg.csv` and `flutter_equilibria.csv`
-//! (crates/flexwing-cli/src/commands/flutter/), as arrays.
+//! (crates/flexwing-cli/src/render/flutter.rs), as arrays.
 
 use flexwing::analysis::aero::flutter::{FlutterOutcome, FlutterPlan, FlutterRun, Stability};
 use flexwing::solve::aeroelastic::CrossingKind;
@@ -11,7 +11,7 @@ use pyo3::types::PyDict;
 
 use super::aero_statics::{aerodynamics, equilibria, Equilibria};
 use super::statics::kind_name;
-use super::status::{overall, status_fields, stop_dict};
+use super::status::{described, overall, set_status};
 use crate::arrays::{out1, out_rows};
 
 /// The flutter outcome as the dict of `FlutterResult`.
@@ -43,16 +43,14 @@ fn run<'py>(py: Python<'py>, plan: &FlutterPlan, r: &FlutterRun) -> PyResult<Bou
     d.set_item("modes", r.kind.modes())?;
     d.set_item("dofs", r.dofs)?;
     d.set_item("wall_time_s", r.wall_time_s)?;
-    let (status, stop, message) = status_fields(py, &r.status, None)?;
-    d.set_item("status", status)?;
-    d.set_item("stop", stop)?;
-    d.set_item("message", message)?;
+    set_status(&d, &r.status)?;
     let others = r
         .other_stops
         .iter()
-        .map(|s| stop_dict(py, s, None))
+        .map(|s| described(py, s))
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("other_stops", others)?;
+    d.set_item("notes", super::dynamics::notes(py, &r.notes)?)?;
     d.set_item("divergence_speed", r.divergence.as_ref().map(|v| v.speed))?;
     d.set_item(
         "divergence_dynamic_pressure",

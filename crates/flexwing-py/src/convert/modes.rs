@@ -21,7 +21,10 @@ pub fn raw<'py>(
     let nodes = model.beam().nodes().len();
     d.set_item("omega", column(|m| m.omega))?;
     d.set_item("frequency_hz", column(|m| m.frequency_hz))?;
-    d.set_item("bending_fraction", column(|m| m.bending_fraction))?;
+    d.set_item(
+        "bending_energy_fraction",
+        column(|m| m.bending_energy_fraction),
+    )?;
     d.set_item("x", out1(py, model.beam().nodes().to_vec()))?;
     let rows = |f: fn(&flexwing::analysis::modes::ModeResult) -> &[f64]| {
         let r: Vec<&[f64]> = modes.iter().map(f).collect();

@@ -9,6 +9,12 @@
 //! | static aeroelasticity, divergence | [`aero::statics::AeroStaticPlan`] | [`aero::statics::run`] | [`aero::statics::AeroStaticOutcome`] |
 //! | flutter (V-g, V-ω, p-k check) | [`aero::flutter::FlutterPlan`] | [`aero::flutter::run`] | [`aero::flutter::FlutterOutcome`] |
 //! | gust and manoeuvre responses | [`aero::response::AeroDynamicPlan`] | [`aero::response::run`] | [`aero::response::AeroDynamicOutcome`] |
+//! | linear state-space models | [`aero::linearize::LinearizePlan`] | [`aero::linearize::run`] | [`aero::linearize::LinearizeOutcome`] |
+//! | any of these | [`Plan`] | [`run`] | [`Outcome`] |
+//!
+//! [`Plan`], [`run`] and [`Outcome`] are the one dispatcher every front end calls (the case
+//! crate's `Case::plan` builds the plan): [`Outcome::entries`] says how each model ended,
+//! [`Outcome::notes`] what its numbers mean that the status does not show.
 //!
 //! A plan is plain data: the full model, the loads and the settings. Build it (by hand, or from a
 //! case file with the `flexwing-case` crate), then check it with its `validate`, which names the
@@ -42,10 +48,22 @@ pub mod aero;
 pub mod dynamics;
 mod models;
 pub mod modes;
+mod notes;
+mod plan;
 mod progress;
 pub mod statics;
 mod status;
 
 pub use models::{ModelKind, ReducedChoice};
+pub use notes::{NewtonAdvice, Note, NEWTON_NOTE_FAILURES};
+pub use plan::{run, Entry, Outcome, Plan};
 pub use progress::{NoProgress, Progress};
-pub use status::{Doubt, Status, Stop};
+pub use status::{Doubt, Status, Stop, STATUS_WORDS};
+
+/// The caller's name of load `i` for messages: `names[i]`, else `loads[i]`.
+pub(crate) fn load_name(names: &[String], i: usize) -> String {
+    names
+        .get(i)
+        .cloned()
+        .unwrap_or_else(|| format!("loads[{i}]"))
+}

@@ -53,7 +53,7 @@ pub struct ModeResult {
     /// Frequency (Hz).
     pub frequency_hz: f64,
     /// Share of the strain energy in the bending springs (1: pure bending, 0: pure torsion).
-    pub bending_fraction: f64,
+    pub bending_energy_fraction: f64,
     /// Nodal shape, mass-normalized; zeros carry no sign.
     pub shape: ModeShape,
 }
@@ -102,7 +102,7 @@ pub(crate) fn mode_result(model: &FullModel, modes: &Modes, k: usize) -> ModeRes
         mode: k + 1,
         omega,
         frequency_hz: omega / (2.0 * std::f64::consts::PI),
-        bending_fraction: modes.bending_energy_fraction(model, k),
+        bending_energy_fraction: modes.bending_energy_fraction(model, k),
         shape,
     }
 }

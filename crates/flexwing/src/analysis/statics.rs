@@ -37,6 +37,9 @@ pub struct StaticPlan {
     pub modes: Option<usize>,
     /// The sweep of one load's scale; without it, one point with every load at scale 1.
     pub sweep: Option<Sweep>,
+    /// How the caller names each load in messages (a case file: its `name`); a load without
+    /// an entry is `loads[i]`.
+    pub load_names: Vec<String>,
 }
 
 /// A sweep of the scale of one load.
@@ -60,6 +63,7 @@ impl StaticPlan {
             options: StaticOptions::default(),
             modes: None,
             sweep: None,
+            load_names: Vec::new(),
         }
     }
 
@@ -175,6 +179,11 @@ impl StaticPlan {
             .collect())
     }
 
+    /// The caller's name of load `i` ([`StaticPlan::load_names`], else `loads[i]`).
+    pub fn load_name(&self, i: usize) -> String {
+        super::load_name(&self.load_names, i)
+    }
+
     /// The scale of the swept load at each point; `[1]` without a sweep.
     pub fn point_scales(&self) -> Vec<f64> {
         self.sweep.as_ref().map_or(vec![1.0], |s| s.scales.clone())
@@ -200,7 +209,7 @@ impl StaticPlan {
 
 /// The equilibria of one model over the sweep.
 #[derive(Debug, Clone)]
-pub struct ModelRun {
+pub struct StaticRun {
     /// Which model.
     pub kind: ModelKind,
     /// Number of coordinates of the model.
@@ -208,12 +217,12 @@ pub struct ModelRun {
     /// Wall time of the solve over all points (s).
     pub wall_time_s: f64,
     /// The converged points, in sweep order from the first.
-    pub points: Vec<PointResult>,
+    pub points: Vec<StaticPoint>,
     /// Whether every point converged, or where and why the sweep stopped.
     pub status: Status,
 }
 
-impl ModelRun {
+impl StaticRun {
     /// Largest tip difference from the full model over the points both solved (reduced models).
     pub fn max_tip_difference(&self) -> Option<f64> {
         self.points
@@ -225,7 +234,7 @@ impl ModelRun {
 
 /// One equilibrium, as nodal quantities of the full model.
 #[derive(Debug, Clone)]
-pub struct PointResult {
+pub struct StaticPoint {
     /// Scale of the swept load (1 without a sweep).
     pub scale: f64,
     /// Scales of all loads.
@@ -240,7 +249,7 @@ pub struct PointResult {
     pub tip_difference: Option<f64>,
 }
 
-impl PointResult {
+impl StaticPoint {
     /// Tip position and twist `(x, y, twist)`.
     pub fn tip(&self) -> (f64, f64, f64) {
         self.shape.tip()
@@ -264,7 +273,7 @@ pub struct LoadedMode {
 #[derive(Debug, Clone)]
 pub struct StaticOutcome {
     /// One run per model, in the order of [`StaticPlan::models`].
-    pub runs: Vec<ModelRun>,
+    pub runs: Vec<StaticRun>,
     /// The loaded modes, if asked for and the full model reached the last point: the modes, or
     /// why the modal analysis failed.
     pub loaded_modes: Option<Result<Vec<LoadedMode>, SolveError>>,
@@ -272,12 +281,12 @@ pub struct StaticOutcome {
 
 impl StaticOutcome {
     /// The full model's run, if it was solved.
-    pub fn full(&self) -> Option<&ModelRun> {
+    pub fn full(&self) -> Option<&StaticRun> {
         self.runs.iter().find(|r| r.kind == ModelKind::Full)
     }
 
     /// Wall time of `run` over that of the full model.
-    pub fn ratio_to_full(&self, run: &ModelRun) -> Option<f64> {
+    pub fn ratio_to_full(&self, run: &StaticRun) -> Option<f64> {
         let full = self.full()?;
         (full.wall_time_s > 0.0).then(|| run.wall_time_s / full.wall_time_s)
     }
@@ -327,6 +336,10 @@ pub fn run(plan: &StaticPlan, progress: &mut dyn Progress) -> Result<StaticOutco
         points: plan.points(),
         scales: plan.point_scales(),
         options: &plan.options,
+        swept: plan
+            .sweep
+            .as_ref()
+            .map(|s| super::load_name(&plan.load_names, s.load)),
     };
     let mut runs = Vec::with_capacity(kinds.len());
     for (k, kind) in kinds.iter().enumerate() {
@@ -361,6 +374,8 @@ struct Solver<'a> {
     points: Vec<Vec<f64>>,
     scales: Vec<f64>,
     options: &'a StaticOptions,
+    /// The name of the swept load, if any.
+    swept: Option<String>,
 }
 
 impl Solver<'_> {
@@ -371,7 +386,7 @@ impl Solver<'_> {
         kind: ModelKind,
         model: &M,
         progress: &mut dyn Progress,
-    ) -> ModelRun {
+    ) -> StaticRun {
         let start = Instant::now();
         let result =
             sweep_static_until(model, self.applied, &self.points, self.options, &mut || {
@@ -403,12 +418,13 @@ impl Solver<'_> {
                     points: self.points.len(),
                     scale,
                     reached,
+                    load: self.swept.clone(),
                     error: e.error,
                 };
                 (e.completed, Status::Stopped(stop))
             }
         };
-        ModelRun {
+        StaticRun {
             kind,
             dofs: model.n_dofs(),
             wall_time_s,
@@ -421,8 +437,8 @@ impl Solver<'_> {
         }
     }
 
-    fn point(&self, sol: &StaticSolution, scale: f64) -> PointResult {
-        PointResult {
+    fn point(&self, sol: &StaticSolution, scale: f64) -> StaticPoint {
+        StaticPoint {
             scale,
             scales: sol.scales.clone(),
             shape: self.full.shape(&sol.q),
@@ -434,11 +450,11 @@ impl Solver<'_> {
 }
 
 /// Fill in each reduced model's tip distance from the full model, point by point.
-fn compare_tips(runs: &mut [ModelRun]) {
+fn compare_tips(runs: &mut [StaticRun]) {
     let Some(full) = runs.iter().position(|r| r.kind == ModelKind::Full) else {
         return;
     };
-    let tips: Vec<(f64, f64, f64)> = runs[full].points.iter().map(PointResult::tip).collect();
+    let tips: Vec<(f64, f64, f64)> = runs[full].points.iter().map(StaticPoint::tip).collect();
     for run in runs.iter_mut().filter(|r| r.kind.modes().is_some()) {
         for (p, reference) in run.points.iter_mut().zip(&tips) {
             let (x, y, _) = p.tip();
@@ -452,7 +468,7 @@ fn compare_tips(runs: &mut [ModelRun]) {
 fn loaded_modes(
     full: &FullModel,
     applied: &AppliedLoads,
-    runs: &[ModelRun],
+    runs: &[StaticRun],
     count: usize,
     unloaded: &Modes,
 ) -> Option<Result<Vec<LoadedMode>, SolveError>> {

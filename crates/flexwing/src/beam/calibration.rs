@@ -17,6 +17,14 @@ pub enum Calibration {
 }
 
 impl Calibration {
+    /// The case file's name: `tip-load` or `uniform`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Calibration::TipLoad => "tip-load",
+            Calibration::Uniform => "uniform",
+        }
+    }
+
     /// Bending spring stiffnesses for the node stations `nodes` (`x_0 = 0 … x_n = L`).
     pub(crate) fn bending(self, ei: &Profile, nodes: &[f64]) -> Vec<f64> {
         match self {
@@ -88,7 +96,7 @@ fn piece_moments(p: &Piece<1>) -> (f64, f64, [f64; 5]) {
 }
 
 /// `∫ dx/EI` over each interval `[bounds[i], bounds[i + 1]]`, exactly, in O(intervals + stations).
-fn flexibilities(ei: &Profile, bounds: &[f64]) -> Vec<f64> {
+pub(crate) fn flexibilities(ei: &Profile, bounds: &[f64]) -> Vec<f64> {
     let mut out = vec![0.0; bounds.len() - 1];
     for_each_piece(bounds, [ei], |i, p| {
         let (_, h_over_e, m) = piece_moments(&p);

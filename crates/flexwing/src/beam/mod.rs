@@ -4,7 +4,7 @@
 //! [`Beam::new`] validates the input and resolves it into per-element quantities: lengths, masses,
 //! mass-centre offsets, polar inertias and the spring stiffnesses of the lumped model.
 
-mod calibration;
+pub(crate) mod calibration;
 pub(crate) mod profile;
 
 pub use calibration::Calibration;
@@ -391,7 +391,11 @@ impl Beam {
 /// O(n) and would go further.)
 pub const MAX_ELEMENTS: usize = 10_000;
 
-fn stations(prefix: &str, length: f64, d: &Discretization) -> Result<Vec<f64>, InputError> {
+pub(crate) fn stations(
+    prefix: &str,
+    length: f64,
+    d: &Discretization,
+) -> Result<Vec<f64>, InputError> {
     let field = |key: &str| crate::field(prefix, key);
     let count = match d {
         Discretization::Uniform(n) => *n,

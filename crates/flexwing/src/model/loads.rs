@@ -93,11 +93,63 @@ pub enum Load {
     },
 }
 
+impl std::fmt::Display for Load {
+    /// One line describing the load, its values and where it acts.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use crate::text::short;
+        let profile = |p: &Profile| match p {
+            Profile::Uniform(v) => short(*v),
+            Profile::Table { .. } => "table".into(),
+        };
+        match self {
+            Load::PointForce { span, force } => {
+                let (kind, names, a, b) = match force {
+                    Force::Dead { fx, fy } => ("dead", "(fx, fy)", fx, fy),
+                    Force::Follower { tangential, normal } => {
+                        ("follower", "(tangential, normal)", tangential, normal)
+                    }
+                };
+                write!(
+                    f,
+                    "{kind} point force {names} = ({}, {}) N at span {} m",
+                    short(*a),
+                    short(*b),
+                    short(*span)
+                )
+            }
+            Load::Moment { span, value } => {
+                write!(f, "moment {} N·m at span {} m", short(*value), short(*span))
+            }
+            Load::Torque { span, value } => {
+                write!(f, "torque {} N·m at span {} m", short(*value), short(*span))
+            }
+            Load::Distributed(d) => {
+                let (kind, names, a, b) = match d {
+                    DistributedForce::Dead { fx, fy } => ("dead", "(fx, fy)", fx, fy),
+                    DistributedForce::Follower { tangential, normal } => {
+                        ("follower", "(tangential, normal)", tangential, normal)
+                    }
+                };
+                write!(
+                    f,
+                    "{kind} distributed force {names} = ({}, {}) N/m",
+                    profile(a),
+                    profile(b)
+                )
+            }
+            Load::Gravity { g } => write!(f, "gravity, g = {} m/s² along -y", short(*g)),
+        }
+    }
+}
+
 /// Loads resolved against one model: per-element items, each tagged with its user load.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AppliedLoads {
     items: Vec<Item>,
     n_loads: usize,
+    /// Items resolved against a 3-D chain (`model::chain3d`, [`super::Chain3d::apply`]); empty
+    /// for the planar models, and `items` empty for the 3-D chain.
+    pub(crate) spatial: Vec<super::chain3d::SpatialItem>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -162,7 +214,10 @@ impl AppliedLoads {
                 scales[it.load] == 0.0 || (ft == 0.0 && fn_ == 0.0)
             }
             _ => true,
-        })
+        }) && self
+            .spatial
+            .iter()
+            .all(|it| scales[it.load] == 0.0 || it.is_conservative())
     }
 
     /// No loads at all.
@@ -170,7 +225,22 @@ impl AppliedLoads {
         Self {
             items: Vec::new(),
             n_loads: 0,
+            spatial: Vec::new(),
         }
+    }
+
+    /// Loads resolved against a 3-D chain.
+    pub(crate) fn from_spatial(spatial: Vec<super::chain3d::SpatialItem>, n_loads: usize) -> Self {
+        Self {
+            items: Vec::new(),
+            n_loads,
+            spatial,
+        }
+    }
+
+    /// Whether these loads were resolved against a planar model (or are empty).
+    pub(crate) fn has_planar_items(&self) -> bool {
+        !self.items.is_empty()
     }
 }
 
@@ -282,6 +352,7 @@ impl FullModel {
         Ok(AppliedLoads {
             items,
             n_loads: loads.len(),
+            spatial: Vec::new(),
         })
     }
 

@@ -5,6 +5,7 @@
 //! are `θ = T q_b`, `ψ = T q_t` with `T` the lower-triangular matrix of ones.
 
 pub mod aero;
+pub mod chain3d;
 mod chain_newton;
 mod chain_solve;
 mod full;
@@ -35,6 +36,7 @@ pub(crate) fn suffix_sum_in_blocks<D: num_dual::DualNum<Primitive = f64> + Copy>
         }
     }
 }
+pub use chain3d::Chain3d;
 pub use reduced::{ReducedModel, ReducedWorkspace};
 pub use shape::Shape;
 
@@ -140,6 +142,24 @@ pub trait StructuralModel {
     }
     /// Joint rotations `q` of the full model for the model's coordinates `x`.
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64>;
+    /// The elements' rotations that a change `dx` of the coordinates makes, linear in `dx`: the
+    /// measure of how far a static step went (`StaticOptions::max_rotation_step`, the largest
+    /// magnitude) and arc-length continuation's metric. The default is the planar chain's
+    /// absolute angles `θ_i = Σ_{j≤i} Δq_j` and `ψ_i = Σ_{j≤i} Δq_{n+j}` of
+    /// [`StructuralModel::full_coordinates`]; the 3-D chain sums its joints' rotation vectors.
+    fn element_rotations(&self, dx: &[f64]) -> Vec<f64> {
+        let q = self.full_coordinates(dx);
+        let n = self.full_model().n_elements();
+        let mut out = Vec::with_capacity(q.len());
+        for block in q.chunks(n) {
+            let mut angle = 0.0;
+            for dq in block {
+                angle += dq;
+                out.push(angle);
+            }
+        }
+        out
+    }
     /// The full model underneath (itself for the full model).
     fn full_model(&self) -> &FullModel;
     /// This model as the full model, when it is one (its coordinates are the joint rotations):

@@ -423,21 +423,16 @@ impl<'a, M: StructuralModel> Run<'a, M> {
             ..StaticOptions::default()
         };
         let nd = model.n_dofs();
-        let n = model.full_model().n_elements();
-        let n_angles = model.full_model().n_dofs();
+        let n_angles = model.element_rotations(&vec![0.0; nd]).len();
         let mut g = DMatrix::zeros(n_angles, nd);
         let mut e = vec![0.0; nd];
         let scale = 1.0 / (n_angles as f64).sqrt();
         for j in 0..nd {
             e[j] = 1.0;
-            let q = model.full_coordinates(&e);
+            let angles = model.element_rotations(&e);
             e[j] = 0.0;
-            for (b, block) in q.chunks(n).enumerate() {
-                let mut angle = 0.0;
-                for (i, dq) in block.iter().enumerate() {
-                    angle += dq;
-                    g[(b * n + i, j)] = angle * scale;
-                }
+            for (i, angle) in angles.iter().enumerate() {
+                g[(i, j)] = angle * scale;
             }
         }
         let direction: Vec<f64> = s_start.iter().zip(scales).map(|(a, b)| b - a).collect();

@@ -466,3 +466,96 @@ fn fix_sign(v: &mut [f64]) {
         v.iter_mut().for_each(|x| *x = -*x);
     }
 }
+
+impl Modes {
+    /// The `count` lowest modes of any structural model about the configuration `x_star`, an
+    /// equilibrium under `loads` scaled by `scales` (`AppliedLoads::none()` and `&[]` for the
+    /// unloaded model about its undeformed state): the dense solver of [`Modes::about`] on
+    /// `(M(x*), K − ∂Q/∂x)` through the model's own [`StructuralModel`] evaluations, O(n³).
+    /// The path of the models without an O(n) tangent here, such as the 3-D chain
+    /// ([`crate::model::Chain3d`]).
+    ///
+    /// # Errors
+    /// [`SolveError::InvalidInput`] (field `count`) for `count = 0` or more modes than
+    /// coordinates, [`SolveError::NonSymmetricTangent`] for non-conservative loads,
+    /// [`SolveError::IndefiniteTangent`] for an unstable equilibrium,
+    /// [`SolveError::MassNotPositiveDefinite`], [`SolveError::BadEigenvalue`].
+    pub fn of_model<M: StructuralModel>(
+        model: &M,
+        x_star: &[f64],
+        loads: &AppliedLoads,
+        scales: &[f64],
+        count: usize,
+    ) -> Result<Self, SolveError> {
+        let nd = model.n_dofs();
+        if count == 0 || count > nd {
+            return Err(SolveError::from_input(InputError::new(
+                "count",
+                format!("must be between 1 and {nd} (the number of coordinates), got {count}"),
+            )));
+        }
+        let mut ws = model.workspace();
+        let mut jac = DMatrix::zeros(nd, nd);
+        model.load_jacobian_into(x_star, loads, scales, &mut ws, &mut jac);
+        let k_t = model.stiffness_matrix() - jac;
+        let asym = (&k_t - k_t.transpose()).amax();
+        if asym > 1e-10 * k_t.amax() {
+            return Err(SolveError::NonSymmetricTangent {
+                asymmetry: asym / k_t.amax(),
+            });
+        }
+        let k_t = (&k_t + k_t.transpose()) * 0.5;
+        if k_t.clone().cholesky().is_none() {
+            let lambda = k_t.symmetric_eigenvalues();
+            let non_positive = lambda.iter().filter(|&&l| !(l > 0.0)).count().max(1);
+            return Err(SolveError::IndefiniteTangent { non_positive });
+        }
+        let mut m = DMatrix::zeros(nd, nd);
+        model.mass_matrix_into(x_star, &mut ws, &mut m);
+        let (mu, phi) = generalized_symmetric_eigen(&m, &k_t)?;
+        let mu_max = mu[nd - 1];
+        if let Some(i) = mu.iter().position(|x| !x.is_finite()) {
+            return Err(SolveError::BadEigenvalue {
+                index: nd - 1 - i,
+                value: 1.0 / mu[i],
+            });
+        }
+        if mu[0] < -RESOLVED * f64::EPSILON * mu_max {
+            return Err(SolveError::MassNotPositiveDefinite);
+        }
+        let resolved = mu
+            .iter()
+            .filter(|&&x| x > RESOLVED * f64::EPSILON * mu_max)
+            .count();
+        let count = count.min(resolved);
+        let mut shapes = DMatrix::zeros(nd, count);
+        let mut omega = Vec::with_capacity(count);
+        let mut mphi = vec![0.0; nd];
+        for k in 0..count {
+            let i = nd - 1 - k;
+            omega.push(1.0 / mu[i].sqrt());
+            let col = phi.column(i);
+            model.momentum_into(x_star, col.as_slice(), &mut ws, &mut mphi);
+            let norm = col
+                .iter()
+                .zip(&mphi)
+                .map(|(a, b)| a * b)
+                .sum::<f64>()
+                .sqrt();
+            let mut v = col / norm;
+            fix_sign(v.as_mut_slice());
+            shapes.set_column(k, &v);
+        }
+        Ok(Self {
+            omega,
+            shapes,
+            about: x_star.to_vec(),
+            stats: ModesStats {
+                method: ModesMethod::Dense,
+                operator_applications: 0,
+                restarts: 0,
+                basis: 0,
+            },
+        })
+    }
+}

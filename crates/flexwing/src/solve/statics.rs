@@ -101,6 +101,7 @@ impl StaticOptions {
 
 /// Counters of a static solve.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct StaticStats {
     /// Accepted load steps.
     pub load_steps: usize,
@@ -160,7 +161,7 @@ pub struct StaticSolution {
 /// inside an element is not assessed ([`StaticSolution::stable`] is `None`): its test, the sign
 /// of the tangent's determinant, takes a dense LU there, O(n³) — about 0.05 s at 600
 /// coordinates, an hour at 20 000 (measured 12 min for the two n = 10 000 solves of
-/// tests/statics_elastica.rs). Followers at nodes and element midpoints (a tip follower force,
+/// tests/suite/statics_elastica.rs). Followers at nodes and element midpoints (a tip follower force,
 /// distributed followers) take the sign from the pivots of the O(n) chain factorization of the
 /// full model, exact for them, at any size.
 pub const FOLLOWER_STABILITY_MAX_DOFS: usize = 600;
@@ -621,19 +622,13 @@ impl<'a, M: StructuralModel> Newton<'a, M> {
 /// `dx` (the map `x ↦ q` is linear, so for a difference of two states this is the largest
 /// change of an element's rotation between them).
 pub(super) fn max_rotation<M: StructuralModel>(model: &M, dx: &[f64]) -> f64 {
-    let q = model.full_coordinates(dx);
-    let n = model.full_model().n_elements();
     let mut worst = 0.0_f64;
-    for block in q.chunks(n) {
-        let mut angle = 0.0;
-        for dq in block {
-            angle += dq;
-            if angle.is_nan() {
-                // A non-finite state is infinitely far.
-                return f64::INFINITY;
-            }
-            worst = worst.max(angle.abs());
+    for angle in model.element_rotations(dx) {
+        if angle.is_nan() {
+            // A non-finite state is infinitely far.
+            return f64::INFINITY;
         }
+        worst = worst.max(angle.abs());
     }
     worst
 }

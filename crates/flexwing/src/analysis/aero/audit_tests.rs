@@ -100,7 +100,7 @@ fn the_balance_closes_at_the_integrators_order() {
         for rtol in [1e-4, 1e-5, 1e-6, 1e-7, 1e-8] {
             let r = first_run(&plan(manoeuvre, Method::Radau, rtol, None));
             assert_eq!(r.status, Status::Complete);
-            let e = r.energy.as_ref().unwrap();
+            let e = r.energy_audit.as_ref().unwrap();
             assert!(
                 e.max_error < 5.0 * rtol,
                 "{manoeuvre} {rtol}: {}",
@@ -127,7 +127,7 @@ fn the_balance_closes_at_the_integrators_order() {
         for rtol in [1e-4, 1e-5, 1e-6, 1e-7, 1e-8] {
             let r = first_run(&plan(true, Method::Bdf, rtol, None));
             assert_eq!(r.status, Status::Complete);
-            bdf.push((r.stats.steps as f64, r.energy.unwrap().max_error));
+            bdf.push((r.stats.steps as f64, r.energy_audit.unwrap().max_error));
         }
         let order = -slope(&bdf);
         assert!((1.7..2.5).contains(&order), "BDF: {order} {bdf:?}");
@@ -135,7 +135,7 @@ fn the_balance_closes_at_the_integrators_order() {
         for h in [4e-3, 2e-3, 1e-3, 5e-4] {
             let r = first_run(&plan(true, Method::GeneralizedAlpha, 1e-8, Some(h)));
             assert_eq!(r.status, Status::Complete);
-            alpha.push((h, r.energy.unwrap().max_error));
+            alpha.push((h, r.energy_audit.unwrap().max_error));
         }
         let order = slope(&alpha);
         assert!(
@@ -236,9 +236,12 @@ fn at_zero_speed_the_audit_is_the_structural_audit_of_the_wet_beam() {
         let b = &out.runs[0];
         assert_eq!(a.status, Status::Complete);
         assert!(b.status.is_complete(), "{:?}", b.status);
-        let (ea, eb) = (a.energy.as_ref().unwrap(), b.energy.as_ref().unwrap());
+        let (ea, eb) = (
+            a.energy_audit.as_ref().unwrap(),
+            b.energy_audit.as_ref().unwrap(),
+        );
         assert!(ea.max_error < 1e-6 && eb.max_error < 1e-6, "{ea:?} {eb:?}");
-        let scale = eb.reference;
+        let scale = eb.reference_energy;
         assert_eq!(a.samples.len(), b.samples.len());
         for (x, y) in a.samples.iter().zip(&b.samples) {
             let close = |u: f64, v: f64| (u - v).abs() <= agreement * scale;

@@ -15,13 +15,13 @@ use std::time::Instant;
 
 use super::statics::{sweep_model, AeroPoint};
 use super::{build, models, Aero, Built, Fields, SpeedSweep};
-use crate::analysis::{ModelKind, Progress, Status, Stop};
+use crate::analysis::{ModelKind, Note, Progress, Status, Stop};
 use crate::error::{Error, InputError};
-use crate::model::aero::{AeroStructure, Aeroelastic, FlightCondition};
+use crate::model::aero::{Aeroelastic, FlightCondition, PlanarStructure};
 use crate::model::{FullModel, Load};
 use crate::solve::aeroelastic::{
     flutter_polled, AeroStaticOptions, Branch, Crossing, Divergence, FlutterMethod, FlutterOptions,
-    FlutterSolution, FlutterStats, FlutterStop,
+    FlutterSolution, FlutterStats,
 };
 use crate::solve::{Damping, StaticOptions};
 
@@ -246,10 +246,7 @@ impl Stability {
 
     fn of(out: FlutterSolution, wall_time_s: f64, points: usize) -> (Self, Option<Stop>) {
         let done = out.speeds.len();
-        let stop = out.stopped.map(|s| match s {
-            FlutterStop::Cancelled { .. } => Stop::SweepInterrupted { done, points },
-            other => Stop::Flutter(other),
-        });
+        let stop = out.stopped.map(|s| Stop::of_flutter(s, done, points));
         let stability = Self {
             speeds: out.speeds,
             branches: out.branches.iter().map(BranchData::of).collect(),
@@ -290,6 +287,9 @@ pub struct FlutterRun {
     pub status: Status,
     /// The p-k check's stop when the eigen-analysis stopped too.
     pub other_stops: Vec<Stop>,
+    /// What its numbers mean that its status does not show: equilibria that stopped (expected
+    /// past the divergence speed), branches unstable from the first speed.
+    pub notes: Vec<Note>,
 }
 
 /// What a flutter analysis found.
@@ -383,7 +383,7 @@ fn solver_plan(plan: &FlutterPlan, dofs: usize, method: FlutterMethod) -> Flutte
 
 /// Equilibria, eigen-analysis and (if asked) the p-k check of one model, in thirds of its
 /// progress.
-fn analyse<M: AeroStructure>(
+fn analyse<M: PlanarStructure>(
     kind: &ModelKind,
     aero: &Aeroelastic<M>,
     plan: &FlutterPlan,
@@ -408,6 +408,7 @@ fn analyse<M: AeroStructure>(
             wall_time_s: 0.0,
             status: Status::Stopped(interrupted(0)),
             other_stops: Vec::new(),
+            notes: Vec::new(),
         });
     }
     let parts = if plan.pk { 3.0 } else { 2.0 };
@@ -448,6 +449,21 @@ fn analyse<M: AeroStructure>(
         None
     };
     let mut stops = stops.into_iter();
+    let mut notes: Vec<Note> = equilibria
+        .status
+        .stop()
+        .map(|stop| Note::EquilibriaStopped { stop: stop.clone() })
+        .into_iter()
+        .collect();
+    let first = plan.speeds().first().copied().unwrap_or(0.0);
+    for (pk, s) in std::iter::once((false, &stability)).chain(pk.as_ref().map(|p| (true, p))) {
+        notes.extend(s.unstable_at_start.iter().map(|&b| Note::UnstableAtStart {
+            pk,
+            mode: s.branches[b].mode,
+            wet_frequency: s.branches[b].wet_frequency,
+            speed: first,
+        }));
+    }
     Ok(FlutterRun {
         kind: kind.clone(),
         dofs,
@@ -459,6 +475,7 @@ fn analyse<M: AeroStructure>(
         wall_time_s: start.elapsed().as_secs_f64(),
         status: stops.next().map_or(Status::Complete, Status::Stopped),
         other_stops: stops.collect(),
+        notes,
     })
 }
 

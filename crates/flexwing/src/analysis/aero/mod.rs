@@ -20,6 +20,7 @@
 #[cfg(test)]
 mod audit_tests;
 pub mod flutter;
+pub mod linearize;
 pub mod response;
 pub mod statics;
 
@@ -29,6 +30,16 @@ use crate::model::{FullModel, ReducedModel};
 use crate::text::short;
 
 use super::ModelKind;
+
+/// How a divergence speed was found, in one word: `bracketed` (between two speeds of the sweep)
+/// or `undeformed` (the linear divergence pressure of the undeformed wing).
+pub fn basis_name(basis: crate::solve::aeroelastic::DivergenceBasis) -> &'static str {
+    use crate::solve::aeroelastic::DivergenceBasis;
+    match basis {
+        DivergenceBasis::Bracketed => "bracketed",
+        DivergenceBasis::Undeformed => "undeformed",
+    }
+}
 
 /// The aerodynamics of a plan: the section data along the span, the air and the aerodynamic
 /// model. Errors name `{aero}.chord`, `{aero}.elastic_axis`, …, `{aero}.density`,

@@ -14,10 +14,10 @@ use std::time::Instant;
 use nalgebra::DMatrix;
 
 use super::{build, models, Aero, Built, Fields};
-use crate::analysis::dynamics::{status_of, DynamicPlan, Initial, Snapshot};
+use crate::analysis::dynamics::{status_of, DynamicPlan, EnergyAudit, Initial, Snapshot};
 use crate::analysis::{ModelKind, Progress, Status, Stop};
 use crate::error::{Error, InputError, SolveError};
-use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic};
+use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, PlanarStructure};
 use crate::model::{AppliedLoads, Load};
 use crate::solve::aeroelastic::{AeroelasticEquations, FlightHistory, SteadyAeroModel};
 use crate::solve::integrate::{integrate, IntegratorStats, Method, OdeSystem};
@@ -169,7 +169,7 @@ pub struct AeroDynamicRun {
     pub status: Status,
     /// What the energy audit found over the accepted steps (`solve/aeroelastic/audit.rs`);
     /// `None` if the run did not start (its initial state or equations failed).
-    pub energy: Option<EnergyBalance>,
+    pub energy_audit: Option<EnergyAudit>,
     /// Largest distance of the tip from the first model's, over the output times both reached
     /// (m); `None` for the first model.
     pub max_tip_difference: Option<f64>,
@@ -255,7 +255,7 @@ struct Simulator<'a> {
 }
 
 impl Simulator<'_> {
-    fn run<M: AeroStructure>(
+    fn run<M: PlanarStructure>(
         &self,
         kind: &ModelKind,
         aero: &Aeroelastic<M>,
@@ -274,13 +274,16 @@ impl Simulator<'_> {
             samples: Vec::new(),
             snapshots: Vec::new(),
             status: Status::Complete,
-            energy: None,
+            energy_audit: None,
             max_tip_difference: None,
         };
         let x0 = match self.initial_state(aero) {
             Ok(x) => x,
             Err(e) => {
-                run.status = Status::Stopped(Stop::InitialState(e));
+                run.status = Status::Stopped(Stop::InitialState {
+                    loads: Vec::new(),
+                    error: e,
+                });
                 return run;
             }
         };
@@ -374,7 +377,7 @@ impl Simulator<'_> {
                 run.snapshots.push(Snapshot { index, t, shape });
             }
         }
-        run.energy = Some(balance);
+        run.energy_audit = Some(EnergyAudit::of(&balance));
         run
     }
 
@@ -398,7 +401,6 @@ impl Simulator<'_> {
             scales.push(initial.root_angle.cos());
         }
         let applied = aero
-            .full()
             .apply(&loads, "loads")
             .map_err(SolveError::from_input)?;
         let model = SteadyAeroModel::new(&steady, initial.root_angle);

@@ -9,7 +9,7 @@ use std::time::Instant;
 use super::{build, models, Aero, Built, Fields, SpeedSweep};
 use crate::analysis::{ModelKind, Progress, Status, Stop};
 use crate::error::{Error, InputError};
-use crate::model::aero::{AeroStructure, Aeroelastic, FlightCondition};
+use crate::model::aero::{Aeroelastic, FlightCondition, PlanarStructure};
 use crate::model::{FullModel, Load, Shape};
 use crate::solve::aeroelastic::{static_sweep_polled, AeroStaticOptions, Divergence};
 use crate::solve::{StaticOptions, StaticStats};
@@ -250,7 +250,7 @@ pub fn run(plan: &AeroStaticPlan, progress: &mut dyn Progress) -> Result<AeroSta
 }
 
 /// The sweep of one model, timed.
-pub(crate) fn sweep_model<M: AeroStructure>(
+pub(crate) fn sweep_model<M: PlanarStructure>(
     kind: &ModelKind,
     aero: &Aeroelastic<M>,
     sweep: &AeroStaticOptions,

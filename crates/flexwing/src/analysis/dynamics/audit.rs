@@ -119,6 +119,47 @@ impl AuditSettings {
     }
 }
 
+/// What the energy audit of a run found over its accepted steps (docs/validation.md, "Energy
+/// audit"), in the names every front end shows (the CLI's `energy_audit`, Python's
+/// `run.energy_audit`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct EnergyAudit {
+    /// Whether the model has an energy balance (all but the simplified model): its error is an
+    /// integration error; the simplified model's is the energy its equations create.
+    pub balanced: bool,
+    /// Largest relative balance error `max_t |H − H(0) − W + D| / E`.
+    pub max_error: f64,
+    /// Its time (s).
+    pub max_error_time: f64,
+    /// The limit of `max_error` (`None` without a balance).
+    pub limit: Option<f64>,
+    /// The first time the error exceeded `limit` (s): the run is then suspect.
+    pub exceeded_time: Option<f64>,
+    /// The runaway limit of the energy created.
+    pub runaway_limit: f64,
+    /// The time the run was stopped as a runaway (s), if it was.
+    pub runaway_time: Option<f64>,
+    /// The reference energy `E` (J): the largest energy held or given.
+    pub reference_energy: f64,
+}
+
+impl EnergyAudit {
+    /// What the balance `b` of a finished run says.
+    pub fn of(b: &EnergyBalance) -> Self {
+        Self {
+            balanced: b.limits.balance.is_some(),
+            max_error: b.max_error,
+            max_error_time: b.max_error_time,
+            limit: b.limits.balance,
+            exceeded_time: b.exceeded_at,
+            runaway_limit: b.limits.runaway,
+            runaway_time: b.runaway_at,
+            reference_energy: b.reference,
+        }
+    }
+}
+
 /// An audited run: the output reached, the integrator's counters, the energy balance and how the
 /// run ended.
 #[derive(Debug, Clone)]

@@ -12,9 +12,10 @@ mod run;
 
 pub(crate) use audit::status_of;
 pub use audit::{
-    integrate_audited, AuditSettings, AuditedRun, DEFAULT_RUNAWAY, MAX_TOLERANCE, MIN_TOLERANCE,
+    integrate_audited, AuditSettings, AuditedRun, EnergyAudit, DEFAULT_RUNAWAY, MAX_TOLERANCE,
+    MIN_TOLERANCE,
 };
-pub use outcome::{Comparison, DynamicOutcome, ModelRun, Sample, Snapshot};
+pub use outcome::{Comparison, DynamicOutcome, DynamicRun, Sample, Snapshot};
 pub use run::run;
 
 use super::models::{reduced_models, ModelKind};
@@ -23,6 +24,16 @@ use crate::model::{FullModel, Load};
 use crate::solve::integrate::{IntegratorSettings, Method};
 use crate::solve::{Damping, Gyroscopic, TimeFunction};
 use crate::text::short;
+
+/// The case file's name of a way to get the gyroscopic term: `exact`, `finite-difference` or
+/// `neglected`.
+pub fn gyroscopic_name(g: Gyroscopic) -> &'static str {
+    match g {
+        Gyroscopic::Exact => "exact",
+        Gyroscopic::FiniteDifference { .. } => "finite-difference",
+        Gyroscopic::Neglected => "neglected",
+    }
+}
 
 /// Most output times of a run: every output time keeps a sample per model in memory.
 pub const MAX_OUTPUT_TIMES: usize = 100_000;
@@ -77,6 +88,9 @@ pub struct DynamicPlan {
     pub snapshots: Vec<usize>,
     /// The energy audit of every run; errors name `{prefix}.energy_tolerance`, ….
     pub audit: AuditSettings,
+    /// How the caller names each load in messages (a case file: its `name`); a load without
+    /// an entry is `loads[i]`.
+    pub load_names: Vec<String>,
 }
 
 /// The state at `t = 0`.
@@ -122,6 +136,7 @@ impl DynamicPlan {
             initial: Initial::Rest,
             snapshots: Vec::new(),
             audit: AuditSettings::default(),
+            load_names: Vec::new(),
         }
     }
 
@@ -336,6 +351,11 @@ impl DynamicPlan {
             ModelKind::Simplified => Gyroscopic::Neglected,
             _ => self.gyroscopic,
         }
+    }
+
+    /// The caller's name of load `i` ([`DynamicPlan::load_names`], else `loads[i]`).
+    pub fn load_name(&self, i: usize) -> String {
+        super::load_name(&self.load_names, i)
     }
 
     /// Indices (in [`DynamicPlan::loads`]) of the loads that act during the motion.

@@ -3,14 +3,15 @@
 //! ended and how far it is from the first model.
 
 use super::super::models::ModelKind;
-use super::super::Status;
+use super::super::{Note, Status};
+use super::EnergyAudit;
 use crate::model::Shape;
 use crate::solve::integrate::{IntegratorStats, Method};
-use crate::solve::{EnergyBalance, Gyroscopic};
+use crate::solve::Gyroscopic;
 
 /// The simulation of one model.
 #[derive(Debug, Clone)]
-pub struct ModelRun {
+pub struct DynamicRun {
     /// Which model.
     pub kind: ModelKind,
     /// Number of coordinates of the model.
@@ -32,12 +33,14 @@ pub struct ModelRun {
     pub status: Status,
     /// What the energy audit found over the accepted steps; `None` if the run did not start
     /// (its initial state or equations failed).
-    pub energy: Option<EnergyBalance>,
+    pub energy_audit: Option<EnergyAudit>,
     /// Differences from the first model's tip history (not for the first model itself).
     pub comparison: Option<Comparison>,
+    /// What made the run slow that its status does not show ([`Note::newton`]).
+    pub notes: Vec<Note>,
 }
 
-impl ModelRun {
+impl DynamicRun {
     /// Whether the model has an energy balance (all but the simplified model): its audit error
     /// is an integration error; the simplified model's is the energy its equations create.
     pub fn has_energy_balance(&self) -> bool {
@@ -103,12 +106,12 @@ pub struct Comparison {
 #[derive(Debug, Clone)]
 pub struct DynamicOutcome {
     /// One run per model, in the order of [`super::DynamicPlan::models`].
-    pub runs: Vec<ModelRun>,
+    pub runs: Vec<DynamicRun>,
 }
 
 impl DynamicOutcome {
     /// Wall time of `run` over that of the first model.
-    pub fn ratio_to_first(&self, run: &ModelRun) -> Option<f64> {
+    pub fn ratio_to_first(&self, run: &DynamicRun) -> Option<f64> {
         let first = self.runs.first()?;
         (first.wall_time_s > 0.0).then(|| run.wall_time_s / first.wall_time_s)
     }
@@ -121,7 +124,7 @@ impl DynamicOutcome {
 
 /// Fill in each model's differences from the first model's tip history, over the output times
 /// both reached; `length` is the span `L`.
-pub(super) fn compare_with_first(runs: &mut [ModelRun], length: f64) {
+pub(super) fn compare_with_first(runs: &mut [DynamicRun], length: f64) {
     let Some((first, others)) = runs.split_first_mut() else {
         return;
     };

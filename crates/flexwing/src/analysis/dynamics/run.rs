@@ -7,11 +7,11 @@ use std::time::Instant;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
-use super::audit::integrate_audited;
-use super::outcome::{compare_with_first, DynamicOutcome, ModelRun, Sample, Snapshot};
+use super::audit::{integrate_audited, EnergyAudit};
+use super::outcome::{compare_with_first, DynamicOutcome, DynamicRun, Sample, Snapshot};
 use super::{DynamicPlan, Initial};
 use crate::analysis::models::ModelKind;
-use crate::analysis::{Progress, Status, Stop};
+use crate::analysis::{Note, Progress, Status, Stop};
 use crate::error::{Error, SolveError};
 use crate::model::{AppliedLoads, FullModel, ReducedModel, StructuralModel};
 use crate::solve::integrate::IntegratorStats;
@@ -71,7 +71,7 @@ pub fn run(plan: &DynamicPlan, progress: &mut dyn Progress) -> Result<DynamicOut
     let mut runs = Vec::with_capacity(kinds.len());
     for (k, kind) in kinds.iter().enumerate() {
         if progress.cancelled() {
-            runs.push(ModelRun::not_run(
+            runs.push(DynamicRun::not_run(
                 kind,
                 plan,
                 Stop::Interrupted { time: None },
@@ -94,10 +94,10 @@ pub fn run(plan: &DynamicPlan, progress: &mut dyn Progress) -> Result<DynamicOut
     Ok(DynamicOutcome { runs })
 }
 
-impl ModelRun {
+impl DynamicRun {
     /// A run of `kind` that did not get to integrate, with the reason.
     fn not_run(kind: &ModelKind, plan: &DynamicPlan, stop: Stop) -> Self {
-        ModelRun {
+        DynamicRun {
             kind: kind.clone(),
             dofs: 0,
             integrator: plan.integrator,
@@ -107,8 +107,9 @@ impl ModelRun {
             samples: Vec::new(),
             snapshots: Vec::new(),
             status: Status::Stopped(stop),
-            energy: None,
+            energy_audit: None,
             comparison: None,
+            notes: Vec::new(),
         }
     }
 }
@@ -134,17 +135,21 @@ impl Simulator<'_> {
         reduced: Option<&ReducedModel>,
         damping: &Damping,
         progress: &mut dyn Progress,
-    ) -> ModelRun {
+    ) -> DynamicRun {
         let plan = self.plan;
         let gyroscopic = plan.gyroscopic_of(kind);
-        let mut run = ModelRun {
+        let mut run = DynamicRun {
             dofs: model.n_dofs(),
-            ..ModelRun::not_run(kind, plan, Stop::Interrupted { time: None })
+            ..DynamicRun::not_run(kind, plan, Stop::Interrupted { time: None })
         };
         let (x0, xdot0) = match self.initial_state(model, reduced) {
             Ok(s) => s,
             Err(e) => {
-                run.status = Status::Stopped(Stop::InitialState(e));
+                let loads = match &plan.initial {
+                    Initial::Static { loads } => loads.iter().map(|&i| plan.load_name(i)).collect(),
+                    _ => Vec::new(),
+                };
+                run.status = Status::Stopped(Stop::InitialState { loads, error: e });
                 return run;
             }
         };
@@ -214,7 +219,9 @@ impl Simulator<'_> {
                 run.snapshots.push(Snapshot { index, t, shape });
             }
         }
-        run.energy = Some(balance);
+        run.energy_audit = Some(EnergyAudit::of(&balance));
+        run.notes
+            .extend(Note::newton(kind, plan.integrator, self.full, &run.stats));
         run
     }
 

@@ -1,6 +1,8 @@
 //! The strips of the whole chain: section motions from the joint coordinates and rates, upwash,
 //! loads, and the generalized forces `Q = Tᵀ Q_abs` in O(n) (docs/aeroelastic-model.md §3),
-//! generic over the scalar for dual-number derivatives.
+//! generic over the scalar for dual-number derivatives. Each evaluation dispatches on the chain
+//! the strips live on ([`super::AeroChain`]): the planar chain's code below, the 3-D chain's in
+//! `spatial.rs`.
 //!
 //! With the node velocities `V_i = V_{i−1} + ℓ_i θ̇_i n_i` the strip's elastic-axis velocity is
 //! `ċ_i = V_{i−1} + (ℓ_i/2) θ̇_i n_i`. A force `P_i = ℓ_i F_i` at `c_i` and a nose-up moment
@@ -10,14 +12,18 @@
 
 use num_dual::{Dual64, DualNum};
 
+use super::spatial::{self, SpatialStrips};
 use super::strip::{flow, loads, Air, Motion};
-use super::{AeroStructure, Aeroelastic};
+use super::{AeroChain, AeroStructure, Aeroelastic};
 use crate::model::suffix_sum_in_blocks;
 
 /// Per-element buffers of a chain evaluation for scalar `D`.
 #[derive(Debug, Clone)]
 pub(crate) struct AeroScratch<D> {
+    /// Section motions on the planar chain (empty on the 3-D chain).
     pub(crate) motion: Vec<Motion<D>>,
+    /// The 3-D chain's kinematics and strip velocities (`None` on the planar chain).
+    pub(crate) spatial: Option<Box<SpatialStrips<D>>>,
     /// Upwash at the three-quarter chord `w_i`.
     pub(crate) w: Vec<D>,
     /// Chordwise relative speed `W_T,i`.
@@ -33,7 +39,12 @@ pub(crate) struct AeroScratch<D> {
 }
 
 impl<D: DualNum<Primitive = f64> + Copy> AeroScratch<D> {
-    pub(crate) fn new(n: usize, n_dofs: usize) -> Self {
+    pub(crate) fn new(chain: AeroChain<'_>, n: usize) -> Self {
+        let n_dofs = chain.n_dofs();
+        let (planar, spatial) = match chain {
+            AeroChain::Planar(_) => (n, None),
+            AeroChain::Spatial(_) => (0, Some(Box::new(SpatialStrips::new(n)))),
+        };
         let z = D::from(0.0);
         let rest = Motion {
             cos_theta: D::from(1.0),
@@ -44,7 +55,8 @@ impl<D: DualNum<Primitive = f64> + Copy> AeroScratch<D> {
             psi_dot: z,
         };
         Self {
-            motion: vec![rest; n],
+            motion: vec![rest; planar],
+            spatial,
             w: vec![z; n],
             wt: vec![z; n],
             weff: vec![z; n],
@@ -58,7 +70,7 @@ impl<D: DualNum<Primitive = f64> + Copy> AeroScratch<D> {
 impl<M: AeroStructure> Aeroelastic<M> {
     /// Buffers for chain evaluations.
     pub(crate) fn scratch<D: DualNum<Primitive = f64> + Copy>(&self) -> AeroScratch<D> {
-        AeroScratch::new(self.n_strips(), self.full().n_dofs())
+        AeroScratch::new(self.chain(), self.n_strips())
     }
 
     /// Trigonometry of the joint rotations `q` (full model) into `sc`.
@@ -67,7 +79,12 @@ impl<M: AeroStructure> Aeroelastic<M> {
         q: &[D],
         sc: &mut AeroScratch<D>,
     ) {
-        let full = self.full();
+        let full = match self.chain() {
+            AeroChain::Planar(full) => full,
+            AeroChain::Spatial(chain) => {
+                return chain.strip_configuration(q, spatial_of(sc));
+            }
+        };
         let n = full.n_elements();
         let torsion = full.has_torsion();
         let zero = D::from(0.0);
@@ -89,13 +106,22 @@ impl<M: AeroStructure> Aeroelastic<M> {
 
     /// Dual trigonometry of `q + ε v` from the real trigonometry of `q` in `base`, without a
     /// trigonometric call (the absolute direction `T v` by prefix sums).
+    /// `q` is the configuration of `base` (the 3-D chain evaluates its kinematics along
+    /// `q + ε v` with dual numbers).
     pub(crate) fn set_configuration_along(
         &self,
         base: &AeroScratch<f64>,
+        q: &[f64],
         v: &[f64],
         sc: &mut AeroScratch<Dual64>,
     ) {
-        let full = self.full();
+        let full = match self.chain() {
+            AeroChain::Planar(full) => full,
+            AeroChain::Spatial(chain) => {
+                let b = base.spatial.as_deref().expect("a 3-D chain's scratch");
+                return chain.strip_configuration_along(b, q, v, spatial_of(sc));
+            }
+        };
         let n = full.n_elements();
         let torsion = full.has_torsion();
         let (mut dt, mut dp) = (0.0, 0.0);
@@ -113,13 +139,39 @@ impl<M: AeroStructure> Aeroelastic<M> {
         }
     }
 
+    /// The real configuration of `base` in the dual scratch `sc` (for derivatives along the
+    /// rates).
+    pub(crate) fn freeze_configuration(
+        &self,
+        base: &AeroScratch<f64>,
+        sc: &mut AeroScratch<Dual64>,
+    ) {
+        match self.chain() {
+            AeroChain::Planar(_) => {
+                for (m, b) in sc.motion.iter_mut().zip(&base.motion) {
+                    m.cos_theta = Dual64::from(b.cos_theta);
+                    m.sin_theta = Dual64::from(b.sin_theta);
+                    m.cos_psi = Dual64::from(b.cos_psi);
+                    m.sin_psi = Dual64::from(b.sin_psi);
+                }
+            }
+            AeroChain::Spatial(chain) => {
+                let b = base.spatial.as_deref().expect("a 3-D chain's scratch");
+                chain.strip_freeze(b, spatial_of(sc));
+            }
+        }
+    }
+
     /// Section velocities from the joint rates `qdot` at the configuration in `sc`.
     pub(crate) fn set_rates<D: DualNum<Primitive = f64> + Copy>(
         &self,
         qdot: &[D],
         sc: &mut AeroScratch<D>,
     ) {
-        let full = self.full();
+        let full = match self.chain() {
+            AeroChain::Planar(full) => full,
+            AeroChain::Spatial(chain) => return chain.strip_rates(qdot, spatial_of(sc)),
+        };
         let n = full.n_elements();
         let torsion = full.has_torsion();
         let ell = full.beam().lengths();
@@ -148,6 +200,14 @@ impl<M: AeroStructure> Aeroelastic<M> {
         sc: &mut AeroScratch<D>,
     ) {
         let steady = !self.aerodynamics().is_unsteady();
+        if let Some(sp) = sc.spatial.as_deref() {
+            for (i, s) in self.strips.iter().enumerate() {
+                let (w, wt) = spatial::flow(s, sp, i, &air[i], steady);
+                sc.w[i] = w;
+                sc.wt[i] = wt;
+            }
+            return;
+        }
         for (i, s) in self.strips.iter().enumerate() {
             let (w, wt) = flow(s, &sc.motion[i], &air[i], steady);
             sc.w[i] = w;
@@ -163,6 +223,15 @@ impl<M: AeroStructure> Aeroelastic<M> {
     ) {
         let unsteady = self.aerodynamics().is_unsteady();
         let rho = self.density();
+        if let Some(sp) = sc.spatial.as_deref() {
+            for (i, s) in self.strips.iter().enumerate() {
+                let flow = (sc.w[i], sc.wt[i], sc.weff[i]);
+                let (f, m) = spatial::loads(s, sp, i, &air[i], rho, flow, unsteady);
+                sc.force[i] = f;
+                sc.moment[i] = m;
+            }
+            return;
+        }
         for (i, s) in self.strips.iter().enumerate() {
             let (f, m) = loads(
                 s,
@@ -179,7 +248,13 @@ impl<M: AeroStructure> Aeroelastic<M> {
 
     /// Generalized forces of the strip loads in the full model's joint coordinates, into `sc.q`.
     pub(crate) fn assemble<D: DualNum<Primitive = f64> + Copy>(&self, sc: &mut AeroScratch<D>) {
-        let full = self.full();
+        let full = match self.chain() {
+            AeroChain::Planar(full) => full,
+            AeroChain::Spatial(_) => {
+                let sp = sc.spatial.as_deref_mut().expect("a 3-D chain's scratch");
+                return spatial::assemble(&self.strips, sp, &sc.force, &sc.moment, &mut sc.q);
+            }
+        };
         let n = full.n_elements();
         let torsion = full.has_torsion();
         let ell = full.beam().lengths();
@@ -211,7 +286,10 @@ impl<M: AeroStructure> Aeroelastic<M> {
         i: usize,
         out: &mut [f64],
     ) {
-        let full = self.full();
+        let full = match self.chain() {
+            AeroChain::Planar(full) => full,
+            AeroChain::Spatial(_) => return self.spatial_load_per_upwash(sc, air, i, out),
+        };
         let n = full.n_elements();
         let ell = full.beam().lengths();
         let m = &sc.motion[i];
@@ -248,4 +326,44 @@ impl<M: AeroStructure> Aeroelastic<M> {
         }
         suffix_sum_in_blocks(out, n);
     }
+}
+
+impl<M: AeroStructure> Aeroelastic<M> {
+    /// [`Aeroelastic::load_per_upwash`] on the 3-D chain.
+    fn spatial_load_per_upwash(
+        &self,
+        sc: &AeroScratch<f64>,
+        air: &[Air],
+        i: usize,
+        out: &mut [f64],
+    ) {
+        let sp = sc.spatial.as_deref().expect("a 3-D chain's scratch");
+        let r = &sp.fr.r[i];
+        let l3 = |v: [f64; 3]| v.map(Dual64::from);
+        let frame = (
+            l3([r[0][2], r[1][2], r[2][2]]),
+            l3([r[0][1], r[1][1], r[2][1]]),
+            Dual64::from(sp.pitch_rate[i]),
+        );
+        let s = &self.strips[i];
+        let (f, mom) = super::strip::section_loads(
+            s,
+            frame,
+            &air[i],
+            self.density(),
+            (
+                Dual64::from(sc.w[i]),
+                Dual64::from(sc.wt[i]),
+                Dual64::new(sc.weff[i], 1.0),
+            ),
+            self.aerodynamics().is_unsteady(),
+        );
+        let dp = f.map(|v| v.eps * s.width);
+        spatial::strip_load(sp, i, dp, mom.eps * s.width, out);
+    }
+}
+
+/// The 3-D chain's part of a scratch.
+fn spatial_of<D>(sc: &mut AeroScratch<D>) -> &mut SpatialStrips<D> {
+    sc.spatial.as_deref_mut().expect("a 3-D chain's scratch")
 }

@@ -1,8 +1,10 @@
 //! Strip-theory aerodynamics on the lumped chain (docs/aeroelastic-model.md): section data, the
-//! aerodynamic models, the fluid's inertia, and [`Aeroelastic`], a structural model (full or
-//! reduced) with its strips.
+//! aerodynamic models, the fluid's inertia, and [`Aeroelastic`], a structural model (the planar
+//! chain, full or reduced, or the 3-D chain) with its strips.
 //!
-//! One strip per element, at the element's midpoint, in the deformed geometry. The conventions
+//! One strip per element, at the element's midpoint, in the deformed geometry: on the planar
+//! chain `chain.rs` and `strip.rs`, on the 3-D chain `spatial.rs` (the same section theory in the
+//! section frame, docs/chain3d-model.md "Strip aerodynamics"). The conventions
 //! (leading edge on `+z`, twist nose-up, `d0 > 0` toward the leading edge, the free stream tilted
 //! by the root angle) are fixed in docs/aeroelastic-model.md §1 and checked by hand in
 //! `strip.rs`'s tests.
@@ -13,13 +15,14 @@ mod lag;
 // Generated table (peters_poles.py): its element type is the data layout, not worth an alias.
 #[allow(clippy::type_complexity)]
 mod peters_poles;
+mod spatial;
 mod strip;
 mod theodorsen;
 
 pub(crate) use chain::AeroScratch;
 pub(crate) use fluid::FluidInertia;
 pub(crate) use lag::Lag;
-pub(crate) use strip::{Air, StripData};
+pub(crate) use strip::{loads as strip_loads, Air, Motion, StripData};
 pub use theodorsen::{theodorsen, theodorsen_derivative};
 
 use nalgebra::DMatrix;
@@ -27,7 +30,7 @@ use nalgebra::DMatrix;
 use crate::beam::profile::Sign;
 use crate::beam::Profile;
 use crate::error::{Error, InputError};
-use crate::model::{FullModel, ReducedModel, StructuralModel};
+use crate::model::{AppliedLoads, Chain3d, FullModel, Load, ReducedModel, StructuralModel};
 
 /// Aerodynamic section data along the span, each a number or a spanwise table (like the beam's
 /// section properties). Angles in radians.
@@ -83,7 +86,35 @@ pub enum Aerodynamics {
     },
 }
 
+impl std::fmt::Display for Aerodynamics {
+    /// The model in words: `steady strip theory`, `Wagner's function (…) with apparent mass`, ….
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Aerodynamics::Steady => write!(f, "steady strip theory"),
+            Aerodynamics::QuasiSteady => write!(f, "quasi-steady (C(k) = 1) with apparent mass"),
+            Aerodynamics::Wagner => write!(
+                f,
+                "Wagner's function (R. T. Jones, 2 states per strip) with apparent mass"
+            ),
+            Aerodynamics::Peters { states } => write!(
+                f,
+                "Peters' finite-state inflow ({states} states per strip) with apparent mass"
+            ),
+        }
+    }
+}
+
 impl Aerodynamics {
+    /// The case file's name of the model: `steady`, `quasi-steady`, `wagner` or `peters`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Aerodynamics::Steady => "steady",
+            Aerodynamics::QuasiSteady => "quasi-steady",
+            Aerodynamics::Wagner => "wagner",
+            Aerodynamics::Peters { .. } => "peters",
+        }
+    }
+
     /// Whether the model has the section's velocity and the apparent mass (all but `Steady`).
     pub fn is_unsteady(&self) -> bool {
         !matches!(self, Aerodynamics::Steady)
@@ -164,16 +195,117 @@ impl FlightCondition {
     }
 }
 
-/// A structural model the aerodynamics can act on: the full model, or a reduced model whose
-/// coordinates map linearly to the full model's (`q = Φ η`).
+/// The chain whose joint coordinates the strips are evaluated on: the paper's planar chain or
+/// the 3-D chain. What the aerodynamics needs of a structure: strip kinematics from its joint
+/// rotations and rates, generalized forces of the strip loads, the loads and outputs in the
+/// chain's terms.
+#[derive(Debug, Clone, Copy)]
+pub enum AeroChain<'a> {
+    /// The planar chain (`model.md`): bending and twist joints.
+    Planar(&'a FullModel),
+    /// The 3-D chain (docs/chain3d-model.md): three-axis joints.
+    Spatial(&'a Chain3d),
+}
+
+impl AeroChain<'_> {
+    /// Number of joint coordinates.
+    pub fn n_dofs(&self) -> usize {
+        match self {
+            AeroChain::Planar(f) => f.n_dofs(),
+            AeroChain::Spatial(c) => c.n_dofs(),
+        }
+    }
+    /// Number of elements (strips).
+    pub fn n_elements(&self) -> usize {
+        match self {
+            AeroChain::Planar(f) => f.n_elements(),
+            AeroChain::Spatial(c) => c.n_elements(),
+        }
+    }
+    /// Length of the beam (m): the span of the planar chain, the arc length of the 3-D chain's
+    /// reference axis.
+    pub fn length(&self) -> f64 {
+        match self {
+            AeroChain::Planar(f) => f.beam().length(),
+            AeroChain::Spatial(c) => c.beam().length(),
+        }
+    }
+    /// Node stations along the beam (m).
+    pub fn nodes(&self) -> &[f64] {
+        match self {
+            AeroChain::Planar(f) => f.beam().nodes(),
+            AeroChain::Spatial(c) => c.beam().nodes(),
+        }
+    }
+    /// The planar model's loads resolved on this chain (on the 3-D chain by
+    /// [`crate::model::chain3d::SpatialLoad::from_planar`]); `field` prefixes the error fields.
+    ///
+    /// # Errors
+    /// Those of [`FullModel::apply`] or [`Chain3d::apply_planar`].
+    pub fn apply(&self, loads: &[Load], field: &str) -> Result<AppliedLoads, InputError> {
+        match self {
+            AeroChain::Planar(f) => f.apply(loads, field),
+            AeroChain::Spatial(c) => c.apply_planar(loads, field),
+        }
+    }
+    /// Tip displacement of the elastic axis from the undeformed tip `(dx, dy, dz)` (m; `dz = 0`
+    /// on the planar chain) and the tip section's nose-up pitch (rad) at the joint rotations
+    /// `q`: the planar chain's tip twist `ψ_n`; on the 3-D chain the angle of the tip chord `c`
+    /// above the chordwise axis `ẑ` in the section plane, `atan2(−n·ẑ, c·ẑ)` (the same angle in
+    /// the planar limit).
+    pub fn tip(&self, q: &[f64]) -> ([f64; 3], f64) {
+        match self {
+            AeroChain::Planar(full) => {
+                let kin = full.kinematics(q);
+                let nodes = full.node_positions(&kin);
+                let nel = full.n_elements();
+                let tip = nodes[nel];
+                let twist = if full.has_torsion() {
+                    kin.psi[nel - 1]
+                } else {
+                    0.0
+                };
+                ([tip[0] - full.beam().length(), tip[1], 0.0], twist)
+            }
+            AeroChain::Spatial(chain) => {
+                let shape = chain.shape(q);
+                let n = chain.n_elements();
+                let reference = chain.beam().reference_positions()[n];
+                let p = shape.tip();
+                let r = shape.frames[n - 1];
+                let twist = (-r[2][1]).atan2(r[2][2]);
+                (std::array::from_fn(|k| p[k] - reference[k]), twist)
+            }
+        }
+    }
+    /// Root bending moment (N·m): the clamp spring's flap moment, `K_θ,1 q_1` on the planar
+    /// chain, the flap component `(K_0 φ_0)_c` on the 3-D chain.
+    pub fn root_bending_moment(&self, q: &[f64]) -> f64 {
+        match self {
+            AeroChain::Planar(full) => full.stiffness()[0] * q[0],
+            AeroChain::Spatial(chain) => {
+                let k = &chain.beam().joint_stiffness()[0];
+                (0..3).map(|c| k[2][c] * q[c]).sum()
+            }
+        }
+    }
+}
+
+/// A structural model the aerodynamics can act on: a chain (the planar full model or the 3-D
+/// chain), or a reduced model whose coordinates map linearly to a chain's (`q = Φ η`).
 pub trait AeroStructure: StructuralModel + Clone {
-    /// The basis `Φ` (`n_dofs(full) × n_dofs`), or `None` for the full model (`Φ = I`).
+    /// The basis `Φ` (`n_dofs(chain) × n_dofs`), or `None` for a chain itself (`Φ = I`).
     fn basis(&self) -> Option<&DMatrix<f64>>;
+    /// The chain the strips are evaluated on (the full model underneath a reduced model).
+    fn chain(&self) -> AeroChain<'_>;
 }
 
 impl AeroStructure for FullModel {
     fn basis(&self) -> Option<&DMatrix<f64>> {
         None
+    }
+    fn chain(&self) -> AeroChain<'_> {
+        AeroChain::Planar(self)
     }
 }
 
@@ -181,7 +313,25 @@ impl AeroStructure for ReducedModel {
     fn basis(&self) -> Option<&DMatrix<f64>> {
         Some(ReducedModel::basis(self))
     }
+    fn chain(&self) -> AeroChain<'_> {
+        AeroChain::Planar(self.full_model())
+    }
 }
+
+impl AeroStructure for Chain3d {
+    fn basis(&self) -> Option<&DMatrix<f64>> {
+        None
+    }
+    fn chain(&self) -> AeroChain<'_> {
+        AeroChain::Spatial(self)
+    }
+}
+
+/// A structure on the paper's planar chain (the full model or a reduced model on it), whose
+/// full model [`Aeroelastic::full`] gives.
+pub trait PlanarStructure: AeroStructure {}
+impl PlanarStructure for FullModel {}
+impl PlanarStructure for ReducedModel {}
 
 /// A structural model with its aerodynamic strips: the structure carries the fluid's inertia
 /// (its mass matrix is the wet one), and every aeroelastic analysis takes this type.
@@ -211,82 +361,8 @@ impl Aeroelastic<FullModel> {
         field: &str,
     ) -> Result<Self, InputError> {
         let beam = structure.beam();
-        let length = beam.length();
-        let f = |name: &str| format!("{field}.{name}");
-        section
-            .chord
-            .validate(&f("chord"), length, Sign::Positive)?;
-        section
-            .elastic_axis
-            .validate(&f("elastic_axis"), length, Sign::Any)?;
-        let values: Vec<f64> = match &section.elastic_axis {
-            Profile::Uniform(v) => vec![*v],
-            Profile::Table { value, .. } => value.clone(),
-        };
-        if let Some(v) = values.iter().find(|v| !(0.0..=1.0).contains(*v)) {
-            return Err(InputError::new(
-                f("elastic_axis"),
-                format!(
-                    "must lie on the chord, a fraction in [0, 1] from the leading edge, got {}",
-                    crate::text::short(*v)
-                ),
-            ));
-        }
-        section
-            .lift_slope
-            .validate(&f("lift_slope"), length, Sign::Positive)?;
-        section
-            .zero_lift_angle
-            .validate(&f("zero_lift_angle"), length, Sign::Any)?;
-        section.cm0.validate(&f("cm0"), length, Sign::Any)?;
-        section.cd0.validate(&f("cd0"), length, Sign::NonNegative)?;
-        if !(density.is_finite() && density > 0.0) {
-            return Err(InputError::new(
-                f("density"),
-                format!(
-                    "must be a finite positive number (kg/m³), got {}",
-                    crate::text::short(density)
-                ),
-            ));
-        }
-        crate::magnitude::check(&f("density"), "", density)?;
-        if let Aerodynamics::Peters { states } = aerodynamics {
-            if !(1..=MAX_PETERS_STATES).contains(&states) {
-                return Err(InputError::new(
-                    f("aerodynamics.states"),
-                    format!("Peters' inflow needs 1 to {MAX_PETERS_STATES} states, got {states}"),
-                ));
-            }
-        }
-        let nodes = beam.nodes();
-        let strips: Vec<StripData> = nodes
-            .windows(2)
-            .map(|w| {
-                let x = 0.5 * (w[0] + w[1]);
-                StripData {
-                    b: 0.5 * section.chord.at(x),
-                    a: 2.0 * section.elastic_axis.at(x) - 1.0,
-                    lift_slope: section.lift_slope.at(x),
-                    alpha0: section.zero_lift_angle.at(x),
-                    cm0: section.cm0.at(x),
-                    cd0: section.cd0.at(x),
-                    width: w[1] - w[0],
-                    station: x,
-                }
-            })
-            .collect();
-        let pi = std::f64::consts::PI;
-        let fluid = FluidInertia {
-            mass: strips
-                .iter()
-                .map(|s| pi * density * s.b * s.b * s.width)
-                .collect(),
-            station: strips.iter().map(|s| s.a * s.b).collect(),
-            inertia: strips
-                .iter()
-                .map(|s| pi * density * s.b.powi(4) * s.width / 8.0)
-                .collect(),
-        };
+        let (strips, fluid) =
+            strips_and_fluid(beam.nodes(), section, density, aerodynamics, field)?;
         let mut dry = structure.clone();
         dry.fluid = None;
         Ok(Self {
@@ -317,14 +393,148 @@ impl Aeroelastic<FullModel> {
     }
 }
 
+/// The strips (one per element of the chain with node stations `nodes`, at the element
+/// midpoints) and the fluid's inertia of the section data, validated; `field` prefixes the
+/// error fields.
+fn strips_and_fluid(
+    nodes: &[f64],
+    section: &AeroSection,
+    density: f64,
+    aerodynamics: Aerodynamics,
+    field: &str,
+) -> Result<(Vec<StripData>, FluidInertia), InputError> {
+    let length = nodes[nodes.len() - 1];
+    let f = |name: &str| format!("{field}.{name}");
+    section
+        .chord
+        .validate(&f("chord"), length, Sign::Positive)?;
+    section
+        .elastic_axis
+        .validate(&f("elastic_axis"), length, Sign::Any)?;
+    let values: Vec<f64> = match &section.elastic_axis {
+        Profile::Uniform(v) => vec![*v],
+        Profile::Table { value, .. } => value.clone(),
+    };
+    if let Some(v) = values.iter().find(|v| !(0.0..=1.0).contains(*v)) {
+        return Err(InputError::new(
+            f("elastic_axis"),
+            format!(
+                "must lie on the chord, a fraction in [0, 1] from the leading edge, got {}",
+                crate::text::short(*v)
+            ),
+        ));
+    }
+    section
+        .lift_slope
+        .validate(&f("lift_slope"), length, Sign::Positive)?;
+    section
+        .zero_lift_angle
+        .validate(&f("zero_lift_angle"), length, Sign::Any)?;
+    section.cm0.validate(&f("cm0"), length, Sign::Any)?;
+    section.cd0.validate(&f("cd0"), length, Sign::NonNegative)?;
+    if !(density.is_finite() && density > 0.0) {
+        return Err(InputError::new(
+            f("density"),
+            format!(
+                "must be a finite positive number (kg/m³), got {}",
+                crate::text::short(density)
+            ),
+        ));
+    }
+    crate::magnitude::check(&f("density"), "", density)?;
+    if let Aerodynamics::Peters { states } = aerodynamics {
+        if !(1..=MAX_PETERS_STATES).contains(&states) {
+            return Err(InputError::new(
+                f("aerodynamics.states"),
+                format!("Peters' inflow needs 1 to {MAX_PETERS_STATES} states, got {states}"),
+            ));
+        }
+    }
+    let strips: Vec<StripData> = nodes
+        .windows(2)
+        .map(|w| {
+            let x = 0.5 * (w[0] + w[1]);
+            StripData {
+                b: 0.5 * section.chord.at(x),
+                a: 2.0 * section.elastic_axis.at(x) - 1.0,
+                lift_slope: section.lift_slope.at(x),
+                alpha0: section.zero_lift_angle.at(x),
+                cm0: section.cm0.at(x),
+                cd0: section.cd0.at(x),
+                width: w[1] - w[0],
+                station: x,
+            }
+        })
+        .collect();
+    let pi = std::f64::consts::PI;
+    let fluid = FluidInertia {
+        mass: strips
+            .iter()
+            .map(|s| pi * density * s.b * s.b * s.width)
+            .collect(),
+        station: strips.iter().map(|s| s.a * s.b).collect(),
+        inertia: strips
+            .iter()
+            .map(|s| pi * density * s.b.powi(4) * s.width / 8.0)
+            .collect(),
+    };
+    Ok((strips, fluid))
+}
+
+impl Aeroelastic<Chain3d> {
+    /// The 3-D chain `structure` (in vacuo; its fluid inertia, if any, is replaced) with the
+    /// section data `section`, air density `density` and aerodynamic model `aerodynamics`: one
+    /// strip per element at its midpoint along the reference axis (docs/chain3d-model.md, "Strip
+    /// aerodynamics"). `field` prefixes the error fields.
+    ///
+    /// # Errors
+    /// As [`Aeroelastic::new`].
+    pub fn spatial(
+        structure: &Chain3d,
+        section: &AeroSection,
+        density: f64,
+        aerodynamics: Aerodynamics,
+        field: &str,
+    ) -> Result<Self, InputError> {
+        let (strips, fluid) = strips_and_fluid(
+            structure.beam().nodes(),
+            section,
+            density,
+            aerodynamics,
+            field,
+        )?;
+        Ok(Self {
+            structure: structure.dry().with_fluid(fluid),
+            strips,
+            density,
+            aerodynamics,
+            lag: aerodynamics.lag(),
+        })
+    }
+}
+
+impl<M: PlanarStructure> Aeroelastic<M> {
+    /// The planar full model underneath (itself for a full aeroelastic model).
+    pub fn full(&self) -> &FullModel {
+        self.structure.full_model()
+    }
+}
+
 impl<M: AeroStructure> Aeroelastic<M> {
     /// The structural model (with the fluid's inertia).
     pub fn structure(&self) -> &M {
         &self.structure
     }
-    /// The full model underneath (itself for a full aeroelastic model).
-    pub fn full(&self) -> &FullModel {
-        self.structure.full_model()
+    /// The chain the strips are evaluated on (the full model underneath a reduced model).
+    pub fn chain(&self) -> AeroChain<'_> {
+        self.structure.chain()
+    }
+    /// The planar model's loads resolved on the chain ([`AeroChain::apply`]).
+    ///
+    /// # Errors
+    /// Those of [`AeroChain::apply`].
+    pub fn apply(&self, loads: &[Load], field: &str) -> Result<AppliedLoads, InputError> {
+        self.chain().apply(loads, field)
     }
     /// Air density `ρ` (kg/m³).
     pub fn density(&self) -> f64 {

@@ -91,13 +91,27 @@ pub(crate) fn loads<D: DualNum<Primitive = f64> + Copy>(
     m: &Motion<D>,
     air: &Air,
     density: f64,
-    (w, wt, w_eff): (D, D, D),
+    flow: (D, D, D),
     unsteady: bool,
 ) -> ([D; 3], D) {
     let (c, si, cp, sp) = (m.cos_theta, m.sin_theta, m.cos_psi, m.sin_psi);
-    let zero = D::from(0.0);
     let t = [-(sp * si), sp * c, cp];
     let nu = [-(cp * si), cp * c, -sp];
+    section_loads(s, (t, nu, m.psi_dot), air, density, flow, unsteady)
+}
+
+/// [`loads`] for a section given by its chord direction toward the leading edge `t`, its
+/// normal `ν` (global components, orthonormal, both ⟂ the span) and its nose-up pitch rate
+/// `ψ̇`: the planar chain's and the 3-D chain's strips (`spatial.rs`) share it.
+pub(crate) fn section_loads<D: DualNum<Primitive = f64> + Copy>(
+    s: &StripData,
+    (t, nu, psi_dot): ([D; 3], [D; 3], D),
+    air: &Air,
+    density: f64,
+    (w, wt, w_eff): (D, D, D),
+    unsteady: bool,
+) -> ([D; 3], D) {
+    let zero = D::from(0.0);
     let mut force = [zero; 3];
     let mut moment = zero;
     let chord = 2.0 * s.b;
@@ -124,7 +138,7 @@ pub(crate) fn loads<D: DualNum<Primitive = f64> + Copy>(
     }
     if unsteady && air.speed > 0.0 {
         // Non-circulatory velocity term: πρb²Vψ̇ along ν at ζ_34 (moment ζ_34 · πρb²Vψ̇).
-        let fv = m.psi_dot * (std::f64::consts::PI * density * s.b * s.b * air.speed);
+        let fv = psi_dot * (std::f64::consts::PI * density * s.b * s.b * air.speed);
         for k in 0..3 {
             force[k] += fv * nu[k];
         }

@@ -7,7 +7,7 @@
 //! Why: the first-order aeroelastic Jacobian on `(x, p, a)` mixes stiffnesses (1e7 N·m/rad for
 //! the Goland wing), inverse masses and lag rates; unbalanced, the Hessenberg–QR eigenvalues of
 //! nalgebra (which does not balance) lose up to 4e-6 relative on a mode of the Goland wing at
-//! n = 8 (tests/aero_linear_matrices.rs, against the independent reference); balanced, 1e-12.
+//! n = 8 (tests/suite/aero_linear_matrices.rs, against the independent reference); balanced, 1e-12.
 
 use nalgebra::DMatrix;
 

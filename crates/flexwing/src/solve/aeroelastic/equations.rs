@@ -29,7 +29,7 @@ use super::flight::FlightHistory;
 use super::linear::Linearization;
 use super::schur::{AeroNewtonSystems, LagSchur, StructuredJacobian};
 use crate::error::InputError;
-use crate::model::aero::{AeroStructure, Aeroelastic};
+use crate::model::aero::{AeroChain, AeroStructure, Aeroelastic};
 use crate::model::{AppliedLoads, Load};
 use crate::solve::integrate::{NewtonSolver, OdeSystem};
 use crate::solve::{Damping, EquationsOfMotion, Gyroscopic, TimeFunction};
@@ -123,7 +123,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         )?;
         let n = model.n_dofs();
         let gravity = match flight.initial.gravity {
-            Some(g) => Some(aero.full().apply(&[Load::Gravity { g }], field)?),
+            Some(g) => Some(aero.apply(&[Load::Gravity { g }], field)?),
             None => None,
         };
         let na = aero.n_aero_states();
@@ -233,7 +233,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     /// velocities `ẋ = M⁻¹ p` and the strip loads only, not the whole right-hand side (the
     /// outputs of a response ask for it at every output time). NaN if `M(x)` is not positive
     /// definite.
-    pub(crate) fn vertical_aerodynamic_force_at(&mut self, t: f64, y: &[f64]) -> f64 {
+    pub fn vertical_aerodynamic_force_at(&mut self, t: f64, y: &[f64]) -> f64 {
         let n = self.n;
         let (xp, a) = y[..2 * n + self.na].split_at(2 * n);
         let (x, p) = xp.split_at(n);
@@ -262,14 +262,25 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         }
     }
 
-    /// Tip displacement of the elastic axis from the undeformed tip `(dx, dy)` (m), tip twist
-    /// (rad) and full-model coordinates of the configuration of the last evaluation of the
-    /// loads (by the chain's trigonometry already computed there).
-    pub(crate) fn last_tip(&self) -> ([f64; 2], f64, &[f64]) {
-        let full = self.aero.full();
+    /// Tip displacement of the elastic axis from the undeformed tip `(dx, dy, dz)` (m), tip
+    /// twist (rad, [`crate::model::aero::AeroChain::tip`]) and the chain's coordinates of the
+    /// configuration of the last evaluation of the loads (by the kinematics already computed
+    /// there).
+    pub(crate) fn last_tip(&self) -> ([f64; 3], f64, &[f64]) {
         let q = self.eval.coordinates();
+        let full = match self.aero.chain() {
+            AeroChain::Planar(full) => full,
+            AeroChain::Spatial(chain) => {
+                let fr = &self.eval.sc.spatial.as_deref().expect("a 3-D scratch").fr;
+                let n = chain.n_elements();
+                let reference = chain.beam().reference_positions()[n];
+                let r = &fr.r[n - 1];
+                let tip = std::array::from_fn(|k| fr.p[n][k] - reference[k]);
+                return (tip, (-r[2][1]).atan2(r[2][2]), q);
+            }
+        };
         let motion = &self.eval.sc.motion;
-        let mut tip = [-full.beam().length(), 0.0];
+        let mut tip = [-full.beam().length(), 0.0, 0.0];
         for (l, m) in full.beam().lengths().iter().zip(motion) {
             tip[0] += l * m.cos_theta;
             tip[1] += l * m.sin_theta;
@@ -706,7 +717,7 @@ pub(crate) mod tests {
         TorsionProperties,
     };
     use crate::model::aero::{AeroSection, Aerodynamics, FlightCondition};
-    use crate::model::{Force, FullModel};
+    use crate::model::{Chain3d, Force, FullModel};
     use crate::solve::aeroelastic::flight::{Gust, GustShape};
 
     /// A small tapered wing with an offset mass centre, every section datum non-trivial.
@@ -747,10 +758,69 @@ pub(crate) mod tests {
         Aeroelastic::new(&full, &aero, 1.1, aerodynamics, "aero").unwrap()
     }
 
+    /// A small 3-D wing where nothing is symmetric: swept, with dihedral and a pretwist table, a
+    /// coupled section, mass-centre offsets in both directions, the tapered section data of
+    /// [`test_wing`].
+    pub(crate) fn test_wing_3d(n: usize, aerodynamics: Aerodynamics) -> Aeroelastic<Chain3d> {
+        use crate::model::chain3d::{
+            Beam3d, ElementInertia, Geometry3d, JointCalibration, SectionInertia, SectionStiffness,
+            StiffnessCoupling,
+        };
+        let table = |a: f64, b: f64| Profile::Table {
+            x: vec![0.0, 3.0],
+            value: vec![a, b],
+        };
+        let geometry = Geometry3d::Span {
+            length: 3.0,
+            discretization: Discretization::Uniform(n),
+            sweep: Profile::Uniform(0.15),
+            dihedral: Profile::Uniform(0.05),
+            pretwist: table(0.02, -0.03),
+        };
+        let stiffness = SectionStiffness {
+            gj: Profile::Uniform(150.0),
+            ei_flap: Profile::Uniform(400.0),
+            ei_lag: Profile::Uniform(3000.0),
+            coupling: Some(StiffnessCoupling {
+                twist_flap: Profile::Uniform(20.0),
+                twist_lag: Profile::Uniform(-10.0),
+                lag_flap: Profile::Uniform(30.0),
+            }),
+        };
+        let inertia = SectionInertia {
+            mass_per_length: table(1.2, 0.6),
+            polar_inertia: Profile::Uniform(0.02),
+            polar_inertia_about: InertiaAxis::MassCentre,
+            d0: Profile::Uniform(0.03),
+            d0_normal: Profile::Uniform(-0.01),
+            rotary_inertia_flap: Profile::Uniform(0.0),
+            rotary_inertia_lag: Profile::Uniform(0.0),
+            element_inertia: ElementInertia::Bar,
+        };
+        let chain = Chain3d::new(
+            Beam3d::new(
+                &geometry,
+                &stiffness,
+                &inertia,
+                JointCalibration::Compliance,
+            )
+            .unwrap(),
+        );
+        let aero = AeroSection {
+            chord: table(0.5, 0.3),
+            elastic_axis: Profile::Uniform(0.35),
+            lift_slope: Profile::Uniform(5.8),
+            zero_lift_angle: Profile::Uniform(-0.03),
+            cm0: Profile::Uniform(-0.02),
+            cd0: Profile::Uniform(0.01),
+        };
+        Aeroelastic::spatial(&chain, &aero, 1.1, aerodynamics, "aero").unwrap()
+    }
+
     /// The exact Jacobian against central differences of the right-hand side (step 1e-6:
     /// truncation ~1e-12 and round-off ~1e-10 of the largest entry; tolerance 1e-6 of it), for
-    /// every aerodynamic model, full and reduced, with a root angle, gravity, a gust and a
-    /// follower load, at a deformed moving state.
+    /// every aerodynamic model, full and reduced, and on the 3-D chain, with a root angle,
+    /// gravity, a gust and a follower load, at a deformed moving state.
     #[test]
     fn jacobian_agrees_with_finite_differences() {
         let models = [
@@ -764,12 +834,12 @@ pub(crate) mod tests {
             check(&full);
             let rom = full.reduced(&[0, 1, 2, 3]).unwrap();
             check(&rom);
+            check(&test_wing_3d(4, am));
         }
     }
 
     fn check<M: AeroStructure>(aero: &Aeroelastic<M>) {
         let loads = aero
-            .full()
             .apply(
                 &[Load::PointForce {
                     span: 3.0,

@@ -6,8 +6,8 @@
 //! upwash `w_eff`, `Q_x = ∂Q/∂x`, `Q_v = ∂Q/∂ẋ`; the upwash derivatives `W_x = ∂w/∂x`,
 //! `W_v = ∂w/∂ẋ` (one row per strip); and `G = ∂Q/∂w_eff` (one column per strip). Every
 //! directional derivative is one O(n) dual-number pass of the chain evaluation, along a unit
-//! coordinate (full model) or a column of the basis `Φ` (reduced model), so the whole set costs
-//! O(n · n_dofs).
+//! coordinate (a chain: the planar full model or the 3-D chain) or a column of the basis `Φ`
+//! (reduced model), so the whole set costs O(n · n_dofs).
 
 use nalgebra::{DMatrix, DVector};
 use num_dual::Dual64;
@@ -60,7 +60,7 @@ pub(crate) struct AeroEvaluator<'a, M: AeroStructure> {
 
 impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
     pub(crate) fn new(aero: &'a Aeroelastic<M>) -> Self {
-        let nf = aero.full().n_dofs();
+        let nf = aero.chain().n_dofs();
         let s = aero.n_strips();
         Self {
             aero,
@@ -220,8 +220,11 @@ impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
         for k in 0..n {
             self.direction(k);
             // Along x: dual configuration, real rates.
-            aero.set_configuration_along(&self.sc, &self.unit, &mut self.dsc);
-            aero.set_rates(&qdot_d, &mut self.dsc);
+            aero.set_configuration_along(&self.sc, &self.q, &self.unit, &mut self.dsc);
+            // The steady model's flow and loads do not read the rates.
+            if unsteady {
+                aero.set_rates(&qdot_d, &mut self.dsc);
+            }
             aero.set_flow(&self.air, &mut self.dsc);
             self.dsc.weff.copy_from_slice(&weff);
             aero.set_loads(&self.air, &mut self.dsc);
@@ -232,12 +235,7 @@ impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
             self.take_column(d, k, false);
             // Along ẋ: real configuration, dual rates.
             if unsteady {
-                for (m, b) in self.dsc.motion.iter_mut().zip(&self.sc.motion) {
-                    m.cos_theta = Dual64::from(b.cos_theta);
-                    m.sin_theta = Dual64::from(b.sin_theta);
-                    m.cos_psi = Dual64::from(b.cos_psi);
-                    m.sin_psi = Dual64::from(b.sin_psi);
-                }
+                aero.freeze_configuration(&self.sc, &mut self.dsc);
                 for j in 0..nf {
                     self.dq[j] = Dual64::new(self.qdot[j], self.unit[j]);
                 }

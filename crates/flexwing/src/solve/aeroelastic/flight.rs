@@ -18,6 +18,9 @@ pub enum GustShape {
         /// Gust length `L_g` (m), positive.
         length: f64,
     },
+    /// The time factor `f(t)` of a time function (a sine, a step, a ramp, a table), whatever the
+    /// speed: harmonic gusts for frequency responses, the histories a stepper or an FMU sets.
+    History(TimeFunction),
 }
 
 /// A vertical gust `v_g(s, t) = amplitude · spanwise(s) · shape(t)` (up positive, ground frame),
@@ -39,10 +42,17 @@ impl Gust {
     /// The time factor at `t` for initial speed `u0`.
     pub fn factor(&self, t: f64, u0: f64) -> f64 {
         let tau = t - self.start;
-        match self.shape {
+        match &self.shape {
             GustShape::SharpEdged => {
                 if tau >= 0.0 {
                     1.0
+                } else {
+                    0.0
+                }
+            }
+            GustShape::History(f) => {
+                if tau >= 0.0 {
+                    f.at(t)
                 } else {
                     0.0
                 }
@@ -140,6 +150,9 @@ impl FlightHistory {
             finite("gust.start", g.start)?;
             g.spanwise
                 .validate(&format!("{field}.gust.spanwise"), length, Sign::Any)?;
+            if let GustShape::History(f) = &g.shape {
+                f.validate(&format!("{field}.gust.function"), t0, t1)?;
+            }
             if let GustShape::OneMinusCosine { length } = g.shape {
                 if !(length.is_finite() && length > 0.0) {
                     return Err(InputError::new(

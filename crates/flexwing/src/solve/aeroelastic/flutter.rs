@@ -204,6 +204,7 @@ pub struct Crossing {
 
 /// Counters of a flutter analysis.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct FlutterStats {
     /// Linearizations (equilibrium plus derivatives) computed.
     pub linearizations: usize,
@@ -362,11 +363,11 @@ pub fn flutter_polled<M: AeroStructure>(
     }
     // The equations carry the other loads only through the linearization's K̃, which comes from
     // the structural Jacobian: give them the same loads (gravity is handled by the flight).
-    let other = aero.full().apply(&plan.loads, &format!("{field}.loads"))?;
+    let other = aero.apply(&plan.loads, &format!("{field}.loads"))?;
     let mut lin = Linearizer {
         path: EquilibriumPath {
             model: SteadyAeroModel::new(&steady, plan.root_angle),
-            loads: aero.full().apply(&loads, &format!("{field}.loads"))?,
+            loads: aero.apply(&loads, &format!("{field}.loads"))?,
             options: plan.static_options.clone(),
             rho: aero.density(),
             solved: Vec::new(),
@@ -439,7 +440,11 @@ pub fn flutter_polled<M: AeroStructure>(
         .branches
         .iter()
         .enumerate()
-        .filter(|(_, b)| b.eigenvalues.first().is_some_and(|s| s.re > 0.0))
+        .filter(|(_, b)| {
+            b.eigenvalues
+                .first()
+                .is_some_and(|s| s.re > super::tracking::NEUTRAL * s.norm())
+        })
         .map(|(i, _)| i)
         .collect();
     find_crossings(
@@ -483,7 +488,7 @@ pub fn stability_eigenvalues<M: AeroStructure>(
             g: g * flight.root_angle.cos(),
         });
     }
-    let applied = aero.full().apply(&all, &format!("{field}.loads"))?;
+    let applied = aero.apply(&all, &format!("{field}.loads"))?;
     let model = SteadyAeroModel::new(&steady, flight.root_angle);
     let k = applied.n_loads();
     let n = model.n_dofs();
@@ -496,7 +501,7 @@ pub fn stability_eigenvalues<M: AeroStructure>(
         &scales,
         options,
     )?;
-    let other = aero.full().apply(loads, &format!("{field}.loads"))?;
+    let other = aero.apply(loads, &format!("{field}.loads"))?;
     let mut eqs = AeroelasticEquations::new(
         aero,
         &other,

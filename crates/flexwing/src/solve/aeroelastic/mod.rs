@@ -1,6 +1,7 @@
 //! Aeroelastic analyses (docs/aeroelastic-model.md §5): the equations of motion with strip
 //! aerodynamics, static aeroelastic equilibrium and divergence, stability and flutter, the
-//! frequency-domain (p-k) check, and time responses to gusts and manoeuvres.
+//! frequency-domain (p-k) check, time responses to gusts and manoeuvres, and the flutter study
+//! against a load level (`study.rs`), on the planar chain and the 3-D chain.
 
 mod audit;
 mod balance;
@@ -21,6 +22,8 @@ pub use statics::{
     Divergence, DivergenceBasis, SteadyAeroModel, SteadyAeroWorkspace,
 };
 mod flutter;
+mod linearize;
+mod signals;
 mod tracking;
 
 pub use flutter::{
@@ -30,4 +33,13 @@ pub use flutter::{
 };
 mod response;
 
+pub use linearize::{linearize, poles, LinearizeOptions, StateSpace};
+pub use signals::{Input, Output, Signal, StateBasis, INPUT_NAMES, OUTPUT_NAMES};
+
 pub use response::{response, ResponseOptions, ResponseSample, ResponseSolution};
+mod study;
+
+pub use study::{
+    deflection_study, DeflectionPoint, DeflectionStudyOptions, DeflectionStudySolution,
+    StudyParameter,
+};

@@ -110,8 +110,9 @@ impl ResponseOptions {
 pub struct ResponseSample {
     /// Time (s).
     pub t: f64,
-    /// Tip displacement of the elastic axis from the undeformed tip `(dx, dy)` (m).
-    pub tip: [f64; 2],
+    /// Tip displacement of the elastic axis from the undeformed tip `(dx, dy, dz)` (m; `dz`,
+    /// chordwise toward the leading edge, is 0 on the planar chain).
+    pub tip: [f64; 3],
     /// Tip twist (rad, nose-up).
     pub tip_twist: f64,
     /// Root bending moment, the clamp spring's moment `K_θ,1 q_1` (N·m).
@@ -144,7 +145,7 @@ pub fn response<M: AeroStructure>(
     field: &str,
     progress: &mut dyn FnMut(f64),
 ) -> Result<ResponseSolution, InputError> {
-    plan.validate(field, aero.full().beam().length())?;
+    plan.validate(field, aero.chain().length())?;
     let init = plan.flight.initial;
     // Initial equilibrium: the steady model with the loads at t = 0 and gravity.
     let steady = aero.with_aerodynamics(Aerodynamics::Steady, field)?;
@@ -154,7 +155,7 @@ pub fn response<M: AeroStructure>(
         loads0.push(Load::Gravity { g });
         scales0.push(init.root_angle.cos());
     }
-    let applied0 = aero.full().apply(&loads0, &format!("{field}.loads"))?;
+    let applied0 = aero.apply(&loads0, &format!("{field}.loads"))?;
     let model = SteadyAeroModel::new(&steady, init.root_angle);
     let n = model.n_dofs();
     scales0.push(0.5 * aero.density() * init.speed * init.speed);
@@ -173,7 +174,7 @@ pub fn response<M: AeroStructure>(
         )
     })?
     .x;
-    let applied = aero.full().apply(&plan.loads, &format!("{field}.loads"))?;
+    let applied = aero.apply(&plan.loads, &format!("{field}.loads"))?;
     let mut eqs = AeroelasticEquations::new(
         aero,
         &applied,
@@ -245,7 +246,7 @@ fn sample<M: AeroStructure>(
         t,
         tip,
         tip_twist,
-        root_bending_moment: aero.full().stiffness()[0] * q[0],
+        root_bending_moment: aero.chain().root_bending_moment(q),
         lift,
     }
 }

@@ -89,8 +89,9 @@ pub struct AeroEquilibrium {
     pub x: Vec<f64>,
     /// Joint rotations of the full model.
     pub q: Vec<f64>,
-    /// Tip displacement of the elastic axis `(dx, dy)` (m).
-    pub tip: [f64; 2],
+    /// Tip displacement of the elastic axis `(dx, dy, dz)` (m; `dz`, chordwise toward the
+    /// leading edge, is 0 on the planar chain).
+    pub tip: [f64; 3],
     /// Tip twist (rad, nose-up).
     pub tip_twist: f64,
     /// Total aerodynamic force along the ground's vertical (N).
@@ -161,6 +162,10 @@ pub struct SteadyAeroWorkspace<'a, M: AeroStructure> {
     force: Vec<f64>,
     zeros: Vec<f64>,
     derivatives: AeroDerivatives,
+    /// The last frozen-state divergence pressure and the state it is of: a sweep whose
+    /// equilibrium does not move with the speed (Newton returns the start unchanged) asks for
+    /// the same state at every speed.
+    divergence_cache: Option<(Vec<f64>, Option<f64>)>,
 }
 
 impl<'a, M: AeroStructure> SteadyAeroModel<'a, M> {
@@ -191,6 +196,7 @@ impl<'a, M: AeroStructure> StructuralModel for SteadyAeroModel<'a, M> {
             force: vec![0.0; n],
             zeros: vec![0.0; n],
             derivatives: AeroDerivatives::zeros(n, self.aero.n_strips()),
+            divergence_cache: None,
         }
     }
     fn n_dofs(&self) -> usize {
@@ -288,8 +294,13 @@ impl<'a, M: AeroStructure> StructuralModel for SteadyAeroModel<'a, M> {
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64> {
         self.aero.structure().full_coordinates(x)
     }
+    fn element_rotations(&self, dx: &[f64]) -> Vec<f64> {
+        self.aero.structure().element_rotations(dx)
+    }
+    /// The structure's ([`StructuralModel::full_model`]; the 3-D chain has none, and no solver
+    /// path calls it).
     fn full_model(&self) -> &FullModel {
-        self.aero.full()
+        self.aero.structure().full_model()
     }
 }
 
@@ -330,7 +341,7 @@ pub fn static_sweep_polled<M: AeroStructure>(
             g: g * plan.root_angle.cos(),
         });
     }
-    let applied = aero.full().apply(&loads, &format!("{field}.loads"))?;
+    let applied = aero.apply(&loads, &format!("{field}.loads"))?;
     let model = SteadyAeroModel::new(&steady, plan.root_angle);
     let mut ws = model.workspace();
     let k = applied.n_loads();
@@ -382,7 +393,10 @@ pub fn static_sweep_polled<M: AeroStructure>(
     if !interrupted {
         step(1.0);
     }
-    let divergence = find_divergence(&model, &applied, &mut ws, &points, plan, rho);
+    let divergence = find_divergence(&model, &applied, &mut ws, &points, plan, rho).or_else(|| {
+        let failed = stopped.as_ref().map(|(i, _)| *i)?;
+        divergence_at_the_stop(&model, &applied, &mut ws, &points, failed, plan, rho)
+    });
     Ok(AeroStaticSolution {
         points,
         divergence,
@@ -403,17 +417,9 @@ fn equilibrium_point<'a, M: AeroStructure>(
     stats: StaticStats,
     root_angle: f64,
 ) -> AeroEquilibrium {
-    let full = model.full_model();
+    let chain = model.aero.chain();
     let q = model.full_coordinates(x);
-    let kin = full.kinematics(&q);
-    let nodes = full.node_positions(&kin);
-    let nel = full.n_elements();
-    let tip = nodes[nel];
-    let tip_twist = if full.has_torsion() {
-        kin.psi[nel - 1]
-    } else {
-        0.0
-    };
+    let (tip, tip_twist) = chain.tip(&q);
     let mut f = vec![0.0; x.len()];
     model.unit_load(x, ws, &mut f);
     let (sa, ca) = root_angle.sin_cos();
@@ -431,18 +437,36 @@ fn equilibrium_point<'a, M: AeroStructure>(
         speed,
         dynamic_pressure: pressure,
         x: x.to_vec(),
-        tip: [tip[0] - full.beam().length(), tip[1]],
+        tip,
         tip_twist,
         lift,
-        root_bending_moment: full.stiffness()[0] * q[0],
+        root_bending_moment: chain.root_bending_moment(&q),
         q,
         divergence_pressure,
         stats,
     }
 }
 
-/// `μ(x)`: `1/λ` for the largest positive real eigenvalue `λ` of `(K − ∂Q_o/∂x)⁻¹ ∂Q̂/∂x`.
+/// `μ(x)`: `1/λ` for the largest positive real eigenvalue `λ` of `(K − ∂Q_o/∂x)⁻¹ ∂Q̂/∂x`
+/// (the loads at their full value: one sweep's, so that the state alone decides, and the last
+/// state's value is kept in `ws`).
 fn frozen_divergence_pressure<'a, M: AeroStructure>(
+    model: &SteadyAeroModel<'a, M>,
+    loads: &AppliedLoads,
+    ws: &mut SteadyAeroWorkspace<'a, M>,
+    x: &[f64],
+) -> Option<f64> {
+    if let Some((at, mu)) = &ws.divergence_cache {
+        if at.as_slice() == x {
+            return *mu;
+        }
+    }
+    let mu = frozen_divergence_pressure_at(model, loads, ws, x);
+    ws.divergence_cache = Some((x.to_vec(), mu));
+    mu
+}
+
+fn frozen_divergence_pressure_at<'a, M: AeroStructure>(
     model: &SteadyAeroModel<'a, M>,
     loads: &AppliedLoads,
     ws: &mut SteadyAeroWorkspace<'a, M>,
@@ -551,4 +575,102 @@ fn find_divergence<'a, M: AeroStructure>(
         }
     }
     None
+}
+
+/// The divergence speed of a sweep that stopped at speed index `failed` (the static solver found
+/// no stable equilibrium there, past the divergence) after a last equilibrium with `μ − q > 0`:
+/// the load where `μ(x*(q)) = q` between the two, approached from the stable side. Each trial
+/// aims just below the root predicted by the secant through the last two stable equilibria on
+/// `g(q) = μ(x*(q)) − q` (slope −1 from one: a frozen `μ`), and a trial without a stable
+/// equilibrium closes the bracket from above (bisection when the prediction leaves it). The
+/// divergence is reported once `g` at a stable equilibrium is within the tolerance, as the
+/// secant's root from there; `None` when the bracket closes with `g` still large (the solver
+/// failed for another reason than divergence).
+fn divergence_at_the_stop<'a, M: AeroStructure>(
+    model: &SteadyAeroModel<'a, M>,
+    loads: &AppliedLoads,
+    ws: &mut SteadyAeroWorkspace<'a, M>,
+    points: &[AeroEquilibrium],
+    failed: usize,
+    plan: &AeroStaticOptions,
+    rho: f64,
+) -> Option<Divergence> {
+    let last = points.last()?;
+    if failed != points.len() {
+        return None;
+    }
+    let tol = plan.divergence_tolerance;
+    let mut g_lo = last.divergence_pressure? - last.dynamic_pressure;
+    if !(g_lo > 0.0) {
+        return None;
+    }
+    let k = loads.n_loads();
+    let scales = |q: f64| {
+        let mut s = vec![1.0; k];
+        s.push(q);
+        s
+    };
+    let (mut q_lo, mut x_lo) = (last.dynamic_pressure, last.x.clone());
+    let mut hi = 0.5 * rho * plan.speeds[failed].powi(2);
+    let mut previous = points.len().checked_sub(2).and_then(|i| {
+        Some((
+            points[i].dynamic_pressure,
+            points[i].divergence_pressure? - points[i].dynamic_pressure,
+        ))
+    });
+    let slope_of = |previous: Option<(f64, f64)>, q_lo: f64, g_lo: f64| {
+        previous
+            .map(|(q, g)| (g_lo - g) / (q_lo - q))
+            .filter(|s| s.is_finite() && *s < 0.0)
+            .unwrap_or(-1.0)
+    };
+    for _ in 0..60 {
+        let slope = slope_of(previous, q_lo, g_lo);
+        if g_lo <= tol * q_lo {
+            let q = q_lo - g_lo / slope;
+            return Some(Divergence {
+                speed: (2.0 * q / rho).sqrt(),
+                dynamic_pressure: q,
+                basis: DivergenceBasis::Bracketed,
+                within_sweep: true,
+            });
+        }
+        if hi - q_lo <= tol * q_lo {
+            break;
+        }
+        let root = q_lo - g_lo / slope;
+        let mut q = root * (1.0 - 0.5 * tol);
+        if !(q > q_lo && q < hi) {
+            q = 0.5 * (q_lo + hi);
+        }
+        let r = continue_static(
+            model,
+            loads,
+            (&x_lo, &scales(q_lo)),
+            &scales(q),
+            &plan.options,
+        );
+        let stable = r.ok().and_then(|sol| {
+            let mu = frozen_divergence_pressure(model, loads, ws, &sol.x)?;
+            (mu - q > 0.0).then_some((sol.x, mu - q))
+        });
+        match stable {
+            Some((x, g)) => {
+                previous = Some((q_lo, g_lo));
+                (q_lo, x_lo, g_lo) = (q, x, g);
+            }
+            None => hi = q,
+        }
+    }
+    // The bracket closed: a divergence only if g vanished with it.
+    let slope = slope_of(previous, q_lo, g_lo);
+    (g_lo <= 10.0 * tol * q_lo * slope.abs().max(1.0)).then(|| {
+        let q = q_lo - g_lo / slope;
+        Divergence {
+            speed: (2.0 * q / rho).sqrt(),
+            dynamic_pressure: q,
+            basis: DivergenceBasis::Bracketed,
+            within_sweep: true,
+        }
+    })
 }

@@ -159,6 +159,7 @@ pub trait NewtonSolver {
 
 /// Counters of an integration (what SciPy reports as nfev, njev, nlu).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct IntegratorStats {
     /// Accepted steps.
     pub steps: usize,

@@ -72,7 +72,7 @@ Checks (asserted)
   and asserts that B rejects it (it is off by 2-5e-2).
 * every B value >= the A value (min-max upper bound) and B non-increasing in N.
 * gam = 0: A reproduces the Euler-Bernoulli roots of cos x cosh x = -1 (independent
-  float bisection in [(k-1)pi, k pi], as in tests/common/mod.rs) to 1e-14 relative
+  float bisection in [(k-1)pi, k pi], as in tests/suite/common/mod.rs) to 1e-14 relative
   and the classical 10-decimal values 1.8751040687, 4.6940911330, 7.8547574382,
   10.9955407349 to 6e-11 (their rounding); B(gam = 0) agrees with A to 1e-20.
 * gam -> 0: om < om_EB, and (om_EB - om)/om_EB is O(gam): the deviations for
@@ -90,7 +90,7 @@ Columns follow tests/data/continuous_beam/*.csv:
 16 digits; omega_hz = omega_rad_s/(2 pi)).  Note reference_frequencies() looks in
 tests/data/continuous_beam, so from a test use "../rayleigh_beam/table4_r005.csv".
 There is NO '#' comment line by default, because the Rust helper
-tests/common/mod.rs::reference_frequencies() uses csv::Reader::from_path (default
+tests/suite/common/mod.rs::reference_frequencies() uses csv::Reader::from_path (default
 builder: no comment character, has_headers = true, flexible = false), which would
 take a '#' line as the header row and fail.  `--comment-header` prepends a one-line
 '# ...' provenance header for readers configured with comment(Some(b'#')).

@@ -1,0 +1,69 @@
+//! Shared helpers of the 3-D chain's integration tests (`tests/suite/chain3d_*.rs`), built from the
+//! public API only.
+#![allow(dead_code)]
+
+use flexwing::model::chain3d::{
+    Beam3d, Chain3d, Geometry3d, JointCalibration, SectionInertia, SectionStiffness,
+};
+
+/// A straight uniform cantilever of length `l` in `n` elements with the compliance calibration,
+/// elements as bars.
+pub fn uniform_chain(
+    n: usize,
+    l: f64,
+    (gj, ei_flap, ei_lag): (f64, f64, f64),
+    (m, polar): (f64, f64),
+) -> Chain3d {
+    Chain3d::new(
+        Beam3d::new(
+            &Geometry3d::straight(l, n),
+            &SectionStiffness::uncoupled(gj, ei_flap, ei_lag),
+            &SectionInertia::uniform(m, polar),
+            JointCalibration::Compliance,
+        )
+        .expect("valid beam"),
+    )
+}
+
+/// Observed orders `log2(e_k / e_{k+1})` of errors at doubling `n`.
+pub fn orders(errors: &[f64]) -> Vec<f64> {
+    errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect()
+}
+
+pub fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// Patil's HALE wing on the 3-D chain (Patil, Hodges & Cesnik, J. Aircraft 38(1), 2001; the
+/// problem of `tests/data/chain3d_reference/README.md` §2.1): straight, 16 m, `GJ = 1e4`,
+/// `EI_flap = 2e4`, `EI_lag = 4e6 N·m²`, `m = 0.75 kg/m`, `I = 0.1 kg·m` about the mass centre on
+/// the elastic axis (`d0 = 0`), chord 1 m, elastic axis at mid-chord, `c_lα = 2π`,
+/// `ρ = 0.0889 kg/m³`; `n` equal elements with the given element inertia and calibration.
+pub fn patil_wing_3d(
+    n: usize,
+    aerodynamics: flexwing::model::aero::Aerodynamics,
+    element_inertia: flexwing::model::chain3d::ElementInertia,
+    calibration: JointCalibration,
+) -> flexwing::model::aero::Aeroelastic<Chain3d> {
+    use flexwing::beam::Profile;
+    use flexwing::model::aero::{AeroSection, Aeroelastic};
+    let chain = Chain3d::new(
+        Beam3d::new(
+            &Geometry3d::straight(16.0, n),
+            &SectionStiffness::uncoupled(1e4, 2e4, 4e6),
+            &SectionInertia {
+                element_inertia,
+                ..SectionInertia::uniform(0.75, 0.1)
+            },
+            calibration,
+        )
+        .expect("valid beam"),
+    );
+    let aero = AeroSection::new(Profile::Uniform(1.0), Profile::Uniform(0.5));
+    Aeroelastic::spatial(&chain, &aero, 0.0889, aerodynamics, "aero").expect("valid wing")
+}
+
+/// Richardson's extrapolation of a second-order sequence from its values at `n` and `2n`.
+pub fn richardson(coarse: f64, fine: f64) -> f64 {
+    fine + (fine - coarse) / 3.0
+}
