@@ -308,7 +308,7 @@ mod tests {
             }
         }
 
-        fn check_step<M: AeroStructure>(
+        fn check_step<M: crate::model::aero::PlanarStructure>(
             aero: &crate::model::aero::Aeroelastic<M>,
             systems: AeroNewtonSystems,
         ) {
