@@ -187,6 +187,7 @@ fn the_energy_audit_balances_the_work_of_time_varying_loads() {
         balance: Some(1e-6),
         runaway: 1.0,
         floor: 0.0,
+        interval: 0.0,
     };
     let mut eom = EquationsOfMotion::new(&model, &loads, tf, Gyroscopic::Exact, &Damping::None)
         .unwrap()

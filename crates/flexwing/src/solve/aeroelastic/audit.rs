@@ -138,6 +138,25 @@ impl<M: AeroStructure> AeroelasticEquations<'_, M> {
         {
             return ControlFlow::Break(());
         }
+        if !self.audit.as_mut().is_some_and(|a| a.balance.due(t)) {
+            return ControlFlow::Continue(());
+        }
+        self.audit_state(t, y)
+    }
+
+    /// Audit the state `y` of the last accepted step, at `t`, if `AuditLimits::interval` left it
+    /// unaudited: a completed run's balance then includes its final state.
+    pub(crate) fn audit_final(&mut self, t: f64, y: &[f64]) {
+        if self
+            .audit
+            .as_ref()
+            .is_some_and(|a| !a.balance.audited_at(t))
+        {
+            let _ = self.audit_state(t, y);
+        }
+    }
+
+    fn audit_state(&mut self, t: f64, y: &[f64]) -> ControlFlow<()> {
         let Some((w, d)) = self.work_and_dissipation(y) else {
             return ControlFlow::Continue(());
         };
@@ -242,6 +261,7 @@ mod tests {
                     balance: Some(1e-4),
                     runaway: 9.0,
                     floor: eqs.energy_resolution(1e-10),
+                    interval: 0.0,
                 };
                 eqs.set_energy_audit(audit.then_some(limits));
                 let n = eqs.n_dofs();
@@ -358,6 +378,7 @@ mod tests {
                 balance: Some(1e-3),
                 runaway: 9.0,
                 floor: 1e-12,
+                interval: 0.0,
             }));
             let (n, na) = (eqs.n_dofs(), eqs.n_aero_states());
             let x: Vec<f64> = (0..n).map(|i| 0.1 * (1.0 + i as f64).sin()).collect();

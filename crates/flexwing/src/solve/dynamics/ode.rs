@@ -35,7 +35,7 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         {
             return ControlFlow::Break(());
         }
-        if self.audit.is_none() {
+        if !self.audit.as_mut().is_some_and(|a| a.due(t)) {
             return ControlFlow::Continue(());
         }
         let (kinetic, strain) = self.energies(y);
@@ -132,6 +132,14 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         );
         self.model
             .load_jacobian_into(x, self.loads, &self.scales, &mut self.ws, &mut d.load_jac);
+        // `(∂Q/∂x)ᵀ ẋ` at the linearization point, for the audit's quadrature steps (these
+        // equations' or the aeroelastic equations', which audit them themselves): O(n²) as the
+        // load Jacobian.
+        self.load_rate.clear();
+        self.load_rate.extend((0..n).map(|j| {
+            let col = &d.load_jac.as_slice()[j * n..(j + 1) * n];
+            col.iter().zip(&self.xdot).map(|(a, b)| a * b).sum::<f64>()
+        }));
         // M⁻¹ by one factorization and one O(n) velocity solve per column.
         self.model
             .velocities_block_into(x, &d.identity, &mut self.ws, &mut d.minv);
@@ -192,8 +200,8 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
     /// without forming them, `∇Ẇ·Δy = Q·δẋ + ẋ·(∂Q/∂x) Δx`, `∇Ḋ·Δy = 2 (C ẋ)·δẋ`, where
     /// `δẋ = (∂ẋ/∂y) Δy = c Δx − b_x` is the Newton system's first block row (whatever solved
     /// it). `Q`, `ẋ` and `C ẋ` are those of the last right-hand side (the latest stage), the load
-    /// stiffness that of the last linearization (`(∂Q/∂x)ᵀ ẋ` on the dense path; along `ẋ` of
-    /// the chain's linearization point on the chain's, `newton_systems.rs`).
+    /// stiffness term `(∂Q/∂x)ᵀ ẋ` that of the last linearization with its own `ẋ` (the dense
+    /// Jacobian's or the chain's, `newton_systems.rs`): a simplified Newton's gradient, as `J`.
     fn quadrature_step_real(&mut self, c: f64, lead: &[f64], dy: &[f64], q: &mut [f64]) {
         let n = self.n;
         let load_rate = self.quadrature_load_rate();
@@ -242,8 +250,23 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
 }
 
 impl<M: StructuralModel> EquationsOfMotion<'_, M> {
+    /// Audit the state `y` of the last accepted step, at `t`, if [`AuditLimits::interval`] left it
+    /// unaudited: a completed run's balance then includes its final state.
+    ///
+    /// [`AuditLimits::interval`]: crate::solve::AuditLimits::interval
+    pub(crate) fn audit_final(&mut self, t: f64, y: &[f64]) {
+        if self.audit.as_ref().is_none_or(|a| a.audited_at(t)) {
+            return;
+        }
+        let (kinetic, strain) = self.energies(y);
+        let n2 = 2 * self.n;
+        if let Some(audit) = &mut self.audit {
+            let _ = audit.check(t, kinetic + strain, y[n2], y[n2 + 1]);
+        }
+    }
+
     /// The generalized forces `Q`, the velocities `ẋ` and the damping forces `C ẋ` of the last
-    /// right-hand side, and `(∂Q/∂x)ᵀ ẋ` at the last linearization with that `ẋ`: what the
+    /// right-hand side, and `(∂Q/∂x)ᵀ ẋ` at the last linearization with its `ẋ`: what the
     /// audit's quadrature step of a caller that audits these equations itself needs (the
     /// aeroelastic equations).
     pub(crate) fn last_power_terms(&mut self) -> (&[f64], &[f64], &[f64], Vec<f64>) {
@@ -251,21 +274,13 @@ impl<M: StructuralModel> EquationsOfMotion<'_, M> {
         (self.force.as_slice(), &self.xdot, &self.c_xdot, load_rate)
     }
 
-    /// `(∂Q/∂x)ᵀ ẋ` for the audit's quadrature step: from the dense Jacobian's load Jacobian and
-    /// the latest `ẋ` on the dense path (into the scratch taken from `load_rate_scratch`), the
-    /// chain's linearization's on the chain's.
+    /// `(∂Q/∂x)ᵀ ẋ` for the audit's quadrature step, at the last linearization (the dense
+    /// Jacobian's or the chain's, with the `ẋ` of that point: a simplified Newton's gradient, as
+    /// the other rows' `J`), into the scratch taken from `load_rate_scratch`.
     fn quadrature_load_rate(&mut self) -> Vec<f64> {
         let mut out = std::mem::take(&mut self.load_rate_scratch);
         out.clear();
-        if self.uses_chain_newton() {
-            out.extend_from_slice(&self.load_rate);
-        } else if let Some(d) = &self.dense {
-            let n = self.n;
-            out.extend((0..n).map(|j| {
-                let col = &d.load_jac.as_slice()[j * n..(j + 1) * n];
-                col.iter().zip(&self.xdot).map(|(a, b)| a * b).sum::<f64>()
-            }));
-        }
+        out.extend_from_slice(&self.load_rate);
         out
     }
 }

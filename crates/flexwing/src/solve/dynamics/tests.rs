@@ -187,6 +187,7 @@ fn audit_limits() -> AuditLimits {
         balance: Some(1e-3),
         runaway: 9.0,
         floor: 1e-12,
+        interval: 0.0,
     }
 }
 
