@@ -1,4 +1,4 @@
-//! The one driver of `flexwing modes`, `static`, `dynamic` and `flutter`: read the case, build
+//! The one driver of `flexwing modes`, `static`, `dynamic`, `flutter` and `linearize`: read the case, build
 //! its plan (`Case::plan`: aeroelastic with `[aero]`), prepare the output folder, catch
 //! interrupts, run the library's one dispatcher (`flexwing::analysis::run`), render the outcome
 //! (`render`: files, then the table or the JSON document), write `status.txt`, print the notes,
@@ -110,14 +110,67 @@ fn status_text(incomplete: &[Entry]) -> String {
         .collect()
 }
 
-/// Run `analysis` of the case of `args`; `count` is `flexwing modes --count`.
-pub fn run(analysis: Analysis, args: &CaseArgs, count: Option<usize>) -> Result<(), Failure> {
+/// What a command's options change in its case: `flexwing modes --count`, `flexwing linearize
+/// --speed --inputs --outputs --states`.
+#[derive(Debug, Default)]
+pub struct Overrides {
+    /// `--count`.
+    pub count: Option<usize>,
+    /// `--speed`: `aero.flight.speed`.
+    pub speed: Option<f64>,
+    /// `--inputs`: `linearize.inputs`.
+    pub inputs: Option<Vec<String>>,
+    /// `--outputs`: `linearize.outputs`.
+    pub outputs: Option<Vec<String>>,
+    /// `--states`: `linearize.states`.
+    pub states: Option<String>,
+}
+
+impl Overrides {
+    /// Change `case` as the options say (into its keys, so that errors name them).
+    fn apply(&self, case: &mut Case) -> Result<(), Failure> {
+        if self.count.is_some() {
+            // `--count` wins over `[modes] count`.
+            case.modes.count = None;
+        }
+        if let Some(speed) = self.speed {
+            match case.aero.as_mut() {
+                Some(aero) => aero.flight.speed = Some(speed),
+                None => return Err(Failure::input("--speed: the case has no [aero] table")),
+            }
+        }
+        let lin = |case: &mut Case| case.linearize.get_or_insert_with(Default::default).clone();
+        if self.inputs.is_some() || self.outputs.is_some() || self.states.is_some() {
+            let mut l = lin(case);
+            if let Some(v) = &self.inputs {
+                l.inputs = Some(v.clone());
+            }
+            if let Some(v) = &self.outputs {
+                l.outputs = Some(v.clone());
+            }
+            if let Some(v) = &self.states {
+                l.states = Some(match v.as_str() {
+                    "velocities" => flexwing_case::StatesSpec::Velocities,
+                    "momenta" => flexwing_case::StatesSpec::Momenta,
+                    other => {
+                        return Err(Failure::input(format!(
+                            "--states: expected \"velocities\" or \"momenta\", got {other:?}"
+                        )))
+                    }
+                });
+            }
+            case.linearize = Some(l);
+        }
+        Ok(())
+    }
+}
+
+/// Run `analysis` of the case of `args`, changed by the command's `overrides`.
+pub fn run(analysis: Analysis, args: &CaseArgs, overrides: &Overrides) -> Result<(), Failure> {
     let name = args.case.display().to_string();
     let mut case = Case::load(&args.case).map_err(Failure::input)?;
-    if count.is_some() {
-        // `--count` wins over `[modes] count`.
-        case.modes.count = None;
-    }
+    overrides.apply(&mut case)?;
+    let count = overrides.count;
     let mut plan = case.plan(analysis).map_err(Failure::input)?;
     match &mut plan {
         Plan::Modes(p) if count.is_some() => {

@@ -7,6 +7,7 @@
 //! `{"status": "error", "error": …, "exit_status": …}` when it failed before printing one.
 
 mod driver;
+mod formats;
 mod interrupt;
 mod output;
 mod plot;
@@ -20,7 +21,7 @@ use std::process::ExitCode;
 use clap::error::ErrorKind;
 use clap::{Parser, Subcommand};
 
-use driver::{CaseArgs, Failure};
+use driver::{CaseArgs, Failure, Overrides};
 use flexwing_case::Analysis;
 
 /// Non-linear dynamics of very flexible beams (lumped-mass model).
@@ -87,6 +88,18 @@ enum Command {
         gets no flutter speed. See docs/cli.md."
     )]
     Flutter(CaseArgs),
+    /// Linear state-space models A, B, C, D about the static aeroelastic equilibrium.
+    #[command(
+        long_about = "Linear state-space models x' = A x + B u, y = C x + D u about the static \
+        aeroelastic equilibrium at aero.flight.speed (root angle, gravity, [[loads]]) for the \
+        full and reduced models of [linearize], with the inputs, outputs and states it names \
+        (--speed, --inputs, --outputs, --states override the case). Writes linear_LABEL.mat \
+        (MATLAB, scipy.io.loadmat), linear_LABEL.npz (NumPy), linear_summary.csv, \
+        linear_poles.csv and status.txt; --json prints every matrix. Signs and units of \
+        every signal: docs/control.md. Past the divergence speed there is no stable \
+        equilibrium: the model stops and the exit status is 1."
+    )]
+    Linearize(LinearizeArgs),
     /// Regenerate every table and figure of the paper's results, beside the paper and references.
     #[command(
         long_about = "Regenerate the paper's section 5 (Tables 2, 3, 5–8, Figures 4–6) beside the \
@@ -109,6 +122,29 @@ struct ModesArgs {
     count: Option<usize>,
 }
 
+/// Options of `flexwing linearize`.
+#[derive(Debug, clap::Args)]
+struct LinearizeArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+
+    /// Free-stream speed of the equilibrium (m/s); overrides `aero.flight.speed`.
+    #[arg(long, value_name = "U", allow_negative_numbers = true)]
+    speed: Option<f64>,
+
+    /// Inputs, comma-separated (`gust,force[16]`); override `linearize.inputs`.
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    inputs: Option<Vec<String>>,
+
+    /// Outputs, comma-separated (`tip_y,lift`); override `linearize.outputs`.
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    outputs: Option<Vec<String>>,
+
+    /// `velocities` or `momenta`; overrides `linearize.states`.
+    #[arg(long, value_name = "BASIS")]
+    states: Option<String>,
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -118,10 +154,35 @@ fn main() -> ExitCode {
         }
     };
     let (json, result) = match &cli.command {
-        Command::Modes(a) => (a.case.json, driver::run(Analysis::Modes, &a.case, a.count)),
-        Command::Static(a) => (a.json, driver::run(Analysis::Static, a, None)),
-        Command::Dynamic(a) => (a.json, driver::run(Analysis::Dynamic, a, None)),
-        Command::Flutter(a) => (a.json, driver::run(Analysis::Flutter, a, None)),
+        Command::Modes(a) => {
+            let o = Overrides {
+                count: a.count,
+                ..Overrides::default()
+            };
+            (a.case.json, driver::run(Analysis::Modes, &a.case, &o))
+        }
+        Command::Static(a) => (
+            a.json,
+            driver::run(Analysis::Static, a, &Overrides::default()),
+        ),
+        Command::Dynamic(a) => (
+            a.json,
+            driver::run(Analysis::Dynamic, a, &Overrides::default()),
+        ),
+        Command::Flutter(a) => (
+            a.json,
+            driver::run(Analysis::Flutter, a, &Overrides::default()),
+        ),
+        Command::Linearize(a) => {
+            let o = Overrides {
+                speed: a.speed,
+                inputs: a.inputs.clone(),
+                outputs: a.outputs.clone(),
+                states: a.states.clone(),
+                ..Overrides::default()
+            };
+            (a.case.json, driver::run(Analysis::Linearize, &a.case, &o))
+        }
         Command::Reproduce(a) => (false, reproduce::run(a)),
     };
     match result {

@@ -31,7 +31,7 @@ pub use report::Section;
 
 use flexwing::analysis::dynamics::AuditedRun;
 use flexwing::analysis::Stop;
-use flexwing::model::{FullModel, StructuralModel};
+use flexwing::model::{FullModel, PlanarModel};
 
 /// Tip position `(x, y)` (m) of the full model at joint rotations `q`.
 fn tip(full: &FullModel, q: &[f64]) -> (f64, f64) {
@@ -40,7 +40,7 @@ fn tip(full: &FullModel, q: &[f64]) -> (f64, f64) {
 }
 
 /// Tip positions `(x, y)` (m) of `model` at the output times of `run`.
-fn tips<M: StructuralModel>(model: &M, run: &AuditedRun) -> Vec<(f64, f64)> {
+fn tips<M: PlanarModel>(model: &M, run: &AuditedRun) -> Vec<(f64, f64)> {
     let full = model.full_model();
     let n = model.n_dofs();
     run.trajectory

@@ -5,7 +5,7 @@
 
 use anyhow::Result;
 use flexwing::analysis::dynamics::DynamicPlan;
-use flexwing::model::{AppliedLoads, FullModel, ReducedModel, StructuralModel};
+use flexwing::model::{AppliedLoads, FullModel, PlanarModel, ReducedModel};
 use flexwing::solve::integrate::{IntegratorStats, OdeSystem};
 use flexwing::solve::{EquationsOfMotion, Gyroscopic, Modes, TimeFunction};
 
@@ -165,7 +165,7 @@ struct RunSpec<'a> {
 
 /// Run `model` from rest with `integrator` (the run kept), time repeated runs, and run it
 /// tightly.
-fn run_model<M: StructuralModel>(
+fn run_model<M: PlanarModel>(
     model: &M,
     spec: &RunSpec,
     kind: SineModelKind,

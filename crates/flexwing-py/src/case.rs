@@ -359,7 +359,97 @@ impl PyCase {
         })
     }
 
-    /// Run the analysis ``"modes"``, ``"static"``, ``"dynamic"`` or ``"flutter"`` (as the
+    /// An ``AeroStepper`` of the case's aeroelastic response (``[aero]``, ``[dynamic]``): the run
+    /// ``dynamics()`` makes, advanced by ``step(dt, inputs)`` with named inputs set between calls
+    /// (docs/python.md). Keyword arguments: ``inputs`` (names; default
+    /// ``["root_angle", "speed", "gust"]``; also ``"force[k]"``, ``"torque[k]"`` at node k),
+    /// ``outputs`` (names; default tip position and twist, root bending moment and torque,
+    /// lift), ``hold`` (``"linear"``, default, or ``"zero"``), ``model`` (index among the
+    /// case's models, default 0).
+    #[pyo3(signature = (**kwargs))]
+    fn stepper(
+        &self,
+        py: Python<'_>,
+        kwargs: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<crate::aero_stepper::PyAeroStepper> {
+        errors::guard(py, || {
+            crate::aero_stepper::PyAeroStepper::build(py, &self.case, kwargs)
+        })
+    }
+
+    /// The linear state-space models ``x' = A x + B u``, ``y = C x + D u`` about the static
+    /// aeroelastic equilibrium at ``aero.flight.speed`` (m/s) of the full and reduced models
+    /// of ``[linearize]``, as a ``LinearizeResult`` of ``LinearModel``s (as ``flexwing
+    /// linearize``; signals, units and signs: docs/control.md).
+    ///
+    /// Keyword arguments: ``speed`` (m/s), ``inputs``, ``outputs`` (lists of names) and
+    /// ``states`` (``"velocities"`` or ``"momenta"``) override ``aero.flight.speed`` and
+    /// ``[linearize]``; ``progress`` and ``check`` as ``statics`` (``check`` raises
+    /// ``SolverError`` if a model has no stable equilibrium, past the divergence speed).
+    #[pyo3(signature = (**kwargs))]
+    fn linearize<'py>(
+        &self,
+        py: Python<'py>,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        errors::guard(py, || {
+            let kw = Kwargs::new(
+                py,
+                kwargs,
+                &["speed", "inputs", "outputs", "states", "progress", "check"],
+                "linearize",
+            )?;
+            let mut case = self.case.clone();
+            if let Some(v) = kw.get("speed")? {
+                let speed = crate::arrays::number(&v, "speed")?;
+                match case.aero.as_mut() {
+                    Some(aero) => aero.flight.speed = Some(speed),
+                    None => return Err(errors::input(py, "speed", "the case has no [aero] table")),
+                }
+            }
+            let mut spec = case.linearize.clone().unwrap_or_default();
+            for (key, slot) in [("inputs", &mut spec.inputs), ("outputs", &mut spec.outputs)] {
+                if let Some(v) = kw.get(key)? {
+                    let list = v
+                        .try_iter()
+                        .and_then(|it| {
+                            it.map(|x| x.and_then(|x| crate::arrays::text(&x, key)))
+                                .collect::<PyResult<Vec<String>>>()
+                        })
+                        .map_err(|_| errors::argument_type(py, key, "must be a list of names"))?;
+                    *slot = Some(list);
+                }
+            }
+            if let Some(v) = kw.get("states")? {
+                spec.states = Some(match crate::arrays::text(&v, "states")?.as_str() {
+                    "velocities" => flexwing_case::StatesSpec::Velocities,
+                    "momenta" => flexwing_case::StatesSpec::Momenta,
+                    other => {
+                        return Err(errors::input(
+                            py,
+                            "states",
+                            &format!("expected \"velocities\" or \"momenta\", got {other:?}"),
+                        ))
+                    }
+                });
+            }
+            case.linearize = Some(spec);
+            let progress = crate::progress::callback(
+                py,
+                kw.get("progress")?,
+                "callback(done: float, label: str)",
+            )?;
+            let check = match kw.get("check")? {
+                None => true,
+                Some(v) => v
+                    .extract::<bool>()
+                    .map_err(|_| errors::argument_type(py, "check", "must be True or False"))?,
+            };
+            run_case(py, &case, Analysis::Linearize, progress, check)
+        })
+    }
+
+    /// Run the analysis ``"modes"``, ``"static"``, ``"dynamic"`` or ``"flutter"`` or ``"linearize"`` (as the
     /// methods of the same names).
     #[pyo3(signature = (analysis, **kwargs))]
     fn run<'py>(

@@ -44,7 +44,7 @@ impl AnyModel {
     fn full(&self) -> &FullModel {
         match self {
             AnyModel::Full(m) => m,
-            AnyModel::Reduced(r) => r.full_model(),
+            AnyModel::Reduced(r) => r.full(),
         }
     }
     fn n_dofs(&self) -> usize {

@@ -23,6 +23,7 @@
 
 use pyo3::prelude::*;
 
+mod aero_stepper;
 mod arrays;
 mod batch;
 mod case;
@@ -74,6 +75,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<model::PyReducedModel>()?;
     m.add_class::<equations::PyEquations>()?;
     m.add_class::<equations::PyStepper>()?;
+    m.add_class::<aero_stepper::PyAeroStepper>()?;
     m.add_function(wrap_pyfunction!(batch::solve_many, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

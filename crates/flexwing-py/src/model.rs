@@ -5,7 +5,7 @@
 
 use flexwing::analysis::modes::ModesPlan;
 use flexwing::analysis::Plan;
-use flexwing::model::{FullModel, ReducedModel, StructuralModel};
+use flexwing::model::{FullModel, PlanarModel, ReducedModel, StructuralModel};
 use flexwing::solve::Modes;
 use flexwing_case::{keys, BeamSpec, SectionSpec};
 use pyo3::prelude::*;

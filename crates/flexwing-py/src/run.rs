@@ -135,6 +135,7 @@ pub fn to_python<'py>(
         (Plan::AeroStatic(p), Outcome::AeroStatic(o)) => aero_statics::raw(py, p, o)?,
         (Plan::AeroDynamic(p), Outcome::AeroDynamic(o)) => aero_dynamics::raw(py, p, o)?,
         (Plan::Flutter(p), Outcome::Flutter(o)) => flutter::raw(py, p, o)?,
+        (Plan::Linearize(p), Outcome::Linearize(o)) => linearize::raw(py, p, o)?,
         (plan, _) => {
             let what = format!("the outcome of a {} plan is of another kind", plan.name());
             return Err(errors::internal(py, &what));

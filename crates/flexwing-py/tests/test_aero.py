@@ -218,6 +218,26 @@ def test_quasi_steady_aerodynamics_give_no_flutter_speed_on_a_mid_chord_axis():
     assert s.real[torsion[0], 0] == pytest.approx(1.290e-5, abs=0.005e-5)
 
 
+def test_a_deflected_planar_wing_gets_the_planar_chain_note():
+    """Patil's wing under a 24 N dead tip force (the continuum rod's tip 1.6211 m up,
+    crates/flexwing/tests/data/chain3d_reference/): the planar chain cannot couple torsion with
+    lag through the flap deflection, and its run says so in a note of kind
+    ``"planar-deflection"`` with the tip deflection (the chain at n = 8 within 2 % of the
+    rod's, plus the shortening, under 0.1 m)."""
+    data = wing(8, aerodynamics={"model": "peters", "states": 6},
+                sweep={"speeds": [4.0 * k for k in range(1, 10)]})
+    data["loads"] = [{"type": "point-force", "node": 8, "direction": "dead", "fy": 24.0}]
+    run = flexwing.Case(data).flutter().full
+    notes = [n for n in run.notes if n["kind"] == "planar-deflection"]
+    assert len(notes) == 1, run.notes
+    assert notes[0]["span"] == L
+    assert abs(notes[0]["tip_deflection"] / 1.6211 - 1.0) < 0.02 + 0.1 / 1.6211
+    assert "3-D chain" in notes[0]["message"]
+    del data["loads"]
+    quiet = flexwing.Case(data).flutter().full
+    assert not [n for n in quiet.notes if n["kind"] == "planar-deflection"]
+
+
 def test_check_raises_with_the_partial_result():
     """A static sweep past the divergence speed (37.09 m/s at n = 8) stops at 40 m/s: with
     check=True a SolverError carries the stop as data and the partial result; with

@@ -20,7 +20,9 @@ use common::{fmt_time, measure};
 use flexwing::beam::{
     Beam, Calibration, Discretization, Profile, RotaryInertia, SectionProperties,
 };
-use flexwing::model::{AppliedLoads, Force, FullModel, Load, ReducedModel, StructuralModel};
+use flexwing::model::{
+    AppliedLoads, Force, FullModel, Load, PlanarModel, ReducedModel, StructuralModel,
+};
 use flexwing::solve::integrate::{
     integrate, GeneralizedAlpha, GeneralizedAlphaOptions, IntegrationResult, IntegratorSettings,
     IntegratorStats, Method, OdeSystem, Radau, RadauOptions, Tolerances,
@@ -57,7 +59,7 @@ fn settings(rtol: f64, atol_ratio: f64, max_step: Option<f64>) -> IntegratorSett
 
 /// Tip positions at the output times, and the integrator's counters; `wide` runs Radau with
 /// [`WIDE_LU_REUSE`].
-fn tip_history<M: StructuralModel>(
+fn tip_history<M: PlanarModel>(
     model: &M,
     (loads, time, t): (&AppliedLoads, &[TimeFunction], &[f64]),
     method: Method,

@@ -14,7 +14,7 @@ use std::time::Duration;
 mod common;
 use common::{cpu_per_call, fmt_time};
 
-use flexwing::model::{AppliedLoads, Force, Load, ReducedModel, StructuralModel};
+use flexwing::model::{AppliedLoads, Force, Load, PlanarModel, ReducedModel, StructuralModel};
 use flexwing::solve::integrate::{IntegratorStats, Radau, RadauOptions, Tolerances};
 use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, Modes, TimeFunction};
 use nalgebra::DMatrix;
@@ -29,7 +29,7 @@ fn previous_weights<M: StructuralModel>(model: &M, atol: f64) -> Vec<f64> {
     v
 }
 
-fn tips<M: StructuralModel>(
+fn tips<M: PlanarModel>(
     model: &M,
     loads: &AppliedLoads,
     rtol: f64,

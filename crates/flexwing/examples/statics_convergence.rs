@@ -4,7 +4,7 @@
 //! Run: `cargo run --release -p flexwing --example statics_convergence`
 
 use flexwing::beam::Profile;
-use flexwing::model::{DistributedForce, Force, FullModel, Load, ReducedModel, StructuralModel};
+use flexwing::model::{DistributedForce, Force, FullModel, Load, PlanarModel, ReducedModel};
 use flexwing::solve::{sweep_static, Modes, StaticOptions, StaticSolution};
 
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/elastica/");
@@ -33,7 +33,7 @@ fn tip(full: &FullModel, sol: &StaticSolution) -> [f64; 2] {
 }
 
 /// Max over the reference rows of the tip position error (m), for a sweep of the first load.
-fn max_error<M: StructuralModel>(
+fn max_error<M: PlanarModel>(
     model: &M,
     loads: &[Load],
     rows: &[Vec<f64>],

@@ -11,6 +11,7 @@ mod aero_dynamic;
 mod aero_static;
 mod dynamic;
 mod flutter;
+mod linearize;
 mod modes;
 mod statics;
 mod table;
@@ -20,6 +21,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use flexwing::analysis::aero::flutter::{FlutterOutcome, FlutterPlan};
+use flexwing::analysis::aero::linearize::{LinearizeOutcome, LinearizePlan};
 use flexwing::analysis::aero::response::{AeroDynamicOutcome, AeroDynamicPlan};
 use flexwing::analysis::aero::statics::{AeroPoint, AeroStaticOutcome, AeroStaticPlan};
 use flexwing::analysis::dynamics::{DynamicOutcome, DynamicPlan};
@@ -98,6 +100,8 @@ pub enum View<'a> {
     Flutter(&'a FlutterPlan, &'a FlutterOutcome),
     /// Aeroelastic response.
     AeroDynamic(&'a AeroDynamicPlan, &'a AeroDynamicOutcome),
+    /// Linear state-space models.
+    Linearize(&'a LinearizePlan, &'a LinearizeOutcome),
 }
 
 impl<'a> View<'a> {
@@ -110,6 +114,7 @@ impl<'a> View<'a> {
             (Plan::AeroStatic(p), Outcome::AeroStatic(o)) => View::AeroStatic(p, o),
             (Plan::Flutter(p), Outcome::Flutter(o)) => View::Flutter(p, o),
             (Plan::AeroDynamic(p), Outcome::AeroDynamic(o)) => View::AeroDynamic(p, o),
+            (Plan::Linearize(p), Outcome::Linearize(o)) => View::Linearize(p, o),
             _ => return None,
         })
     }
@@ -123,6 +128,7 @@ impl<'a> View<'a> {
             View::AeroStatic(p, _) => &p.model,
             View::Flutter(p, _) => &p.model,
             View::AeroDynamic(p, _) => &p.structure.model,
+            View::Linearize(p, _) => &p.model,
         }
     }
 
@@ -132,6 +138,7 @@ impl<'a> View<'a> {
             View::AeroStatic(p, _) => &p.aero,
             View::Flutter(p, _) => &p.aero,
             View::AeroDynamic(p, _) => &p.aero,
+            View::Linearize(p, _) => &p.aero,
             _ => return None,
         };
         Some((a.aerodynamics, a.density))
@@ -148,6 +155,7 @@ pub fn previous_files(plan: &Plan) -> &'static [&'static str] {
         Plan::AeroStatic(_) => aero_static::FILES,
         Plan::Flutter(_) => flutter::FILES,
         Plan::AeroDynamic(_) => aero_dynamic::FILES,
+        Plan::Linearize(_) => linearize::FILES,
         _ => &[],
     }
 }
@@ -162,6 +170,7 @@ pub fn files(ctx: &Context, view: &View, dir: &Path, plot: bool) -> Result<Vec<P
         View::AeroStatic(p, o) => aero_static::files(ctx, p, o, dir, plot),
         View::Flutter(p, o) => flutter::files(ctx, p, o, dir, plot),
         View::AeroDynamic(p, o) => aero_dynamic::files(ctx, p, o, dir, plot),
+        View::Linearize(p, o) => linearize::files(ctx, p, o, dir),
     }
 }
 
@@ -182,6 +191,7 @@ pub fn text(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
         View::AeroStatic(_, o) => aero_static::text(&mut s, o),
         View::Flutter(p, o) => flutter::text(&mut s, ctx, p, o),
         View::AeroDynamic(_, o) => aero_dynamic::text(&mut s, o),
+        View::Linearize(p, o) => linearize::text(&mut s, p, o),
     }
     let _ = writeln!(s);
     if !matches!(view, View::Modes(..)) {
@@ -209,6 +219,7 @@ pub fn json(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
         View::AeroStatic(p, o) => document(ctx, aero_static::json(ctx, p, o), files),
         View::Flutter(p, o) => document(ctx, flutter::json(ctx, p, o), files),
         View::AeroDynamic(p, o) => document(ctx, aero_dynamic::json(ctx, p, o), files),
+        View::Linearize(p, o) => document(ctx, linearize::json(ctx, p, o), files),
     }
 }
 

@@ -12,6 +12,7 @@ mod examples;
 mod flutter_cmd;
 mod fuzz_runs;
 mod interrupt_cmd;
+mod linearize_cmd;
 mod reproduce_cmd;
 mod section_example;
 mod static_cmd;

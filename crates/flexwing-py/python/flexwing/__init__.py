@@ -47,6 +47,7 @@ from ._errors import (
     SolverError,
 )
 from ._native import (
+    AeroStepper,
     Beam,
     Case,
     Equations,
@@ -65,6 +66,7 @@ from ._aero_results import (
     FlutterRun,
     Stability,
 )
+from ._linear import LinearizeResult, LinearModel
 from ._progress import tqdm_progress
 from ._results import (
     Batch,
@@ -83,6 +85,7 @@ __all__ = [
     "ReducedModel",
     "Equations",
     "Stepper",
+    "AeroStepper",
     "solve_many",
     "solve",
     "ModesResult",
@@ -97,6 +100,8 @@ __all__ = [
     "Stability",
     "AeroDynamicRun",
     "AeroDynamicResult",
+    "LinearModel",
+    "LinearizeResult",
     "BatchItem",
     "Batch",
     "tqdm_progress",

@@ -217,8 +217,9 @@ class FlutterRun(_Run):
         equilibria: the static equilibria along the speeds, an :class:`AeroStaticRun`.
         notes: what the numbers mean that the status does not show, as the CLI's ``note:``
             lines: dicts with ``kind`` (``"equilibria-stopped"`` with the ``stop``;
-            ``"unstable-at-start"`` with ``pk``, ``mode``, ``wet_frequency``, ``speed``) and
-            ``message``.
+            ``"unstable-at-start"`` with ``pk``, ``mode``, ``wet_frequency``, ``speed``;
+            ``"planar-deflection"`` with ``tip_deflection``, ``span``, ``speed``: the planar
+            chain about a wing deflected by 2 % of the span or more) and ``message``.
     """
 
     _nested = {"eigenvalues": Stability, "pk": Stability, "equilibria": AeroStaticRun}

@@ -16,6 +16,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ._aero_results import AeroDynamicResult, AeroStaticResult, FlutterResult
+from ._linear import LinearizeResult
 from ._results import Batch, DynamicResult, ModesResult, StaticResult
 
 __version__: str
@@ -29,7 +30,7 @@ Load = Mapping[str, Any]
 #: ``callback(done, label)``: ``done`` the fraction of the analysis (0 to 1), ``label`` the model
 #: running (``"full"``, ``"reduced-r2"``, …).
 ProgressCallback = Callable[[float, str], Any]
-AnalysisName = Literal["modes", "static", "dynamic", "flutter"]
+AnalysisName = Literal["modes", "static", "dynamic", "flutter", "linearize"]
 
 class Case:
     """A flexwing case: the beam, the loads and the settings of its analyses, with the keys of
@@ -88,6 +89,19 @@ class Case:
         """The non-linear dynamics of ``[[loads]]`` and ``[dynamic]`` (full, simplified and
         reduced models); with ``[aero]``, the aeroelastic response (``AeroDynamicResult``);
         ``check`` as ``statics`` (a suspect energy balance raises too)."""
+    def stepper(
+        self,
+        *,
+        inputs: Optional[Sequence[str]] = None,
+        outputs: Optional[Sequence[str]] = None,
+        hold: str = "linear",
+        model: int = 0,
+    ) -> AeroStepper:
+        """An ``AeroStepper`` of the case's aeroelastic response (``[aero]``, ``[dynamic]``):
+        inputs (default ``root_angle`` (rad), ``speed`` (m/s), ``gust`` (m/s); also
+        ``force[k]`` (N), ``torque[k]`` (N·m) at node k) set between calls of ``step``, outputs
+        (default ``tip_x``, ``tip_y`` (m), ``tip_twist`` (rad), ``root_bending_moment``,
+        ``root_torque`` (N·m), ``lift`` (N)) read after each."""
     def flutter(
         self, *, progress: Optional[ProgressCallback] = None, check: bool = True
     ) -> FlutterResult:
@@ -95,6 +109,20 @@ class Case:
         data (1/s, rad/s), flutter speeds (m/s) and frequencies (rad/s), divergence speeds,
         equilibria and the p-k check, per model. ``check`` raises if an eigen-analysis stopped
         before the last speed."""
+    def linearize(
+        self,
+        *,
+        speed: Optional[float] = None,
+        inputs: Optional[Sequence[str]] = None,
+        outputs: Optional[Sequence[str]] = None,
+        states: Optional[Literal["velocities", "momenta"]] = None,
+        progress: Optional[ProgressCallback] = None,
+        check: bool = True,
+    ) -> LinearizeResult:
+        """Linear state-space models ``A, B, C, D`` (SI units, docs/control.md) about the static
+        aeroelastic equilibrium at ``speed`` (m/s, default ``aero.flight.speed``) for the full
+        and reduced models of ``[linearize]``; ``inputs``, ``outputs``, ``states`` override
+        its keys. ``check`` raises ``SolverError`` past the divergence speed."""
     def run(
         self,
         analysis: AnalysisName,
@@ -102,7 +130,13 @@ class Case:
         progress: Optional[ProgressCallback] = None,
         check: bool = True,
     ) -> Union[
-        ModesResult, StaticResult, DynamicResult, AeroStaticResult, AeroDynamicResult, FlutterResult
+        ModesResult,
+        StaticResult,
+        DynamicResult,
+        AeroStaticResult,
+        AeroDynamicResult,
+        FlutterResult,
+        LinearizeResult,
     ]:
         """Run the analysis named ``analysis`` (as the method of the same name)."""
     def __eq__(self, other: object) -> bool: ...
@@ -301,6 +335,46 @@ class Equations:
         """Velocities ẋ = M(x)⁻¹ p of the state y."""
     def full_coordinates(self, x: ArrayLike) -> Vector:
         """Joint rotations q (rad) of the full model for coordinates x."""
+
+class AeroStepper:
+    """An aeroelastic response advanced one communication interval per call, with named inputs
+    set between calls and named outputs read after each (``Case.stepper``): the core of the
+    co-simulation FMU (docs/python.md). Each call runs detached from the interpreter."""
+
+    def step(self, dt: float, inputs: Optional[Mapping[str, float]] = None) -> float:
+        """Advance by dt (s) with the inputs ``inputs`` (name → value, SI units; the others
+        keep theirs). Returns the new time (s). ``InputError`` names a bad input or ``dt``;
+        ``SolverError`` (``stop``) if the integration stops inside the interval; the stepper is
+        then as before the call."""
+    @property
+    def t(self) -> float:
+        """Time (s)."""
+    @property
+    def input_names(self) -> List[str]:
+        """The input names, in order."""
+    @property
+    def output_names(self) -> List[str]:
+        """The output names, in order."""
+    @property
+    def units(self) -> Dict[str, str]:
+        """The SI unit of every input and output, by name."""
+    @property
+    def inputs(self) -> Dict[str, float]:
+        """The inputs' values set (name → value, SI units)."""
+    @property
+    def outputs(self) -> Dict[str, float]:
+        """The outputs at the current time (name → value, SI units: m, rad, N·m, N)."""
+    @property
+    def status(self) -> Dict[str, Any]:
+        """``status`` (complete, suspect, stopped), ``stop`` and ``message``."""
+    @property
+    def energy_audit(self) -> Dict[str, Any]:
+        """What the energy audit found since the start (as ``DynamicRun.energy_audit``)."""
+    def energies(self) -> Dict[str, float]:
+        """Energies at t (J): kinetic, strain, work and dissipated since the start."""
+    @property
+    def stats(self) -> Dict[str, Any]:
+        """Integrator counters summed over the calls, ``calls``, ``rust_time_s`` (s)."""
 
 class Stepper:
     """A dynamic run advanced one output interval per call, with the load factors set from

@@ -9,6 +9,7 @@ pub mod aero_dynamics;
 pub mod aero_statics;
 pub mod dynamics;
 pub mod flutter;
+pub mod linearize;
 pub mod modes;
 pub mod statics;
 pub mod status;

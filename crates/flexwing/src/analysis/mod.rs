@@ -55,7 +55,7 @@ pub mod statics;
 mod status;
 
 pub use models::{ModelKind, ReducedChoice};
-pub use notes::{NewtonAdvice, Note, NEWTON_NOTE_FAILURES};
+pub use notes::{NewtonAdvice, Note, NEWTON_NOTE_FAILURES, PLANAR_DEFLECTION_NOTE};
 pub use plan::{run, Entry, Outcome, Plan};
 pub use progress::{NoProgress, Progress};
 pub use status::{Doubt, Status, Stop, STATUS_WORDS};

@@ -67,7 +67,26 @@ pub enum Note {
         /// The speed of the equilibrium (m/s).
         speed: f64,
     },
+    /// A flutter analysis of the planar chain about an equilibrium whose tip is deflected by at
+    /// least [`PLANAR_DEFLECTION_NOTE`] of the span: the planar chain bends in one plane and
+    /// cannot couple torsion with lag through the flap deflection, and its flutter speed stays
+    /// the undeformed wing's where the wing's own falls (docs/chain3d-model.md).
+    PlanarDeflection {
+        /// The largest tip deflection of the equilibria up to the flutter speed (m).
+        tip_deflection: f64,
+        /// The span (m).
+        span: f64,
+        /// The speed of that equilibrium (m/s).
+        speed: f64,
+    },
 }
+
+/// The least tip deflection, as a fraction of the span, for [`Note::PlanarDeflection`]: 2 %.
+/// On Patil's wing the 3-D chain's flutter speed falls by `≈ 47 (δ/L)²` at small deflections
+/// (the continuum rod of `tests/data/chain3d_reference/`: −0.8 % at `δ/L = 1.3 %`, −3.0 % at
+/// 2.6 %, −27 % at 10 %), so at 2 % the planar chain's speed is already about 2 %
+/// unconservative.
+pub const PLANAR_DEFLECTION_NOTE: f64 = 0.02;
 
 /// Least number of Newton failures for [`Note::NewtonFailures`].
 pub const NEWTON_NOTE_FAILURES: usize = 20;
@@ -198,6 +217,21 @@ impl fmt::Display for Note {
                 if *count == 1 { "" } else { "s" },
                 short(*real),
                 short(*frequency),
+            ),
+            Note::PlanarDeflection {
+                tip_deflection,
+                span,
+                speed,
+            } => write!(
+                f,
+                "the equilibrium at {} m/s has its tip deflected {} m ({:.1} % of the span): the \
+                 planar chain bends in one plane and cannot couple torsion with lag through the \
+                 flap deflection, so its flutter speed is the undeformed wing's while the \
+                 deflected wing's falls (Patil's wing: by 27 % at a tip deflection of 10 % of \
+                 the span); the 3-D chain models this (docs/chain3d-model.md)",
+                short(*speed),
+                short(*tip_deflection),
+                100.0 * tip_deflection / span,
             ),
         }
     }

@@ -464,11 +464,11 @@ impl StructuralModel for FullModel {
         x.to_vec()
     }
 
-    fn full_model(&self) -> &FullModel {
-        self
-    }
-
     fn as_full_model(&self) -> Option<&FullModel> {
         Some(self)
+    }
+
+    fn element_rotations(&self, dx: &[f64]) -> Vec<f64> {
+        super::planar_element_rotations(dx, self.n_elements())
     }
 }

@@ -37,6 +37,40 @@ pub(crate) fn suffix_sum_in_blocks<D: num_dual::DualNum<Primitive = f64> + Copy>
     }
 }
 pub use chain3d::Chain3d;
+
+/// The planar chain's absolute angles for joint rotations `q` in blocks of `n` (bending, then
+/// torsion): the running sums within each block.
+pub(crate) fn planar_element_rotations(q: &[f64], n: usize) -> Vec<f64> {
+    let mut out = Vec::with_capacity(q.len());
+    for block in q.chunks(n.max(1)) {
+        let mut angle = 0.0;
+        for dq in block {
+            angle += dq;
+            out.push(angle);
+        }
+    }
+    out
+}
+
+/// A model on the paper's planar chain: the full model, or a reduced model projected on its
+/// modes, with the planar full model underneath. The 3-D chain is not one (it has no planar
+/// full model), so nothing generic over [`StructuralModel`] can ask it for one.
+pub trait PlanarModel: StructuralModel {
+    /// The full model underneath (itself for the full model).
+    fn full_model(&self) -> &FullModel;
+}
+
+impl PlanarModel for FullModel {
+    fn full_model(&self) -> &FullModel {
+        self
+    }
+}
+
+impl PlanarModel for ReducedModel {
+    fn full_model(&self) -> &FullModel {
+        self.full()
+    }
+}
 pub use reduced::{ReducedModel, ReducedWorkspace};
 pub use shape::Shape;
 
@@ -144,28 +178,27 @@ pub trait StructuralModel {
     fn full_coordinates(&self, x: &[f64]) -> Vec<f64>;
     /// The elements' rotations that a change `dx` of the coordinates makes, linear in `dx`: the
     /// measure of how far a static step went (`StaticOptions::max_rotation_step`, the largest
-    /// magnitude) and arc-length continuation's metric. The default is the planar chain's
-    /// absolute angles `θ_i = Σ_{j≤i} Δq_j` and `ψ_i = Σ_{j≤i} Δq_{n+j}` of
-    /// [`StructuralModel::full_coordinates`]; the 3-D chain sums its joints' rotation vectors.
-    fn element_rotations(&self, dx: &[f64]) -> Vec<f64> {
-        let q = self.full_coordinates(dx);
-        let n = self.full_model().n_elements();
-        let mut out = Vec::with_capacity(q.len());
-        for block in q.chunks(n) {
-            let mut angle = 0.0;
-            for dq in block {
-                angle += dq;
-                out.push(angle);
-            }
-        }
-        out
-    }
-    /// The full model underneath (itself for the full model).
-    fn full_model(&self) -> &FullModel;
+    /// magnitude) and arc-length continuation's metric. The planar chain's are its absolute
+    /// angles `θ_i = Σ_{j≤i} Δq_j` and `ψ_i = Σ_{j≤i} Δq_{n+j}` of
+    /// [`StructuralModel::full_coordinates`] (`planar_element_rotations`); the 3-D chain sums
+    /// its joints' rotation vectors.
+    fn element_rotations(&self, dx: &[f64]) -> Vec<f64>;
     /// This model as the full model, when it is one (its coordinates are the joint rotations):
     /// the solvers then solve their Newton systems by O(n) sweeps along the chain
     /// (`model::chain_newton`). `None` (the default) for other models.
     fn as_full_model(&self) -> Option<&FullModel> {
+        None
+    }
+    /// This model as the 3-D chain, when it is one (its coordinates are the joints' rotation
+    /// vectors): the implicit integrators then solve their Newton systems in O(n)
+    /// (`model::chain3d::newton`). `None` (the default) for other models.
+    fn as_chain3d(&self) -> Option<&Chain3d> {
+        None
+    }
+    /// `K` as 3×3 diagonal blocks (row-major, one per joint), when it is block diagonal with
+    /// such blocks (the 3-D chain): the equations of motion then never form it. `None` (the
+    /// default) otherwise.
+    fn stiffness_blocks(&self) -> Option<Vec<[[f64; 3]; 3]>> {
         None
     }
 }

@@ -170,6 +170,10 @@ impl ReducedModel {
     pub fn basis(&self) -> &DMatrix<f64> {
         &self.phi
     }
+    /// The full model projected.
+    pub fn full(&self) -> &FullModel {
+        &self.full
+    }
 }
 
 /// Scratch buffers of a reduced model: those of the full model, full-size intermediates, and
@@ -477,8 +481,9 @@ impl StructuralModel for ReducedModel {
         q
     }
 
-    fn full_model(&self) -> &FullModel {
-        &self.full
+    fn element_rotations(&self, deta: &[f64]) -> Vec<f64> {
+        let dq = self.full_coordinates(deta);
+        super::planar_element_rotations(&dq, self.full.n_elements())
     }
 }
 

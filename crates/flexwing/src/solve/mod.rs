@@ -17,7 +17,7 @@ mod tangent;
 pub use continuation::{arc_length_static, ArcLengthOptions, PathError, PathPoint, StaticPath};
 pub use dynamics::{
     chain_newton_min_dofs, Damping, EquationsOfMotion, Gyroscopic, NewtonSystems, TimeFunction,
-    CHAIN_NEWTON_MIN_DOFS,
+    CHAIN3D_NEWTON_MIN_DOFS, CHAIN_NEWTON_MIN_DOFS,
 };
 pub use eigen::generalized_symmetric_eigen;
 pub use energy_audit::{AuditLimits, EnergyBalance};

@@ -4,6 +4,7 @@
 //! One module per validated case, as the files were; `cargo test --release -p flexwing --test suite
 //! MODULE::` runs one of them.
 
+mod aero3d_patil_deformed;
 mod aero3d_planar_limit;
 mod aero_chain_reference;
 mod aero_convergence;
@@ -19,7 +20,9 @@ mod bad_input;
 mod chain3d_bathe_bolourchi;
 mod chain3d_dynamics;
 mod chain3d_modes;
+mod chain3d_newton_systems;
 mod chain3d_planar_limit;
+mod chain3d_reduced;
 mod chain3d_statics;
 mod common;
 mod coupled_table2;

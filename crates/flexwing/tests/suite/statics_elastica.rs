@@ -5,7 +5,7 @@
 use crate::common::elastica::two_followers;
 use crate::common::*;
 use flexwing::beam::Profile;
-use flexwing::model::{DistributedForce, Force, FullModel, Load, ReducedModel, StructuralModel};
+use flexwing::model::{DistributedForce, Force, FullModel, Load, PlanarModel, ReducedModel};
 use flexwing::solve::{sweep_static, Modes, StaticOptions, StaticSolution};
 
 fn read(file: &str) -> Vec<Vec<f64>> {
@@ -23,7 +23,7 @@ fn read(file: &str) -> Vec<Vec<f64>> {
 }
 
 /// Sweep the first load's scale over `column` of `rows` (other loads at scale 1).
-fn sweep<M: StructuralModel>(
+fn sweep<M: PlanarModel>(
     model: &M,
     loads: &[Load],
     rows: &[Vec<f64>],
@@ -47,7 +47,7 @@ fn tip(full: &FullModel, sol: &StaticSolution) -> [f64; 2] {
 }
 
 /// Max over the sweep of the tip position error (m) against columns `cols` of `rows`.
-fn max_tip_error<M: StructuralModel>(
+fn max_tip_error<M: PlanarModel>(
     model: &M,
     loads: &[Load],
     rows: &[Vec<f64>],

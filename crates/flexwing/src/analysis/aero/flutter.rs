@@ -464,6 +464,11 @@ fn analyse<M: PlanarStructure>(
             speed: first,
         }));
     }
+    notes.extend(planar_deflection(
+        &equilibria.points,
+        stability.flutter.as_ref().map(|c| c.speed),
+        aero.chain().length(),
+    ));
     Ok(FlutterRun {
         kind: kind.clone(),
         dofs,
@@ -477,6 +482,29 @@ fn analyse<M: PlanarStructure>(
         other_stops: stops.collect(),
         notes,
     })
+}
+
+/// The note that the planar chain's flutter speed ignores the deflection
+/// ([`Note::PlanarDeflection`]), if some equilibrium up to the flutter speed (every one, without
+/// flutter) has its tip displaced by at least [`crate::analysis::PLANAR_DEFLECTION_NOTE`] of the
+/// span `span`. Every model of a [`FlutterPlan`] is on the planar chain.
+fn planar_deflection(points: &[AeroPoint], flutter: Option<f64>, span: f64) -> Option<Note> {
+    let (speed, tip_deflection) = points
+        .iter()
+        .filter(|p| flutter.is_none_or(|u| p.speed <= u))
+        .map(|p| {
+            let (x, y, _) = p.tip();
+            (p.speed, (x - span).hypot(y))
+        })
+        .filter(|(_, d)| d.is_finite())
+        .max_by(|a, b| a.1.total_cmp(&b.1))?;
+    (tip_deflection >= crate::analysis::PLANAR_DEFLECTION_NOTE * span).then_some(
+        Note::PlanarDeflection {
+            tip_deflection,
+            span,
+            speed,
+        },
+    )
 }
 
 /// A [`Progress`] that reports a part of the work through `map`.
@@ -620,5 +648,38 @@ mod tests {
             let msg = p.validate(&fields).unwrap_err().to_string();
             assert!(msg.starts_with(expected), "{msg}");
         }
+    }
+
+    /// The planar chain warns when it runs flutter about a deflected wing: Patil's wing under a
+    /// 24 N dead tip force (the continuum rod's tip 1.6211 m up, README of
+    /// `tests/data/chain3d_reference/`; the chain at n = 8 within 2 % of it, and the
+    /// displacement's chordwise part, the shortening, is under 0.1 m) gets the note, the
+    /// unloaded wing does not.
+    #[test]
+    fn the_planar_chain_notes_a_deflected_equilibrium() {
+        let (model, aero) = patil(8, Aerodynamics::Peters { states: 6 });
+        let mut plan = FlutterPlan::new(model, aero, speeds());
+        let quiet = run(&plan, &mut NoProgress).unwrap();
+        let planar = |n: &&Note| matches!(n, Note::PlanarDeflection { .. });
+        assert!(!quiet.full().unwrap().notes.iter().any(|n| planar(&n)));
+        plan.loads = vec![Load::PointForce {
+            span: 16.0,
+            force: crate::model::Force::Dead { fx: 0.0, fy: 24.0 },
+        }];
+        let out = run(&plan, &mut NoProgress).unwrap();
+        let notes = &out.full().unwrap().notes;
+        let Some(Note::PlanarDeflection {
+            tip_deflection,
+            span,
+            ..
+        }) = notes.iter().find(planar)
+        else {
+            panic!("{notes:?}")
+        };
+        assert!((tip_deflection / 1.6211 - 1.0).abs() < 0.02 + 0.1 / 1.6211);
+        assert_eq!(*span, 16.0);
+        let text = notes.iter().find(planar).unwrap().to_string();
+        assert!(text.contains("cannot couple torsion with lag"), "{text}");
+        assert!(text.contains("3-D chain"), "{text}");
     }
 }

@@ -23,6 +23,7 @@ pub mod flutter;
 pub mod linearize;
 pub mod response;
 pub mod statics;
+pub mod stepper;
 
 use crate::error::{Error, InputError};
 use crate::model::aero::{AeroSection, Aerodynamics, Aeroelastic};

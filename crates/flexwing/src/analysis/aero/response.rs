@@ -371,7 +371,7 @@ impl Simulator<'_> {
                 tip_twist,
                 root_bending_moment: full.stiffness()[0] * q[0],
                 lift,
-                speed: eqs.flight().speed(t),
+                speed: eqs.speed(t),
                 kinetic,
                 strain,
                 work,
@@ -386,47 +386,58 @@ impl Simulator<'_> {
         run.energy_audit = Some(EnergyAudit::of(&balance));
         run
     }
-
     /// The model's coordinates at `t = 0`.
     fn initial_state<M: AeroStructure>(
         &self,
         aero: &Aeroelastic<M>,
     ) -> Result<Vec<f64>, SolveError> {
-        let n = aero.structure().n_dofs();
-        if self.plan.start == AeroStart::Rest {
-            return Ok(vec![0.0; n]);
-        }
-        let initial = self.plan.flight.initial;
-        let steady = aero
-            .with_aerodynamics(Aerodynamics::Steady, "aero")
-            .map_err(SolveError::from_input)?;
-        let mut loads = self.active_loads.to_vec();
-        let mut scales: Vec<f64> = self.time_functions.iter().map(|f| f.at(0.0)).collect();
-        if let Some(g) = initial.gravity {
-            loads.push(Load::Gravity { g });
-            scales.push(initial.root_angle.cos());
-        }
-        let applied = aero
-            .apply(&loads, "loads")
-            .map_err(SolveError::from_input)?;
-        let model = SteadyAeroModel::new(&steady, initial.root_angle);
-        scales.push(0.5 * aero.density() * initial.speed * initial.speed);
-        let zero = vec![0.0; scales.len()];
-        continue_static(
-            &model,
-            &applied,
-            (&vec![0.0; n], &zero),
-            &scales,
-            &self.plan.static_options,
-        )
-        .map(|s| s.x)
+        initial_coordinates(self.plan, self.active_loads, self.time_functions, aero)
     }
+}
+
+/// The coordinates at `t = 0` of a response of `plan` by `aero`, with the plan's active loads
+/// `active_loads` and their time functions: the static equilibrium of the initial flight
+/// condition, or zero.
+pub(super) fn initial_coordinates<M: AeroStructure>(
+    plan: &AeroDynamicPlan,
+    active_loads: &[Load],
+    time_functions: &[TimeFunction],
+    aero: &Aeroelastic<M>,
+) -> Result<Vec<f64>, SolveError> {
+    let n = aero.structure().n_dofs();
+    if plan.start == AeroStart::Rest {
+        return Ok(vec![0.0; n]);
+    }
+    let initial = plan.flight.initial;
+    let steady = aero
+        .with_aerodynamics(Aerodynamics::Steady, "aero")
+        .map_err(SolveError::from_input)?;
+    let mut loads = active_loads.to_vec();
+    let mut scales: Vec<f64> = time_functions.iter().map(|f| f.at(0.0)).collect();
+    if let Some(g) = initial.gravity {
+        loads.push(Load::Gravity { g });
+        scales.push(initial.root_angle.cos());
+    }
+    let applied = aero
+        .apply(&loads, "loads")
+        .map_err(SolveError::from_input)?;
+    let model = SteadyAeroModel::new(&steady, initial.root_angle);
+    scales.push(0.5 * aero.density() * initial.speed * initial.speed);
+    let zero = vec![0.0; scales.len()];
+    continue_static(
+        &model,
+        &applied,
+        (&vec![0.0; n], &zero),
+        &scales,
+        &plan.static_options,
+    )
+    .map(|s| s.x)
 }
 
 /// The aeroelastic equations with absolute tolerances in the units of each state (those of
 /// [`AeroelasticEquations::state_atol`]: rad for the coordinates, scaled for the momenta, the
 /// speed for the lag states), so that one `atol` fits them all as in a structural run.
-struct Scaled<'a, M: AeroStructure>(AeroelasticEquations<'a, M>);
+pub(super) struct Scaled<'a, M: AeroStructure>(pub(super) AeroelasticEquations<'a, M>);
 
 impl<M: AeroStructure> OdeSystem for Scaled<'_, M> {
     fn dim(&self) -> usize {

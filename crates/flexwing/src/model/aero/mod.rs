@@ -314,7 +314,7 @@ impl AeroStructure for ReducedModel {
         Some(ReducedModel::basis(self))
     }
     fn chain(&self) -> AeroChain<'_> {
-        AeroChain::Planar(self.full_model())
+        AeroChain::Planar(self.full())
     }
 }
 
@@ -329,7 +329,7 @@ impl AeroStructure for Chain3d {
 
 /// A structure on the paper's planar chain (the full model or a reduced model on it), whose
 /// full model [`Aeroelastic::full`] gives.
-pub trait PlanarStructure: AeroStructure {}
+pub trait PlanarStructure: AeroStructure + crate::model::PlanarModel {}
 impl PlanarStructure for FullModel {}
 impl PlanarStructure for ReducedModel {}
 

@@ -44,6 +44,19 @@ impl Chain3d {
     /// Factor `M` at the configuration `fr` into `ab`; false if a pivot block `D_i` is not
     /// numerically positive definite (then `M` is not). O(n).
     pub(crate) fn factor_mass<D: Real>(&self, fr: &Frames<D>, ab: &mut Articulated<D>) -> bool {
+        self.factor_mass_spring(fr, ab, 0.0)
+    }
+
+    /// Factor `M + s K` (`K` the joint springs, block diagonal) into `ab`: the springs enter as
+    /// the joints' armature, added to each pivot `D_i` (Featherstone §7.3); [`Self::solve_mass`]
+    /// then solves `(M + s K) z = w`. The preconditioner of the 3-D chain's Newton systems
+    /// (`newton.rs`). False if a pivot is not positive definite. O(n).
+    pub(crate) fn factor_mass_spring<D: Real>(
+        &self,
+        fr: &Frames<D>,
+        ab: &mut Articulated<D>,
+        spring: f64,
+    ) -> bool {
         let mut child = Spatial::<D>::zero();
         for i in (0..self.n).rev() {
             let mut ia = Spatial::body(self, fr, i);
@@ -53,7 +66,15 @@ impl Chain3d {
             let h = &fr.h[i];
             let ut = mm(&ia.a, h);
             let ub = mtm(&ia.b, h);
-            let dmat = mtm(h, &ut);
+            let mut dmat = mtm(h, &ut);
+            if spring != 0.0 {
+                let k = &self.beam.stiffness[i];
+                for r in 0..3 {
+                    for c in 0..3 {
+                        dmat[r][c] += D::from(spring * k[r][c]);
+                    }
+                }
+            }
             let Some(l) = cholesky(&dmat) else {
                 return false;
             };

@@ -16,6 +16,9 @@
 //!   gyroscopic term, mass matrix, O(n) velocity solve;
 //! * `loads.rs`: [`SpatialLoad`] and the generalized forces;
 //! * `model.rs`: [`Chain3d`], a [`crate::model::StructuralModel`];
+//! * `newton.rs`: O(n) solves of the implicit integrators' Newton systems (GMRES on the exact
+//!   operator, preconditioned by the articulated-body solve of `c² M + K`);
+//! * `reduced.rs`: [`ReducedChain3d`], the non-linear modal ROM on the chain;
 //! * `shape.rs`: [`Shape3d`], the deformed chain for output.
 
 mod aba;
@@ -27,6 +30,8 @@ mod kinetic;
 mod loads;
 mod mass;
 mod model;
+mod newton;
+mod reduced;
 mod rotation;
 mod section;
 mod shape;
@@ -36,6 +41,8 @@ pub use geometry::Geometry3d;
 pub(crate) use loads::SpatialItem;
 pub use loads::{SpatialDistributed, SpatialLoad, SpatialVector};
 pub use model::{Chain3d, Workspace3d};
+pub(crate) use newton::Newton3d;
+pub use reduced::{ReducedChain3d, ReducedWorkspace3d};
 pub use rotation::rotation_vector;
 pub use section::{
     ElementInertia, JointCalibration, SectionInertia, SectionStiffness, StiffnessCoupling,

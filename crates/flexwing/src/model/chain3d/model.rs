@@ -14,7 +14,7 @@ use super::algebra::{cross, zero, V3};
 use super::beam::Beam3d;
 use super::kinematics::{Frames, Motion};
 use super::shape::Shape3d;
-use crate::model::{AppliedLoads, FullModel, StructuralModel};
+use crate::model::{AppliedLoads, StructuralModel};
 
 /// The 3-D chain: `n` rigid elements joined by three-axis rotational joints.
 #[derive(Debug, Clone)]
@@ -509,16 +509,16 @@ impl StructuralModel for Chain3d {
         loads.is_conservative(scales)
     }
 
-    fn full_coordinates(&self, x: &[f64]) -> Vec<f64> {
-        x.to_vec()
+    fn as_chain3d(&self) -> Option<&Chain3d> {
+        Some(self)
     }
 
-    /// # Panics
-    /// Always: the 3-D chain has no planar full model underneath. The solvers that run on the
-    /// 3-D chain (statics, modes by [`crate::solve::Modes::of_model`], dynamics) do not call
-    /// this; the aeroelastic layer, which does, is not yet carried onto the 3-D chain.
-    fn full_model(&self) -> &FullModel {
-        panic!("the 3-D chain has no planar full model (StructuralModel::full_model)")
+    fn stiffness_blocks(&self) -> Option<Vec<[[f64; 3]; 3]>> {
+        Some(self.beam.stiffness.clone())
+    }
+
+    fn full_coordinates(&self, x: &[f64]) -> Vec<f64> {
+        x.to_vec()
     }
 
     /// The joints' rotation vectors summed from the clamp, component by component, per element:

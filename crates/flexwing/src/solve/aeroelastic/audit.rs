@@ -103,6 +103,14 @@ impl<M: AeroStructure> AeroelasticEquations<'_, M> {
         self.audit.as_ref().map(|a| &a.balance)
     }
 
+    /// Put back a balance taken by [`Self::energy_balance`] (a stepper undoing a failed
+    /// interval); nothing without the audit.
+    pub(crate) fn restore_energy_balance(&mut self, balance: EnergyBalance) {
+        if let Some(audit) = self.audit.as_mut() {
+            audit.balance = balance;
+        }
+    }
+
     /// The work of the loads `W` and the dissipated energy `D` (J) carried by an audited state
     /// `y`; `None` without the audit.
     pub fn work_and_dissipation(&self, y: &[f64]) -> Option<(f64, f64)> {

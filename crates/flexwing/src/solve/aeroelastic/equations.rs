@@ -25,7 +25,7 @@ use nalgebra::{Complex, DMatrix, DVector};
 
 use super::audit::{dot, AeroAudit};
 use super::evaluator::{AeroDerivatives, AeroEvaluator};
-use super::flight::FlightHistory;
+use super::flight::{FlightHistory, FlightOffsets};
 use super::linear::Linearization;
 use super::schur::{AeroNewtonSystems, LagSchur, StructuredJacobian};
 use crate::error::InputError;
@@ -69,6 +69,8 @@ pub struct AeroelasticEquations<'a, M: AeroStructure> {
     time_functions: Vec<TimeFunction>,
     eval: AeroEvaluator<'a, M>,
     flight: FlightHistory,
+    /// Inputs added to the flight history (a stepper's), zero by default.
+    offsets: FlightOffsets,
     gravity: Option<AppliedLoads>,
     ws: M::Workspace,
     pub(super) n: usize,
@@ -134,6 +136,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
             time_functions,
             eval: AeroEvaluator::new(aero),
             flight,
+            offsets: FlightOffsets::default(),
             gravity,
             ws: model.workspace(),
             n,
@@ -219,7 +222,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     /// Total aerodynamic force along the ground's vertical (N) of the last right-hand side
     /// evaluated at time `t`.
     pub(crate) fn vertical_aerodynamic_force(&self, t: f64) -> f64 {
-        let (sa, ca) = self.flight.root_angle(t).sin_cos();
+        let (sa, ca) = self.root_angle(t).sin_cos();
         self.eval
             .sc
             .force
@@ -298,6 +301,48 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     /// history given at construction is kept, its root-angle factor follows the new history).
     pub(crate) fn set_flight(&mut self, flight: FlightHistory) {
         self.flight = flight;
+    }
+
+    /// The aeroelastic model.
+    pub(crate) fn aero(&self) -> &'a Aeroelastic<M> {
+        self.aero
+    }
+
+    /// The other loads' time functions.
+    pub(crate) fn time_functions(&self) -> &[TimeFunction] {
+        &self.time_functions
+    }
+
+    /// Set the increments added to the flight history (a stepper's inputs).
+    pub(crate) fn set_flight_offsets(&mut self, offsets: FlightOffsets) {
+        self.offsets = offsets;
+    }
+
+    /// The increments added to the flight history.
+    pub(crate) fn flight_offsets(&self) -> FlightOffsets {
+        self.offsets
+    }
+
+    /// Free-stream speed at `t` (m/s): the history's and the offset's.
+    pub fn speed(&self, t: f64) -> f64 {
+        self.flight.speed(t) + self.offsets.speed.at(t)
+    }
+
+    /// Root angle at `t` (rad): the history's and the offset's.
+    pub fn root_angle(&self, t: f64) -> f64 {
+        self.flight.root_angle(t) + self.offsets.root_angle.at(t)
+    }
+
+    /// Replace the other loads' time functions (one per load); errors name `field`.
+    pub(crate) fn set_time_functions(
+        &mut self,
+        functions: Vec<TimeFunction>,
+        field: &str,
+    ) -> Result<(), InputError> {
+        self.structural
+            .set_time_functions(functions.clone(), field)?;
+        self.time_functions = functions;
+        Ok(())
     }
 
     /// The system linearized at the static equilibrium `(x, p = 0, a)` at time 0
@@ -528,14 +573,15 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     }
 
     fn set_air(&mut self, t: f64) {
-        let u = self.flight.speed(t);
-        let alpha = self.flight.root_angle(t);
+        let u = self.speed(t);
+        let alpha = self.root_angle(t);
         let flight = &self.flight;
-        self.eval.set_air(u, alpha, |s| flight.gust(s, t));
+        let uniform = self.offsets.gust.at(t);
+        self.eval.set_air(u, alpha, |s| flight.gust(s, t) + uniform);
     }
 
     fn gravity_scale(&self, t: f64) -> [f64; 1] {
-        [self.flight.root_angle(t).cos()]
+        [self.root_angle(t).cos()]
     }
 }
 

@@ -174,3 +174,48 @@ impl FlightHistory {
         Ok(())
     }
 }
+
+/// A value linear in time over `[t0, t1]` and held outside it: an input of a stepper over one
+/// communication interval (first-order hold), or held (`t0 = t1`: zero-order hold).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct Segment {
+    pub t0: f64,
+    pub t1: f64,
+    pub v0: f64,
+    pub v1: f64,
+}
+
+impl Segment {
+    /// `value` at every time.
+    pub fn held(value: f64) -> Self {
+        Self {
+            t0: 0.0,
+            t1: 0.0,
+            v0: value,
+            v1: value,
+        }
+    }
+
+    /// The value at `t`.
+    pub fn at(&self, t: f64) -> f64 {
+        if self.t1 > self.t0 {
+            let s = ((t - self.t0) / (self.t1 - self.t0)).clamp(0.0, 1.0);
+            self.v0 + (self.v1 - self.v0) * s
+        } else {
+            self.v1
+        }
+    }
+}
+
+/// Increments of the flight condition set from outside between integrations (a stepper's or an
+/// FMU's inputs, `analysis::aero::stepper`), added to the flight history's root angle, speed and
+/// uniform gust; zero by default.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct FlightOffsets {
+    /// Root angle (rad).
+    pub root_angle: Segment,
+    /// Free-stream speed (m/s).
+    pub speed: Segment,
+    /// Uniform vertical gust velocity (m/s, up).
+    pub gust: Segment,
+}

@@ -192,13 +192,15 @@ pub fn linearize<M: PlanarStructure>(
     })
 }
 
-/// The eigenvalues of `a` after balancing (`balance.rs`), or `None` if the real Schur form does
-/// not converge within 10 000 iterations (nalgebra's unbounded default can loop forever on a
-/// matrix as ill-scaled as a reduced model's with lag states).
+/// The eigenvalues of `a` after balancing (`balance.rs`), or of `a` itself if that real Schur
+/// form does not converge within 10 000 iterations (nalgebra's unbounded default can loop
+/// forever on a matrix as ill-scaled as a reduced model's with lag states; the reduced model of
+/// Patil's wing in the momenta basis converges only unbalanced); `None` if neither converges.
 pub fn poles(a: &DMatrix<f64>) -> Option<Vec<nalgebra::Complex<f64>>> {
     let mut m = a.clone();
     super::balance::balance(&mut m);
-    let schur = nalgebra::linalg::Schur::try_new(m, f64::EPSILON, 10_000)?;
+    let schur = nalgebra::linalg::Schur::try_new(m, f64::EPSILON, 10_000)
+        .or_else(|| nalgebra::linalg::Schur::try_new(a.clone(), f64::EPSILON, 10_000))?;
     Some(schur.complex_eigenvalues().iter().copied().collect())
 }
 

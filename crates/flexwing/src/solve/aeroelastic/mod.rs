@@ -8,7 +8,7 @@ mod balance;
 mod clu;
 mod equations;
 mod evaluator;
-mod flight;
+pub(crate) mod flight;
 mod linear;
 mod schur;
 

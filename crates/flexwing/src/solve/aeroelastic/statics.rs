@@ -17,7 +17,7 @@ use nalgebra::{DMatrix, DVector};
 use super::evaluator::{AeroDerivatives, AeroEvaluator};
 use crate::error::{InputError, SolveError};
 use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCondition};
-use crate::model::{AppliedLoads, FullModel, Load, StructuralModel};
+use crate::model::{AppliedLoads, Load, StructuralModel};
 use crate::solve::{continue_static, StaticOptions, StaticStats};
 
 /// A static aeroelastic sweep, validated: speeds in increasing order, the root angle, gravity and
@@ -296,11 +296,6 @@ impl<'a, M: AeroStructure> StructuralModel for SteadyAeroModel<'a, M> {
     }
     fn element_rotations(&self, dx: &[f64]) -> Vec<f64> {
         self.aero.structure().element_rotations(dx)
-    }
-    /// The structure's ([`StructuralModel::full_model`]; the 3-D chain has none, and no solver
-    /// path calls it).
-    fn full_model(&self) -> &FullModel {
-        self.aero.structure().full_model()
     }
 }
 

@@ -34,10 +34,9 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     pub(super) loads: &'a AppliedLoads,
     pub(super) time_functions: Vec<TimeFunction>,
     pub(super) gyroscopic: Gyroscopic,
-    /// `K`, dense, when it is not diagonal (empty otherwise).
-    pub(super) k: DMatrix<f64>,
-    /// The diagonal of `K` when `K` is diagonal (the full model): `K x` in O(n).
-    pub(super) k_diag: Option<Vec<f64>>,
+    /// `K`: diagonal (the full model), block diagonal (the 3-D chain, 3×3 per joint) or dense,
+    /// so that `K x` is O(n) for the first two.
+    pub(super) k: Stiffness,
     /// `v ↦ C v` (`damping.rs`): O(n) or O(n r) for the full model, never forming `C`.
     pub(super) c: DampingOperator<M>,
     /// `C ẋ`, written by every right-hand side.
@@ -55,6 +54,8 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     pub(super) dense: Option<DenseBuffers>,
     pub(super) newton: NewtonSystems,
     pub(super) chain: Option<ChainNewton>,
+    /// The 3-D chain's O(n) Newton solves (`model::chain3d::newton`), built on first use.
+    pub(super) chain3d: Option<crate::model::chain3d::Newton3d>,
     /// Where [`NewtonSystems::Auto`] switches to the chain (coordinates).
     pub(super) auto_chain_min_dofs: usize,
     /// `state_atol(1.0)`, computed once (O(n²) for the full model).
@@ -104,15 +105,17 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         let n = model.n_dofs();
         let ws = model.workspace();
         let c = DampingOperator::new(model, damping, "damping")?;
-        // The full model's K is diagonal: never form it (n² entries at large n).
-        let (k, k_diag) = match model.as_full_model() {
-            Some(full) => (DMatrix::zeros(0, 0), Some(full.stiffness().to_vec())),
-            None => {
+        // The full model's K is diagonal, the 3-D chain's block diagonal: never form them (n²
+        // entries at large n).
+        let k = match (model.as_full_model(), model.stiffness_blocks()) {
+            (Some(full), _) => Stiffness::Diagonal(full.stiffness().to_vec()),
+            (None, Some(blocks)) => Stiffness::Blocks(blocks),
+            (None, None) => {
                 let k = model.stiffness_matrix();
                 let diagonal = (0..n).all(|j| (0..n).all(|i| i == j || k[(i, j)] == 0.0));
                 match diagonal {
-                    true => (DMatrix::zeros(0, 0), Some(k.diagonal().as_slice().to_vec())),
-                    false => (k, None),
+                    true => Stiffness::Diagonal(k.diagonal().as_slice().to_vec()),
+                    false => Stiffness::Dense(k),
                 }
             }
         };
@@ -123,7 +126,6 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             time_functions,
             gyroscopic,
             k,
-            k_diag,
             c,
             c_xdot: vec![0.0; n],
             damping: damping.clone(),
@@ -137,6 +139,7 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             dense: None,
             newton: NewtonSystems::Auto,
             chain: None,
+            chain3d: None,
             auto_chain_min_dofs: CHAIN_NEWTON_MIN_DOFS,
             unit_atol: None,
             audit: None,
@@ -155,10 +158,14 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
     /// [`NewtonSystems::Chain`] for a model other than the full model, or for a wet one (with
     /// the fluid's inertia, which the chain sweeps do not carry) (field `newton_systems`).
     pub fn set_newton_systems(&mut self, choice: NewtonSystems) -> Result<(), InputError> {
-        if choice == NewtonSystems::Chain && self.model.as_full_model().is_none() {
+        if choice == NewtonSystems::Chain
+            && self.model.as_full_model().is_none()
+            && self.model.as_chain3d().is_none()
+        {
             return Err(InputError::new(
                 "newton_systems",
-                "the chain solves need the full model; a reduced model has dense Newton systems",
+                "the chain solves need the full model or the 3-D chain; a reduced model has \
+                 dense Newton systems",
             ));
         }
         if choice == NewtonSystems::Chain
@@ -175,6 +182,7 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         }
         self.newton = choice;
         self.chain = None;
+        self.chain3d = None;
         Ok(())
     }
 
@@ -183,10 +191,17 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         // The chain sweeps do not carry the fluid's inertia (`model::aero::fluid`): on a wet
         // model they would solve another system, and Newton would fail (a wet Patil wing at
         // 16 coordinates stopped with "step size too small"), so a wet model stays dense.
-        self.model
+        // The 3-D chain's solves apply the exact operator through the model's own recursions
+        // (the fluid's inertia included) and need no such restriction.
+        (self
+            .model
             .as_full_model()
             .is_some_and(|full| !full.has_fluid_inertia())
+            || self.model.as_chain3d().is_some())
             && match self.newton {
+                NewtonSystems::Auto if self.model.as_chain3d().is_some() => {
+                    self.n >= super::CHAIN3D_NEWTON_MIN_DOFS
+                }
                 NewtonSystems::Auto => self.n >= self.auto_chain_min_dofs,
                 NewtonSystems::Dense => false,
                 NewtonSystems::Chain => true,
@@ -242,13 +257,7 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         let unit = self.unit_atol();
         let n = self.n;
         (0..n)
-            .map(|k| {
-                let stiffness = match &self.k_diag {
-                    Some(d) => d[k],
-                    None => self.k[(k, k)],
-                };
-                stiffness * (atol * unit[k]).powi(2)
-            })
+            .map(|k| self.k.entry(k) * (atol * unit[k]).powi(2))
             .sum()
     }
 
@@ -258,6 +267,14 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             self.unit_atol = Some(self.state_atol(1.0));
         }
         self.unit_atol.clone().unwrap_or_default()
+    }
+
+    /// The 3-D chain's Newton solves so far: (solves, GMRES iterations, unconverged solves);
+    /// `None` if the dense path or another model's ran.
+    pub fn chain3d_newton_counts(&self) -> Option<(usize, usize, usize)> {
+        self.chain3d
+            .as_ref()
+            .map(|c| (c.solves, c.iterations, c.unconverged))
     }
 
     /// How the gyroscopic term is obtained.
@@ -360,10 +377,7 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             .model
             .velocities_block_into(&x0, &identity, &mut self.ws, &mut minv);
         for k in 0..r {
-            let stiffness = match &self.k_diag {
-                Some(d) => d[k],
-                None => self.k[(k, k)],
-            };
+            let stiffness = self.k.entry(k);
             let inverse_mass = minv[(k, k)];
             let momentum_per_coordinate = match (positive, stiffness > 0.0) {
                 (true, true) => (stiffness / inverse_mass).sqrt(),
@@ -420,14 +434,7 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         let (x, p) = (&y[..n], &y[n..2 * n]);
         self.solve_velocities(x, p);
         let kinetic = 0.5 * p.iter().zip(&self.xdot).map(|(a, b)| a * b).sum::<f64>();
-        let strain = 0.5
-            * match &self.k_diag {
-                Some(k) => (0..n).map(|i| k[i] * x[i] * x[i]).sum::<f64>(),
-                None => {
-                    let x = DVector::from_column_slice(x);
-                    x.dot(&(&self.k * &x))
-                }
-            };
+        let strain = 0.5 * (0..n).map(|i| x[i] * self.k.row_dot(i, x)).sum::<f64>();
         (kinetic, strain)
     }
 
@@ -470,6 +477,61 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             }
             self.x_shift[i] = x[i];
             self.gamma[i] = -(half_energy[0] - half_energy[1]) / (2.0 * h);
+        }
+    }
+}
+
+/// The stiffness `K` of the equations of motion in the form that keeps `K x` cheapest.
+pub(crate) enum Stiffness {
+    /// Diagonal (the full model).
+    Diagonal(Vec<f64>),
+    /// Block diagonal, 3×3 per joint, row-major (the 3-D chain).
+    Blocks(Vec<[[f64; 3]; 3]>),
+    /// Dense (a reduced model).
+    Dense(DMatrix<f64>),
+}
+
+impl Stiffness {
+    /// `K_kk`.
+    pub(crate) fn entry(&self, k: usize) -> f64 {
+        match self {
+            Self::Diagonal(d) => d[k],
+            Self::Blocks(b) => b[k / 3][k % 3][k % 3],
+            Self::Dense(m) => m[(k, k)],
+        }
+    }
+
+    /// `(K x)_i`: O(1) for the diagonal and block forms.
+    pub(crate) fn row_dot(&self, i: usize, x: &[f64]) -> f64 {
+        match self {
+            Self::Diagonal(d) => d[i] * x[i],
+            Self::Blocks(b) => {
+                let j = i / 3;
+                let row = &b[j][i % 3];
+                row[0] * x[3 * j] + row[1] * x[3 * j + 1] + row[2] * x[3 * j + 2]
+            }
+            Self::Dense(m) => m.row(i).iter().zip(x).map(|(a, b)| a * b).sum(),
+        }
+    }
+
+    /// `out −= K` (a square view).
+    pub(crate) fn subtract_from(&self, mut out: nalgebra::DMatrixViewMut<'_, f64>) {
+        match self {
+            Self::Diagonal(d) => {
+                for (i, v) in d.iter().enumerate() {
+                    out[(i, i)] -= v;
+                }
+            }
+            Self::Blocks(b) => {
+                for (j, block) in b.iter().enumerate() {
+                    for r in 0..3 {
+                        for c in 0..3 {
+                            out[(3 * j + r, 3 * j + c)] -= block[r][c];
+                        }
+                    }
+                }
+            }
+            Self::Dense(m) => out -= m,
         }
     }
 }

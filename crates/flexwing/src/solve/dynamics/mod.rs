@@ -23,7 +23,9 @@ mod time_function;
 pub use super::damping::Damping;
 pub use equations::EquationsOfMotion;
 pub use gyroscopic::Gyroscopic;
-pub use newton_systems::{chain_newton_min_dofs, NewtonSystems, CHAIN_NEWTON_MIN_DOFS};
+pub use newton_systems::{
+    chain_newton_min_dofs, NewtonSystems, CHAIN3D_NEWTON_MIN_DOFS, CHAIN_NEWTON_MIN_DOFS,
+};
 pub use time_function::TimeFunction;
 
 #[cfg(test)]

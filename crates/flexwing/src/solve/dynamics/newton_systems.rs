@@ -18,6 +18,13 @@ use nalgebra::DMatrix;
 /// [`integrate`]: super::integrate::integrate
 pub const CHAIN_NEWTON_MIN_DOFS: usize = 40;
 
+/// From this many coordinates on, [`NewtonSystems::Auto`] solves the 3-D chain's Newton systems
+/// in O(n) (`model/chain3d/newton.rs`) whatever the method: measured on the straight 3-D chain
+/// with Radau at a 1 ms step cap (`examples/chain3d_dynamics_cost.rs`), dense LU is faster at
+/// 120 coordinates (n = 40: 1.0 against 2.4 ms per step), the O(n) path at 240 (n = 80: 4.6
+/// against 18 ms); between them, 180.
+pub const CHAIN3D_NEWTON_MIN_DOFS: usize = 180;
+
 /// The number of coordinates from which [`NewtonSystems::Auto`] takes the chain sweeps, for the
 /// method and settings [`super::integrate::integrate`] runs with. The dense path factors the
 /// exact Jacobian and reuses it over steps; the chain relinearizes at every step, O(n). Measured
@@ -63,13 +70,18 @@ pub enum NewtonSystems {
 impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
     fn linearize(&mut self, t: f64, y: &[f64]) -> bool {
         let model = self.model;
+        for (s, f) in self.scales.iter_mut().zip(&self.time_functions) {
+            *s = f.at(t);
+        }
+        if let (Some(chain), Some(newton)) = (model.as_chain3d(), self.chain3d.as_mut()) {
+            self.jacobian_evaluations += 1;
+            let n = self.n;
+            return newton.linearize(chain, &y[..n], &y[n..2 * n], &self.scales);
+        }
         let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) else {
             return false;
         };
         self.jacobian_evaluations += 1;
-        for (s, f) in self.scales.iter_mut().zip(&self.time_functions) {
-            *s = f.at(t);
-        }
         let ok = chain.linearize(full, self.loads, &self.scales, &y[..2 * self.n]);
         if ok && self.audit.is_some() {
             // The load stiffness along ẋ for the audit's quadrature step: `(∂Q/∂x) ẋ`, the
@@ -90,6 +102,10 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
 
     fn factor_real(&mut self, slot: usize, c: f64) -> bool {
         let model = self.model;
+        set_slot(&mut self.shifts.0, slot, c);
+        if let (Some(chain), Some(newton)) = (model.as_chain3d(), self.chain3d.as_mut()) {
+            return newton.factor_real(chain, slot, c);
+        }
         match (model.as_full_model(), self.chain.as_mut()) {
             (Some(full), Some(chain)) => chain.factor_real(full, slot, c),
             _ => false,
@@ -98,6 +114,10 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
 
     fn factor_complex(&mut self, slot: usize, c: Complex<f64>) -> bool {
         let model = self.model;
+        set_slot(&mut self.shifts.1, slot, c);
+        if let (Some(chain), Some(newton)) = (model.as_chain3d(), self.chain3d.as_mut()) {
+            return newton.factor_complex(chain, slot, c);
+        }
         match (model.as_full_model(), self.chain.as_mut()) {
             (Some(full), Some(chain)) => chain.factor_complex(full, slot, c),
             _ => false,
@@ -106,15 +126,32 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
 
     fn solve_real(&mut self, slot: usize, b: &mut [f64]) {
         let model = self.model;
-        if let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) {
-            chain.solve_real(full, slot, b);
+        let n2 = 2 * self.n;
+        if let (Some(chain), Some(newton)) = (model.as_chain3d(), self.chain3d.as_mut()) {
+            let damping = &mut self.c;
+            let mut product = |v: &[f64], out: &mut [f64]| damping.apply(model, v, out);
+            newton.solve_real(chain, self.loads, &mut product, slot, &mut b[..n2]);
+        } else if let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) {
+            chain.solve_real(full, slot, &mut b[..n2]);
         }
     }
 
     fn solve_complex(&mut self, slot: usize, re: &mut [f64], im: &mut [f64]) {
         let model = self.model;
-        if let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) {
-            chain.solve_complex(full, slot, re, im);
+        let n2 = 2 * self.n;
+        if let (Some(chain), Some(newton)) = (model.as_chain3d(), self.chain3d.as_mut()) {
+            let damping = &mut self.c;
+            let mut product = |v: &[f64], out: &mut [f64]| damping.apply(model, v, out);
+            newton.solve_complex(
+                chain,
+                self.loads,
+                &mut product,
+                slot,
+                &mut re[..n2],
+                &mut im[..n2],
+            );
+        } else if let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) {
+            chain.solve_complex(full, slot, &mut re[..n2], &mut im[..n2]);
         }
     }
 
@@ -131,6 +168,7 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
     /// no bound below a few hundred elements); the constant is measured on case (b) with Radau
     /// at rtol 1e-2 (n = 1000 needs ≤ 1e-3, n = 3000 ≤ 1e-5). The chain's Newton iteration is
     /// exact, so each iteration divides the error by ~1e9 and the bound costs at most one.
+    /// The 3-D chain takes the integrators' defaults.
     fn newton_tolerance(&self) -> Option<f64> {
         self.chain.as_ref().map(|c| c.newton_tolerance())
     }

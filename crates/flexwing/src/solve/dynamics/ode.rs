@@ -75,17 +75,9 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         // The audit's rates: power of the loads ẋ·Q and of the damping ẋᵀ C ẋ.
         let (mut power, mut dissipation) = (0.0, 0.0);
         for i in 0..n {
-            let mut v = self.force[i] + self.gamma[i] - self.c_xdot[i];
+            let v = self.force[i] + self.gamma[i] - self.c_xdot[i] - self.k.row_dot(i, x);
             power += self.xdot[i] * self.force[i];
             dissipation += self.xdot[i] * self.c_xdot[i];
-            match &self.k_diag {
-                Some(k) => v -= k[i] * x[i],
-                None => {
-                    for j in 0..n {
-                        v -= self.k[(i, j)] * x[j];
-                    }
-                }
-            }
             dp[i] = v;
         }
         if let [w, d] = quadrature {
@@ -145,16 +137,9 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
             .velocities_block_into(x, &d.identity, &mut self.ws, &mut d.minv);
         jac.view_mut((0, 0), (n, n)).copy_from(&d.dxdx);
         jac.view_mut((0, n), (n, n)).copy_from(&d.minv);
+        jac.view_mut((n, 0), (n, n)).copy_from(&d.load_jac);
+        self.k.subtract_from(jac.view_mut((n, 0), (n, n)));
         let mut dpdx = jac.view_mut((n, 0), (n, n));
-        dpdx.copy_from(&d.load_jac);
-        match &self.k_diag {
-            Some(k) => {
-                for i in 0..n {
-                    dpdx[(i, i)] -= k[i];
-                }
-            }
-            None => dpdx -= &self.k,
-        }
         if with_gamma {
             dpdx += &d.dgamma;
         }
@@ -177,6 +162,22 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
     fn newton_solver(&mut self) -> Option<&mut dyn NewtonSolver> {
         if !self.uses_chain_newton() {
             return None;
+        }
+        if let Some(chain) = self.model.as_chain3d() {
+            if self.chain3d.is_none() {
+                let gyroscopic = !matches!(self.gyroscopic, Gyroscopic::Neglected);
+                let rayleigh = match self.damping {
+                    crate::solve::Damping::Rayleigh { alpha, beta } => (alpha, beta),
+                    _ => (0.0, 0.0),
+                };
+                self.chain3d = Some(crate::model::chain3d::Newton3d::new(
+                    chain,
+                    rayleigh,
+                    gyroscopic,
+                    self.time_functions.len(),
+                ));
+            }
+            return Some(self);
         }
         if self.chain.is_none() {
             let full = self.model.as_full_model()?;

@@ -7,8 +7,8 @@ use super::*;
 use crate::beam::{
     Beam, Calibration, Discretization, InertiaAxis, Profile, SectionProperties, TorsionProperties,
 };
-use crate::model::StructuralModel;
 use crate::model::{Force, FullModel, Load, ReducedModel};
+use crate::model::{PlanarModel, StructuralModel};
 use crate::solve::integrate::OdeSystem;
 use crate::solve::AuditLimits;
 use crate::solve::Modes;
@@ -40,7 +40,7 @@ fn model(torsion: bool) -> FullModel {
 
 /// The analytic Jacobian against central differences of the right-hand side (step 1e-6,
 /// truncation ~1e-12 relative, round-off ~1e-10 relative: tolerance 1e-6 relative).
-fn check_jacobian<M: StructuralModel>(model: &M, gyroscopic: Gyroscopic, damping: &Damping) {
+fn check_jacobian<M: PlanarModel>(model: &M, gyroscopic: Gyroscopic, damping: &Damping) {
     let full = model.full_model();
     let loads = full
         .apply(

@@ -67,3 +67,48 @@ pub fn patil_wing_3d(
 pub fn richardson(coarse: f64, fine: f64) -> f64 {
     fine + (fine - coarse) / 3.0
 }
+
+/// A row of `tests/data/chain3d_reference/patil_deformed_flutter.csv` (README §2): `case`
+/// (`tip_force`, `gravity`), `load` (N or the factor of g), `model` (`theodorsen`, `peters6`,
+/// `jones`, `quasi_steady`, `steady`), `quantity` (`flutter`, `divergence`,
+/// `unstable_from_start`): `(tip_y, U, ω)` of the continuum rod, exact to ~1e-11.
+pub fn patil_deformed(case: &str, load: f64, model: &str, quantity: &str) -> (f64, f64, f64) {
+    patil_deformed_rows()
+        .into_iter()
+        .find(|r| {
+            r[0] == case
+                && crate::common::aero_reference::parse(&r[1]) == load
+                && r[4] == model
+                && r[5] == quantity
+        })
+        .map(|r| {
+            let p = crate::common::aero_reference::parse;
+            (p(&r[3]), p(&r[6]), p(&r[7]))
+        })
+        .unwrap_or_else(|| {
+            panic!("patil_deformed_flutter.csv: no {case} {load} {model} {quantity}")
+        })
+}
+
+/// The rows of `patil_deformed_flutter.csv`, split on commas (header dropped).
+pub fn patil_deformed_rows() -> Vec<Vec<String>> {
+    reference_rows("patil_deformed_flutter.csv")
+}
+
+/// The rows of `tests/data/chain3d_reference/{file}` (header dropped), split on commas (no
+/// field holds a comma, README).
+pub fn reference_rows(file: &str) -> Vec<Vec<String>> {
+    let path: std::path::PathBuf = [
+        env!("CARGO_MANIFEST_DIR"),
+        "tests/data/chain3d_reference",
+        file,
+    ]
+    .iter()
+    .collect();
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    text.lines()
+        .skip(1)
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
