@@ -102,7 +102,6 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
 
     fn factor_real(&mut self, slot: usize, c: f64) -> bool {
         let model = self.model;
-        set_slot(&mut self.shifts.0, slot, c);
         if let (Some(chain), Some(newton)) = (model.as_chain3d(), self.chain3d.as_mut()) {
             return newton.factor_real(chain, slot, c);
         }
@@ -114,7 +113,6 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
 
     fn factor_complex(&mut self, slot: usize, c: Complex<f64>) -> bool {
         let model = self.model;
-        set_slot(&mut self.shifts.1, slot, c);
         if let (Some(chain), Some(newton)) = (model.as_chain3d(), self.chain3d.as_mut()) {
             return newton.factor_complex(chain, slot, c);
         }
