@@ -121,8 +121,8 @@ fn gust_response_of_reduced_models() {
 /// with Radau stays well under the default balance limit 0.1 (`1e3 rtol`, clamped). With one
 /// Newton iteration per step the audit's `W` and `D` kept the stages' Newton error and this
 /// balance error was 1.2e-1 (the run flagged suspect falsely); Radau now converges them
-/// (`radau_step.rs`): 3.0e-3 measured. The bound 2e-2 is 5× below the limit and 7× above the
-/// measured figure (it moves with the steps taken: 4.1e-3 before the quadrature step).
+/// (`radau_step.rs`): 4.1e-3 measured. The bound 2e-2 is 5× below the limit and 5× above the
+/// measured figure (it moves with the steps taken).
 #[test]
 fn regression_reduced_gust_radau_audit_balance_at_rtol_1e_3() {
     use flexwing::model::AppliedLoads;
