@@ -372,6 +372,7 @@ fn audited_gust<M: AeroStructure>(
             balance: Some((1e3 * rtol).clamp(1e-5, 0.1)),
             runaway: 9.0,
             floor,
+            interval: 0.0,
         }));
     }
     let a0 = eqs.steady_states(0.0, x0);

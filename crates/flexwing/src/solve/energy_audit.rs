@@ -41,7 +41,16 @@ pub struct AuditLimits {
     pub runaway: f64,
     /// The energy floor `E_floor` (J) of the reference energy.
     pub floor: f64,
+    /// Shortest time (s) between two audited steps: an accepted step closer than this to the
+    /// last audited one is not audited, unless [`AUDIT_STRIDE`] steps went by unaudited (so a
+    /// run that grinds to tiny steps is still audited); 0: every step. The library's analyses
+    /// take the output interval: the audit's energies (a mass solve each) then cost at most one
+    /// per output instead of one per step (docs/performance.md, "The energy audit's cost").
+    pub interval: f64,
 }
+
+/// Most accepted steps in a row left unaudited by [`AuditLimits::interval`].
+pub const AUDIT_STRIDE: usize = 16;
 
 /// What the audit of a run found, over its accepted steps.
 #[derive(Debug, Clone, PartialEq)]
@@ -69,6 +78,8 @@ pub struct EnergyBalance {
     pub steps: usize,
     /// `(t, |H − H(0) − W + D|)` at each step where it reached a new maximum.
     records: Vec<(f64, f64)>,
+    /// Time of the last audited step, and the accepted steps since (`AuditLimits::interval`).
+    last: (f64, usize),
 }
 
 impl EnergyBalance {
@@ -85,12 +96,35 @@ impl EnergyBalance {
             runaway_at: None,
             steps: 0,
             records: Vec::new(),
+            last: (f64::NEG_INFINITY, 0),
+        }
+    }
+
+    /// Whether the accepted step to time `t` is to be audited ([`AuditLimits::interval`]); if it
+    /// is, the caller [`Self::check`]s it.
+    pub(crate) fn due(&mut self, t: f64) -> bool {
+        if self.limits.interval <= 0.0 {
+            return true;
+        }
+        let (last, skipped) = &mut self.last;
+        if t - *last >= self.limits.interval || *skipped + 1 >= AUDIT_STRIDE {
+            *last = t;
+            *skipped = 0;
+            true
+        } else {
+            *skipped += 1;
+            false
         }
     }
 
     /// The balance `H − H(0) − W + D` (J) of the energy `h`, work `w` and dissipation `d`.
     pub fn residual(&self, h: f64, w: f64, d: f64) -> f64 {
         h - self.initial - w + d
+    }
+
+    /// Whether the accepted step to time `t` was audited, or one later.
+    pub(crate) fn audited_at(&self, t: f64) -> bool {
+        self.last.0 >= t
     }
 
     /// Take the step to time `t` with energy `h`, work `w` and dissipation `d`; `Break` when the
@@ -153,6 +187,7 @@ mod tests {
             balance: Some(1e-3),
             runaway: 1.0,
             floor: 1e-12,
+            interval: 0.0,
         }
     }
 

@@ -3,62 +3,12 @@
 //! a wrong gyroscopic term, mass matrix or velocity solve breaks it), and the energy audit's
 //! balance `H − H(0) − W = 0` under time-varying loads.
 
-use flexwing::beam::{Discretization, InertiaAxis, Profile};
-use flexwing::model::chain3d::{
-    Beam3d, Chain3d, ElementInertia, Geometry3d, JointCalibration, SectionInertia,
-    SectionStiffness, SpatialLoad, SpatialVector, StiffnessCoupling,
-};
+use crate::common::chain3d::coupled_chain;
+use flexwing::model::chain3d::{Chain3d, SpatialLoad, SpatialVector};
 use flexwing::solve::integrate::{Radau, RadauOptions, Tolerances};
 use flexwing::solve::{
     solve_static, AuditLimits, Damping, EquationsOfMotion, Gyroscopic, StaticOptions, TimeFunction,
 };
-
-/// A swept, pretwisted, bend–twist coupled cantilever with mass offsets in both directions.
-fn general_chain(n: usize) -> Chain3d {
-    let l = 1.0;
-    let geometry = Geometry3d::Span {
-        length: l,
-        discretization: Discretization::Uniform(n),
-        sweep: Profile::Uniform(0.2),
-        dihedral: Profile::Table {
-            x: vec![0.0, l],
-            value: vec![0.0, 0.15],
-        },
-        pretwist: Profile::Table {
-            x: vec![0.0, l],
-            value: vec![0.1, -0.2],
-        },
-    };
-    let stiffness = SectionStiffness {
-        gj: Profile::Uniform(8.0),
-        ei_flap: Profile::Uniform(10.0),
-        ei_lag: Profile::Uniform(60.0),
-        coupling: Some(StiffnessCoupling {
-            twist_flap: Profile::Uniform(2.0),
-            twist_lag: Profile::Uniform(0.0),
-            lag_flap: Profile::Uniform(-1.0),
-        }),
-    };
-    let inertia = SectionInertia {
-        mass_per_length: Profile::Uniform(0.5),
-        polar_inertia: Profile::Uniform(0.004),
-        polar_inertia_about: InertiaAxis::MassCentre,
-        d0: Profile::Uniform(0.04),
-        d0_normal: Profile::Uniform(-0.01),
-        rotary_inertia_flap: Profile::Uniform(0.0),
-        rotary_inertia_lag: Profile::Uniform(0.002),
-        element_inertia: ElementInertia::Bar,
-    };
-    Chain3d::new(
-        Beam3d::new(
-            &geometry,
-            &stiffness,
-            &inertia,
-            JointCalibration::Compliance,
-        )
-        .unwrap(),
-    )
-}
 
 fn radau(rtol: f64, atol: Vec<f64>) -> Radau {
     Radau {
@@ -72,7 +22,7 @@ fn radau(rtol: f64, atol: Vec<f64>) -> Radau {
 #[test]
 fn free_three_dimensional_motion_conserves_energy() {
     let n = 12;
-    let model = general_chain(n);
+    let model = coupled_chain(n);
     // Released from a large static deflection (tip force out of every symmetry plane) with
     // initial rates on every axis.
     let pull = model
@@ -158,7 +108,7 @@ fn free_three_dimensional_motion_conserves_energy() {
 #[test]
 fn the_energy_audit_balances_the_work_of_time_varying_loads() {
     let n = 10;
-    let model = general_chain(n);
+    let model = coupled_chain(n);
     let loads = model
         .apply(
             &[
@@ -187,6 +137,7 @@ fn the_energy_audit_balances_the_work_of_time_varying_loads() {
         balance: Some(1e-6),
         runaway: 1.0,
         floor: 0.0,
+        interval: 0.0,
     };
     let mut eom = EquationsOfMotion::new(&model, &loads, tf, Gyroscopic::Exact, &Damping::None)
         .unwrap()
@@ -222,7 +173,7 @@ fn the_energy_audit_balances_the_work_of_time_varying_loads() {
 fn every_integrator_runs_on_the_3d_chain() {
     use flexwing::solve::integrate::{integrate, IntegratorSettings, Method};
     let n = 6;
-    let model = general_chain(n);
+    let model = coupled_chain(n);
     let pull = model
         .apply(
             &[SpatialLoad::PointForce {
@@ -281,7 +232,7 @@ fn chain3d_distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 fn free_3d_motion_energy_error_falls_at_the_midpoint_rules_order() {
     use flexwing::solve::integrate::{ImplicitMidpoint, MidpointOptions};
     let n = 8;
-    let model = general_chain(n);
+    let model = coupled_chain(n);
     let pull = model
         .apply(
             &[SpatialLoad::PointForce {

@@ -6,64 +6,15 @@
 //! coupled chain. The dense path itself is validated against closed forms and the energy
 //! balance in `chain3d_dynamics.rs`; these tests compare the model with itself.
 
-use flexwing::beam::{Discretization, InertiaAxis, Profile};
-use flexwing::model::chain3d::{
-    Beam3d, Chain3d, ElementInertia, Geometry3d, JointCalibration, SectionInertia,
-    SectionStiffness, SpatialDistributed, SpatialLoad, SpatialVector, StiffnessCoupling,
-};
+use crate::common::chain3d::coupled_chain;
+use flexwing::beam::Profile;
+use flexwing::model::chain3d::{Chain3d, SpatialDistributed, SpatialLoad, SpatialVector};
 use flexwing::solve::integrate::{
     Bdf, BdfOptions, GeneralizedAlpha, GeneralizedAlphaOptions, ImplicitMidpoint, MidpointOptions,
     OdeSystem, Radau, RadauOptions, Tolerances, Trajectory,
 };
 use flexwing::solve::{Damping, EquationsOfMotion, Gyroscopic, NewtonSystems, TimeFunction};
 use nalgebra::{Complex, DMatrix, DVector};
-
-/// A swept, dihedral, pretwisted, bend–twist coupled cantilever with offsets in both directions.
-fn general_chain(n: usize) -> Chain3d {
-    let l = 1.0;
-    let geometry = Geometry3d::Span {
-        length: l,
-        discretization: Discretization::Uniform(n),
-        sweep: Profile::Uniform(0.2),
-        dihedral: Profile::Table {
-            x: vec![0.0, l],
-            value: vec![0.0, 0.15],
-        },
-        pretwist: Profile::Table {
-            x: vec![0.0, l],
-            value: vec![0.1, -0.2],
-        },
-    };
-    let stiffness = SectionStiffness {
-        gj: Profile::Uniform(8.0),
-        ei_flap: Profile::Uniform(10.0),
-        ei_lag: Profile::Uniform(60.0),
-        coupling: Some(StiffnessCoupling {
-            twist_flap: Profile::Uniform(2.0),
-            twist_lag: Profile::Uniform(0.0),
-            lag_flap: Profile::Uniform(-1.0),
-        }),
-    };
-    let inertia = SectionInertia {
-        mass_per_length: Profile::Uniform(0.5),
-        polar_inertia: Profile::Uniform(0.004),
-        polar_inertia_about: InertiaAxis::MassCentre,
-        d0: Profile::Uniform(0.04),
-        d0_normal: Profile::Uniform(-0.01),
-        rotary_inertia_flap: Profile::Uniform(0.0),
-        rotary_inertia_lag: Profile::Uniform(0.002),
-        element_inertia: ElementInertia::Bar,
-    };
-    Chain3d::new(
-        Beam3d::new(
-            &geometry,
-            &stiffness,
-            &inertia,
-            JointCalibration::Compliance,
-        )
-        .unwrap(),
-    )
-}
 
 /// Every kind of load: follower and dead tip forces, a dead moment, a distributed follower
 /// force and gravity.
@@ -99,7 +50,7 @@ fn loads() -> Vec<SpatialLoad> {
 /// conditioning of `c I − J` (up to ~1e8 at these shifts), bound 1e-8 relative.
 #[test]
 fn regression_chain3d_newton_solves_match_the_dense_jacobian() {
-    let model = general_chain(8);
+    let model = coupled_chain(8);
     let nd = model.n_dofs();
     let applied = model.apply(&loads(), "loads").unwrap();
     let cases = [
@@ -262,7 +213,7 @@ fn tip_difference(model: &Chain3d, a: &Trajectory, b: &Trajectory) -> (f64, f64)
 /// (bound 1e-5 m, ten times atol).
 #[test]
 fn regression_chain3d_newton_trajectories_match_the_dense_path() {
-    let model = general_chain(16);
+    let model = coupled_chain(16);
     let t: Vec<f64> = (0..=20).map(|k| k as f64 * 0.01).collect();
     for method in [
         Method::Radau(1e-6),

@@ -723,6 +723,7 @@ fn damped_free_decay_of_the_first_mode_matches_the_linear_oscillator() {
                 balance: Some(1e-3),
                 runaway: 1.0,
                 floor: 0.0,
+                interval: 0.0,
             };
             let mut eom = EquationsOfMotion::new(&full, &none, vec![], Gyroscopic::Exact, &damping)
                 .unwrap()

@@ -306,7 +306,10 @@ impl Simulator<'_> {
         // The energy audit (as a structural run's, `integrate_audited`): on before the state is
         // built, so that it starts from H(0) and the state carries W and D.
         let floor = eqs.energy_resolution(s.settings.atol);
-        let limits = s.audit.limits(true, &s.settings, floor);
+        let limits = crate::solve::AuditLimits {
+            interval: crate::analysis::dynamics::output_interval(&s.output_times),
+            ..s.audit.limits(true, &s.settings, floor)
+        };
         eqs.set_energy_audit(Some(limits));
         // The caller's cancellation, polled after every step, stops the integrator through the
         // equations' halt flag.
@@ -334,6 +337,9 @@ impl Simulator<'_> {
         let (trajectory, error) = match result {
             Ok((trajectory, stats)) => {
                 run.stats = stats;
+                if let (Some(&t), Some(y)) = (trajectory.t.last(), trajectory.y.last()) {
+                    system.0.audit_final(t, y);
+                }
                 (trajectory, None)
             }
             Err(failure) => {
@@ -450,6 +456,21 @@ impl<M: AeroStructure> OdeSystem for Scaled<'_, M> {
     }
     fn step_accepted(&mut self, t: f64, y: &[f64]) -> ControlFlow<()> {
         self.0.step_accepted(t, y)
+    }
+    fn quadrature_states(&self) -> usize {
+        self.0.quadrature_states()
+    }
+    fn quadrature_step_real(&mut self, c: f64, lead: &[f64], dy: &[f64], q: &mut [f64]) {
+        self.0.quadrature_step_real(c, lead, dy, q)
+    }
+    fn quadrature_step_complex(
+        &mut self,
+        c: nalgebra::Complex<f64>,
+        lead: (&[f64], &[f64]),
+        dy: (&[f64], &[f64]),
+        q: (&mut [f64], &mut [f64]),
+    ) {
+        self.0.quadrature_step_complex(c, lead, dy, q)
     }
 }
 

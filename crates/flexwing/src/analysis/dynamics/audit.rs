@@ -115,6 +115,7 @@ impl AuditSettings {
             balance: balanced.then(|| self.tolerance_for(settings)),
             runaway: self.runaway,
             floor,
+            interval: 0.0,
         }
     }
 }
@@ -201,16 +202,24 @@ pub fn integrate_audited<M: StructuralModel>(
 ) -> AuditedRun {
     let floor = eom.energy_resolution(settings.atol);
     let balanced = !matches!(eom.gyroscopic(), Gyroscopic::Neglected);
-    eom.set_energy_audit(Some(audit.limits(balanced, settings, floor)));
+    let limits = AuditLimits {
+        interval: output_interval(t_out),
+        ..audit.limits(balanced, settings, floor)
+    };
+    eom.set_energy_audit(Some(limits));
     eom.set_halt(halt.clone());
     let y0 = eom.state(x0, xdot0);
     let result = integrate(method, settings, eom, t_out[0], &y0, t_out, progress);
     let (trajectory, stats, error) = match result {
-        Ok((trajectory, stats)) => (trajectory, stats, None),
+        Ok((trajectory, stats)) => {
+            if let (Some(&t), Some(y)) = (trajectory.t.last(), trajectory.y.last()) {
+                eom.audit_final(t, y);
+            }
+            (trajectory, stats, None)
+        }
         Err(f) => (f.trajectory, f.stats, Some(f.error)),
     };
     // The audit was switched on above: its balance is there.
-    let limits = audit.limits(balanced, settings, floor);
     let mut balance = eom
         .energy_balance()
         .cloned()
@@ -222,6 +231,15 @@ pub fn integrate_audited<M: StructuralModel>(
         stats,
         balance,
         status,
+    }
+}
+
+/// The audit's interval of a run with the output times `t_out` (`AuditLimits::interval`): their
+/// mean spacing, 0 for a single output.
+pub(crate) fn output_interval(t_out: &[f64]) -> f64 {
+    match (t_out.first(), t_out.last()) {
+        (Some(a), Some(b)) if t_out.len() > 1 => (b - a) / (t_out.len() - 1) as f64,
+        _ => 0.0,
     }
 }
 

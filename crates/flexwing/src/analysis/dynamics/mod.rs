@@ -10,11 +10,11 @@ mod audit;
 mod outcome;
 mod run;
 
-pub(crate) use audit::status_of;
 pub use audit::{
     integrate_audited, AuditSettings, AuditedRun, EnergyAudit, DEFAULT_RUNAWAY, MAX_TOLERANCE,
     MIN_TOLERANCE,
 };
+pub(crate) use audit::{output_interval, status_of};
 pub use outcome::{Comparison, DynamicOutcome, DynamicRun, Sample, Snapshot};
 pub use run::run;
 

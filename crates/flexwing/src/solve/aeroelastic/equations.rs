@@ -543,6 +543,62 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         }
     }
 
+    /// `(∇Ẇ·Δy, ∇Ḋ·Δy)` of the audit's quadrature rates for the Newton step `Δy` (the leading
+    /// components `lead(i)` of `b` before the solve, `dy(i)` after it): with the first block
+    /// row's `δẋ = c Δx − b_x`, `∇Ẇ·Δy = F·δẋ + ẋ·(∂Q_other/∂x) Δx + ẋ·(∂F_ga/∂y) Δy`, `F` the
+    /// forces on the structure other than `−K x + γ − C ẋ`, `F_ga` those of gravity and the
+    /// aerodynamics, `(∂F_ga/∂y) Δy = (∂Q_grav/∂x + Q_x + G D̄ W_x) Δx + Q̃_v δẋ + G C̄ Δa` (the
+    /// blocks of the last structured Jacobian); `∇Ḋ·Δy = 2 (C ẋ)·δẋ`. `F`, `ẋ` and `C ẋ` are
+    /// those of the last right-hand side.
+    fn power_steps(
+        &mut self,
+        c: Complex<f64>,
+        lead: impl Fn(usize) -> Complex<f64>,
+        dy: impl Fn(usize) -> Complex<f64>,
+    ) -> (Complex<f64>, Complex<f64>) {
+        let n = self.n;
+        let z = Complex::new(0.0, 0.0);
+        let Some(audit) = self.audit.as_ref() else {
+            return (z, z);
+        };
+        let (_, xdot, c_xdot, load_rate) = self.structural.last_power_terms();
+        let xd = DVector::from_column_slice(xdot);
+        // ẋᵀ (∂Q_grav/∂x + Q_x), ẋᵀ Q̃_v, ẋᵀ G, from the last structured Jacobian.
+        let d = &self.derivatives;
+        let mut hx = d.qx.tr_mul(&xd);
+        if self.gravity.is_some() {
+            hx += self.gravity_jac.tr_mul(&xd);
+        }
+        let hv = self.qv.tr_mul(&xd);
+        let hg = d.g.tr_mul(&xd);
+        let dbar = self.eval.feedthrough();
+        let (mut w, mut dd) = (z, z);
+        let mut vdot = vec![z; n];
+        for i in 0..n {
+            let dx = dy(i);
+            let v = c * dx - lead(i);
+            vdot[i] = v;
+            let h = hx[i] + load_rate.get(i).copied().unwrap_or(0.0);
+            w += v * (audit.force[i] + hv[i]) + dx * h;
+            dd += v * c_xdot[i];
+        }
+        // G D̄ W_x Δx and G C̄ Δa, strip by strip.
+        let ns = self.eval.lag().map_or(0, |l| l.n_states());
+        for (s, &g) in hg.iter().enumerate() {
+            let mut upwash = z;
+            for i in 0..n {
+                upwash += dy(i) * d.wx[(s, i)];
+            }
+            w += upwash * (g * dbar);
+            if let Some(lag) = self.eval.lag() {
+                for k in 0..ns {
+                    w += dy(2 * n + s * ns + k) * (g * lag.c[k]);
+                }
+            }
+        }
+        (w, dd * 2.0)
+    }
+
     fn set_air(&mut self, t: f64) {
         let u = self.speed(t);
         let alpha = self.root_angle(t);
@@ -637,8 +693,13 @@ impl<M: AeroStructure> OdeSystem for AeroelasticEquations<'_, M> {
         }
         self.set_air(t);
         self.eval.evaluate(x, dx, a, dp, true, da);
-        if let Some(audit) = &self.audit {
+        if let Some(audit) = self.audit.as_mut() {
             audit.quadrature_rates(dot(dx, dp) - structural_power, quadrature);
+            // Q_other + Q_grav + Q_aero: ṗ less the structure's own −K x + γ − C ẋ.
+            let q_other = self.structural.last_power_terms().0;
+            for i in 0..n {
+                audit.force[i] = dp[i] - audit.structural[n + i] + q_other[i];
+            }
         }
     }
 
@@ -677,6 +738,48 @@ impl<M: AeroStructure> OdeSystem for AeroelasticEquations<'_, M> {
         self.structured = sj;
     }
 
+    /// With the audit, `W` and `D` (`audit.rs`).
+    fn quadrature_states(&self) -> usize {
+        if self.audit.is_some() {
+            2
+        } else {
+            0
+        }
+    }
+
+    fn quadrature_step_real(&mut self, c: f64, lead: &[f64], dy: &[f64], q: &mut [f64]) {
+        let (w, d) = self.power_steps(
+            c.into(),
+            |i| Complex::new(lead[i], 0.0),
+            |i| Complex::new(dy[i], 0.0),
+        );
+        if let [qw, qd] = q {
+            *qw = (*qw + w.re) / c;
+            *qd = (*qd + d.re) / c;
+        }
+    }
+
+    fn quadrature_step_complex(
+        &mut self,
+        c: Complex<f64>,
+        lead: (&[f64], &[f64]),
+        dy: (&[f64], &[f64]),
+        q: (&mut [f64], &mut [f64]),
+    ) {
+        let (w, d) = self.power_steps(
+            c,
+            |i| Complex::new(lead.0[i], lead.1[i]),
+            |i| Complex::new(dy.0[i], dy.1[i]),
+        );
+        let (re, im) = q;
+        for (k, add) in [w, d].into_iter().enumerate() {
+            if let (Some(r), Some(i)) = (re.get_mut(k), im.get_mut(k)) {
+                let v = (Complex::new(*r, *i) + add) / c;
+                (*r, *i) = (v.re, v.im);
+            }
+        }
+    }
+
     fn newton_solver(&mut self) -> Option<&mut dyn NewtonSolver> {
         if !self.uses_lag_schur() {
             return None;
@@ -704,37 +807,21 @@ impl<M: AeroStructure> NewtonSolver for AeroelasticEquations<'_, M> {
         finite
     }
     fn factor_real(&mut self, slot: usize, c: f64) -> bool {
-        if let Some(audit) = self.audit.as_mut() {
-            audit.shift_real(slot, c);
-        }
         self.schur.as_mut().is_some_and(|s| s.factor_real(slot, c))
     }
     fn factor_complex(&mut self, slot: usize, c: Complex<f64>) -> bool {
-        if let Some(audit) = self.audit.as_mut() {
-            audit.shift_complex(slot, c);
-        }
         self.schur
             .as_mut()
             .is_some_and(|s| s.factor_complex(slot, c))
     }
     fn solve_real(&mut self, slot: usize, b: &mut [f64]) {
-        let (b, quadrature) = b.split_at_mut(2 * self.n + self.na);
         if let Some(s) = self.schur.as_mut() {
             s.solve_real(slot, b);
         }
-        if let Some(audit) = &self.audit {
-            audit.solve_real(slot, quadrature);
-        }
     }
     fn solve_complex(&mut self, slot: usize, re: &mut [f64], im: &mut [f64]) {
-        let m = 2 * self.n + self.na;
-        let (re, qr) = re.split_at_mut(m);
-        let (im, qi) = im.split_at_mut(m);
         if let Some(s) = self.schur.as_mut() {
             s.solve_complex(slot, re, im);
-        }
-        if let Some(audit) = &self.audit {
-            audit.solve_complex(slot, qr, qi);
         }
     }
 }

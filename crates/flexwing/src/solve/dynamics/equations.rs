@@ -14,7 +14,7 @@
 //! the right-hand side and the dense Jacobian are in `ode.rs`, the chain's Newton solves in
 //! `newton_systems.rs`.
 
-use nalgebra::{Complex, DMatrix, DVector};
+use nalgebra::{DMatrix, DVector};
 
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
@@ -64,9 +64,11 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     pub(super) audit: Option<EnergyBalance>,
     /// A flag that, once set, stops the integration after the next accepted step.
     pub(super) halt: Option<Arc<AtomicBool>>,
-    /// The shifts of the chain factorizations' slots (real, complex), for the audit's
-    /// quadrature states.
-    pub(super) shifts: (Vec<f64>, Vec<Complex<f64>>),
+    /// `(∂Q/∂x)ᵀ ẋ` at the chain's last linearization, for the audit's quadrature step
+    /// (`ode.rs`); empty without the audit or on the dense path.
+    pub(super) load_rate: Vec<f64>,
+    /// Scratch of the quadrature step.
+    pub(super) load_rate_scratch: Vec<f64>,
     /// Right-hand-side evaluations.
     pub rhs_evaluations: usize,
     /// Jacobian evaluations.
@@ -142,7 +144,8 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             unit_atol: None,
             audit: None,
             halt: None,
-            shifts: (Vec::new(), Vec::new()),
+            load_rate: Vec::new(),
+            load_rate_scratch: Vec::new(),
             rhs_evaluations: 0,
             jacobian_evaluations: 0,
         })

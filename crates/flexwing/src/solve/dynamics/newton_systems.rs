@@ -8,6 +8,7 @@ use nalgebra::Complex;
 use super::EquationsOfMotion;
 use crate::model::StructuralModel;
 use crate::solve::integrate::{IntegratorSettings, Method, NewtonSolver};
+use nalgebra::DMatrix;
 
 /// From this many coordinates on, [`NewtonSystems::Auto`] solves the full model's Newton systems
 /// by O(n) chain sweeps instead of dense LU factorizations of the exact Jacobian (measured on
@@ -81,12 +82,26 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
             return false;
         };
         self.jacobian_evaluations += 1;
-        chain.linearize(full, self.loads, &self.scales, &y[..2 * self.n])
+        let ok = chain.linearize(full, self.loads, &self.scales, &y[..2 * self.n]);
+        if ok && self.audit.is_some() {
+            // The load stiffness along ẋ for the audit's quadrature step: `(∂Q/∂x) ẋ`, the
+            // transposed product `(∂Q/∂x)ᵀ ẋ` for conservative loads (symmetric ∂Q/∂x); for
+            // follower loads its antisymmetric part is left out (`ode.rs`).
+            let n = self.n;
+            let (x, p) = y.split_at(n);
+            if self.solve_velocities(x, &p[..n]) {
+                let kin = full.kinematics(x);
+                let v = DMatrix::from_column_slice(n, 1, &self.xdot);
+                let mut out = DMatrix::zeros(n, 1);
+                full.load_jacobian_times_kin_into(&kin, self.loads, &self.scales, &v, &mut out);
+                self.load_rate = out.as_slice().to_vec();
+            }
+        }
+        ok
     }
 
     fn factor_real(&mut self, slot: usize, c: f64) -> bool {
         let model = self.model;
-        set_slot(&mut self.shifts.0, slot, c);
         if let (Some(chain), Some(newton)) = (model.as_chain3d(), self.chain3d.as_mut()) {
             return newton.factor_real(chain, slot, c);
         }
@@ -98,7 +113,6 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
 
     fn factor_complex(&mut self, slot: usize, c: Complex<f64>) -> bool {
         let model = self.model;
-        set_slot(&mut self.shifts.1, slot, c);
         if let (Some(chain), Some(newton)) = (model.as_chain3d(), self.chain3d.as_mut()) {
             return newton.factor_complex(chain, slot, c);
         }
@@ -117,11 +131,6 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
             newton.solve_real(chain, self.loads, &mut product, slot, &mut b[..n2]);
         } else if let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) {
             chain.solve_real(full, slot, &mut b[..n2]);
-        }
-        // The audit's quadrature states: zero rows of the Jacobian, so `c Δ = r`.
-        let c = self.shifts.0.get(slot).copied().unwrap_or(1.0);
-        for v in &mut b[n2..] {
-            *v /= c;
         }
     }
 
@@ -142,16 +151,6 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
         } else if let (Some(full), Some(chain)) = (model.as_full_model(), self.chain.as_mut()) {
             chain.solve_complex(full, slot, &mut re[..n2], &mut im[..n2]);
         }
-        let c = self
-            .shifts
-            .1
-            .get(slot)
-            .copied()
-            .unwrap_or(Complex::new(1.0, 0.0));
-        for (r, i) in re[n2..].iter_mut().zip(&mut im[n2..]) {
-            let v = Complex::new(*r, *i) / c;
-            (*r, *i) = (v.re, v.im);
-        }
     }
 
     /// A linearization and its sweeps cost a few right-hand sides.
@@ -171,12 +170,4 @@ impl<M: StructuralModel> NewtonSolver for EquationsOfMotion<'_, M> {
     fn newton_tolerance(&self) -> Option<f64> {
         self.chain.as_ref().map(|c| c.newton_tolerance())
     }
-}
-
-/// `slots[slot] = value`, growing `slots` as needed.
-fn set_slot<T: Copy + Default>(slots: &mut Vec<T>, slot: usize, value: T) {
-    if slots.len() <= slot {
-        slots.resize(slot + 1, T::default());
-    }
-    slots[slot] = value;
 }

@@ -1,7 +1,7 @@
 //! The equations of motion as an [`OdeSystem`]: the right-hand side `(ẋ, ṗ)` (with the energy
 //! audit's rates), the exact Jacobian `∂(ẋ, ṗ)/∂(x, p)` and its dense buffers.
 
-use nalgebra::DMatrix;
+use nalgebra::{Complex, DMatrix};
 
 use std::ops::ControlFlow;
 use std::sync::atomic::Ordering;
@@ -35,7 +35,7 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         {
             return ControlFlow::Break(());
         }
-        if self.audit.is_none() {
+        if !self.audit.as_mut().is_some_and(|a| a.due(t)) {
             return ControlFlow::Continue(());
         }
         let (kinetic, strain) = self.energies(y);
@@ -96,8 +96,8 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         let n = self.n;
         let (x, p) = (&y[..n], &y[n..2 * n]);
         if self.audit.is_some() {
-            // The quadrature states feed back into nothing, and their own rows are left zero:
-            // a simplified Newton that is exact for them once the other stages converge.
+            // The quadrature states feed back into nothing, and their rows are not used: the
+            // integrators solve the other states and take theirs from `quadrature_step_*`.
             let n2 = 2 * n;
             jac.rows_mut(n2, 2).fill(0.0);
             jac.columns_mut(n2, 2).fill(0.0);
@@ -124,6 +124,14 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         );
         self.model
             .load_jacobian_into(x, self.loads, &self.scales, &mut self.ws, &mut d.load_jac);
+        // `(∂Q/∂x)ᵀ ẋ` at the linearization point, for the audit's quadrature steps (these
+        // equations' or the aeroelastic equations', which audit them themselves): O(n²) as the
+        // load Jacobian.
+        self.load_rate.clear();
+        self.load_rate.extend((0..n).map(|j| {
+            let col = &d.load_jac.as_slice()[j * n..(j + 1) * n];
+            col.iter().zip(&self.xdot).map(|(a, b)| a * b).sum::<f64>()
+        }));
         // M⁻¹ by one factorization and one O(n) velocity solve per column.
         self.model
             .velocities_block_into(x, &d.identity, &mut self.ws, &mut d.minv);
@@ -179,8 +187,102 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         Some(self)
     }
 
+    /// With the audit, `W` and `D` (module `energy_audit`).
+    fn quadrature_states(&self) -> usize {
+        if self.audit.is_some() {
+            2
+        } else {
+            0
+        }
+    }
+
+    /// The audit's `W` and `D` converged with the other stages in one Newton iteration: their
+    /// rows of `J`, the gradients of `Ẇ = ẋ·Q` and `Ḋ = ẋᵀ C ẋ`, applied to the step `Δy`
+    /// without forming them, `∇Ẇ·Δy = Q·δẋ + ẋ·(∂Q/∂x) Δx`, `∇Ḋ·Δy = 2 (C ẋ)·δẋ`, where
+    /// `δẋ = (∂ẋ/∂y) Δy = c Δx − b_x` is the Newton system's first block row (whatever solved
+    /// it). `Q`, `ẋ` and `C ẋ` are those of the last right-hand side (the latest stage), the load
+    /// stiffness term `(∂Q/∂x)ᵀ ẋ` that of the last linearization with its own `ẋ` (the dense
+    /// Jacobian's or the chain's, `newton_systems.rs`): a simplified Newton's gradient, as `J`.
+    fn quadrature_step_real(&mut self, c: f64, lead: &[f64], dy: &[f64], q: &mut [f64]) {
+        let n = self.n;
+        let load_rate = self.quadrature_load_rate();
+        let (mut w, mut d) = (0.0, 0.0);
+        for i in 0..n {
+            let v = c * dy[i] - lead[i];
+            w += self.force[i] * v + load_rate.get(i).map_or(0.0, |h| h * dy[i]);
+            d += self.c_xdot[i] * v;
+        }
+        if let [qw, qd] = q {
+            *qw = (*qw + w) / c;
+            *qd = (*qd + 2.0 * d) / c;
+        }
+        self.load_rate_scratch = load_rate;
+    }
+
+    fn quadrature_step_complex(
+        &mut self,
+        c: Complex<f64>,
+        lead: (&[f64], &[f64]),
+        dy: (&[f64], &[f64]),
+        q: (&mut [f64], &mut [f64]),
+    ) {
+        let n = self.n;
+        let load_rate = self.quadrature_load_rate();
+        let (mut w, mut d) = (Complex::new(0.0, 0.0), Complex::new(0.0, 0.0));
+        for i in 0..n {
+            let dx = Complex::new(dy.0[i], dy.1[i]);
+            let v = c * dx - Complex::new(lead.0[i], lead.1[i]);
+            w += v * self.force[i] + dx * load_rate.get(i).copied().unwrap_or(0.0);
+            d += v * self.c_xdot[i];
+        }
+        let (re, im) = q;
+        for (k, add) in [w, d * 2.0].into_iter().enumerate() {
+            if let (Some(r), Some(i)) = (re.get_mut(k), im.get_mut(k)) {
+                let v = (Complex::new(*r, *i) + add) / c;
+                (*r, *i) = (v.re, v.im);
+            }
+        }
+        self.load_rate_scratch = load_rate;
+    }
+
     fn integrating_with(&mut self, method: Method, settings: &IntegratorSettings) {
         self.auto_chain_min_dofs = chain_newton_min_dofs(method, settings);
+    }
+}
+
+impl<M: StructuralModel> EquationsOfMotion<'_, M> {
+    /// Audit the state `y` of the last accepted step, at `t`, if [`AuditLimits::interval`] left it
+    /// unaudited: a completed run's balance then includes its final state.
+    ///
+    /// [`AuditLimits::interval`]: crate::solve::AuditLimits::interval
+    pub(crate) fn audit_final(&mut self, t: f64, y: &[f64]) {
+        if self.audit.as_ref().is_none_or(|a| a.audited_at(t)) {
+            return;
+        }
+        let (kinetic, strain) = self.energies(y);
+        let n2 = 2 * self.n;
+        if let Some(audit) = &mut self.audit {
+            let _ = audit.check(t, kinetic + strain, y[n2], y[n2 + 1]);
+        }
+    }
+
+    /// The generalized forces `Q`, the velocities `ẋ` and the damping forces `C ẋ` of the last
+    /// right-hand side, and `(∂Q/∂x)ᵀ ẋ` at the last linearization with its `ẋ`: what the
+    /// audit's quadrature step of a caller that audits these equations itself needs (the
+    /// aeroelastic equations).
+    pub(crate) fn last_power_terms(&mut self) -> (&[f64], &[f64], &[f64], Vec<f64>) {
+        let load_rate = self.quadrature_load_rate();
+        (self.force.as_slice(), &self.xdot, &self.c_xdot, load_rate)
+    }
+
+    /// `(∂Q/∂x)ᵀ ẋ` for the audit's quadrature step, at the last linearization (the dense
+    /// Jacobian's or the chain's, with the `ẋ` of that point: a simplified Newton's gradient, as
+    /// the other rows' `J`), into the scratch taken from `load_rate_scratch`.
+    fn quadrature_load_rate(&mut self) -> Vec<f64> {
+        let mut out = std::mem::take(&mut self.load_rate_scratch);
+        out.clear();
+        out.extend_from_slice(&self.load_rate);
+        out
     }
 }
 

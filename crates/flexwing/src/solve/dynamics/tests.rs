@@ -10,6 +10,7 @@ use crate::beam::{
 use crate::model::{Force, FullModel, Load, ReducedModel};
 use crate::model::{PlanarModel, StructuralModel};
 use crate::solve::integrate::OdeSystem;
+use crate::solve::AuditLimits;
 use crate::solve::Modes;
 
 fn model(torsion: bool) -> FullModel {
@@ -156,5 +157,127 @@ fn jacobian_agrees_with_finite_differences_of_the_right_hand_side() {
         let rom = ReducedModel::first(&full, modes.shapes(), 3).unwrap();
         check_jacobian(&rom, Gyroscopic::Exact, &rayleigh);
         check_jacobian(&rom, Gyroscopic::Neglected, &Damping::None);
+    }
+}
+
+/// Loads of the audit tests: a dead tip force and gravity (conservative), and optionally a
+/// follower force.
+fn audit_loads(full: &FullModel, follower: bool) -> crate::model::AppliedLoads {
+    let mut loads = vec![
+        Load::PointForce {
+            span: 2.0,
+            force: Force::Dead { fx: 0.7, fy: 1.5 },
+        },
+        Load::Gravity { g: 9.81 },
+    ];
+    if follower {
+        loads.push(Load::PointForce {
+            span: 1.3,
+            force: Force::Follower {
+                tangential: 0.5,
+                normal: 2.0,
+            },
+        });
+    }
+    full.apply(&loads, "loads").unwrap()
+}
+
+fn audit_limits() -> AuditLimits {
+    AuditLimits {
+        balance: Some(1e-3),
+        runaway: 9.0,
+        floor: 1e-12,
+        interval: 0.0,
+    }
+}
+
+/// The quadrature states' part of a Newton step from the integrators' iteration matrices
+/// (`quadrature_step_*`, `ode.rs`) against the exact bordered step `(b_q + g·Δy) / c` with the
+/// same leading solution `Δy`, `g` the gradients of the rates `ẋ·Q`, `ẋᵀ C ẋ` by central
+/// differences of the right-hand side (step 1e-6: truncation ~1e-12, round-off ~1e-10 of the
+/// rates; tolerance 1e-6 of `Σ |g_j Δy_j| / |c|`), at a real shift and a complex one, with the
+/// last right-hand side and the linearization at the state (as after a converged iteration).
+/// Dense path: full and reduced models under dead, gravity and follower loads with Rayleigh
+/// damping (exact); chain path: the full model under conservative loads (exact there; a follower
+/// load's antisymmetric stiffness is left out, `newton_systems.rs`).
+#[test]
+fn quadrature_steps_are_the_bordered_newton_steps() {
+    let damping = Damping::Rayleigh {
+        alpha: 0.3,
+        beta: 0.01,
+    };
+    for torsion in [false, true] {
+        let full = model(torsion);
+        let modes = Modes::undeformed(&full).unwrap();
+        let rom = ReducedModel::first(&full, modes.shapes(), 3).unwrap();
+        let with_follower = audit_loads(&full, true);
+        let conservative = audit_loads(&full, false);
+        check_quadrature_step(&full, &with_follower, &damping, NewtonSystems::Dense);
+        check_quadrature_step(&rom, &with_follower, &damping, NewtonSystems::Dense);
+        check_quadrature_step(&full, &conservative, &damping, NewtonSystems::Chain);
+        check_quadrature_step(&full, &conservative, &Damping::None, NewtonSystems::Chain);
+    }
+}
+
+fn check_quadrature_step<M: StructuralModel>(
+    model: &M,
+    loads: &crate::model::AppliedLoads,
+    damping: &Damping,
+    systems: NewtonSystems,
+) {
+    use crate::solve::integrate::IterationMatrices;
+    use nalgebra::Complex;
+    let tf = vec![TimeFunction::Constant; loads.n_loads()];
+    let mut eom = EquationsOfMotion::new(model, loads, tf, Gyroscopic::Exact, damping)
+        .unwrap()
+        .with_energy_audit(audit_limits());
+    eom.set_newton_systems(systems).unwrap();
+    let nd = model.n_dofs();
+    let x: Vec<f64> = (0..nd).map(|i| 0.3 * (1.0 + i as f64).sin()).collect();
+    let xd: Vec<f64> = (0..nd).map(|i| 0.8 * (2.0 * i as f64).cos()).collect();
+    let y = eom.state(&x, &xd);
+    let (dim, m) = (eom.dim(), 2 * nd);
+    // The rates' gradients by central differences.
+    let h = 1e-6;
+    let (mut fp, mut fm) = (vec![0.0; dim], vec![0.0; dim]);
+    let mut g = [vec![0.0; m], vec![0.0; m]];
+    for c in 0..m {
+        let (mut yp, mut ym) = (y.clone(), y.clone());
+        yp[c] += h;
+        ym[c] -= h;
+        eom.rhs(0.0, &yp, &mut fp);
+        eom.rhs(0.0, &ym, &mut fm);
+        for k in 0..2 {
+            g[k][c] = (fp[m + k] - fm[m + k]) / (2.0 * h);
+        }
+    }
+    let mut mats = IterationMatrices::new(&mut eom);
+    assert!(mats.linearize(&mut eom, 0.0, &y));
+    eom.rhs(0.0, &y, &mut fp);
+    let (c, cc) = (40.0, Complex::new(35.0, 20.0));
+    assert!(mats.factor_real(&mut eom, 0, c) && mats.factor_complex(&mut eom, 0, cc));
+    let b: Vec<f64> = (0..dim).map(|i| (1.7 * i as f64 + 0.3).sin()).collect();
+    let bi: Vec<f64> = (0..dim).map(|i| (0.9 * i as f64 + 1.1).cos()).collect();
+    let mut xr = b.clone();
+    mats.solve_real(&mut eom, 0, &mut xr);
+    let (mut zr, mut zi) = (b.clone(), bi.clone());
+    mats.solve_complex(&mut eom, 0, &mut zr, &mut zi);
+    for k in 0..2 {
+        let dot = |v: &[f64]| (0..m).map(|j| g[k][j] * v[j]).sum::<f64>();
+        let size = |v: &[f64]| (0..m).map(|j| (g[k][j] * v[j]).abs()).sum::<f64>();
+        let want = (b[m + k] + dot(&xr)) / c;
+        let bound = 1e-6 * size(&xr) / c + 1e-12;
+        assert!(
+            (xr[m + k] - want).abs() <= bound,
+            "{systems:?} real, quadrature {k}: {} vs {want}",
+            xr[m + k]
+        );
+        let want = (Complex::new(b[m + k], bi[m + k]) + Complex::new(dot(&zr), dot(&zi))) / cc;
+        let got = Complex::new(zr[m + k], zi[m + k]);
+        let bound = 1e-6 * (size(&zr) + size(&zi)) / cc.norm() + 1e-12;
+        assert!(
+            (got - want).norm() <= bound,
+            "{systems:?} complex, quadrature {k}: {got} vs {want}"
+        );
     }
 }

@@ -267,8 +267,7 @@ impl Stepper {
             for i in 0..n {
                 self.delta[i] += self.corr[i];
             }
-            let mut converged =
-                self.faccon * norm <= tol && k + 1 >= super::min_newton_iterations(&self.scal);
+            let mut converged = self.faccon * norm <= tol;
             if k > 0 {
                 theta = norm / old_norm;
                 if theta >= 0.99 {

@@ -1,7 +1,9 @@
 //! The iteration matrices `c I − J` of the implicit integrators, behind one interface: the
 //! system's own solver when it has one ([`OdeSystem::newton_solver`]: the full beam model's O(n)
 //! chain sweeps), else the dense Jacobian of [`OdeSystem::jacobian`] and allocation-free dense LU
-//! factorizations (`lu.rs`), real and complex, allocated on first use.
+//! factorizations (`lu.rs`), real and complex, allocated on first use. Quadrature states
+//! ([`OdeSystem::quadrature_states`]) are left out of both: the leading components are solved,
+//! then the system gives the quadratures' part from that solution.
 
 use nalgebra::{Complex, DMatrix};
 
@@ -17,6 +19,12 @@ pub(crate) struct IterationMatrices {
     jac: DMatrix<f64>,
     real: Vec<DenseLu>,
     complex: Vec<ComplexLu>,
+    /// Components solved by the LU or the system's solver: `dim − quadrature_states`.
+    lead: usize,
+    /// The shift of each slot (real, complex), for the quadratures' part.
+    shifts: (Vec<f64>, Vec<Complex<f64>>),
+    /// The leading part of `b` before a solve (real, imaginary), for the quadratures' part.
+    b_lead: (Vec<f64>, Vec<f64>),
 }
 
 impl IterationMatrices {
@@ -25,6 +33,15 @@ impl IterationMatrices {
         let hints = system
             .newton_solver()
             .map(|s| (s.cheap_linearization(), s.newton_tolerance()));
+        let lead = system.dim() - system.quadrature_states();
+        let quadratures = lead < system.dim();
+        let buffer = || {
+            if quadratures {
+                vec![0.0; lead]
+            } else {
+                Vec::new()
+            }
+        };
         Self {
             structured: hints.is_some(),
             cheap: hints.is_some_and(|h| h.0),
@@ -32,6 +49,9 @@ impl IterationMatrices {
             jac: DMatrix::zeros(0, 0),
             real: Vec::new(),
             complex: Vec::new(),
+            lead,
+            shifts: (Vec::new(), Vec::new()),
+            b_lead: (buffer(), buffer()),
         }
     }
 
@@ -73,16 +93,22 @@ impl IterationMatrices {
         slot: usize,
         c: f64,
     ) -> bool {
+        set_slot(&mut self.shifts.0, slot, c);
         if self.structured {
             return solver(system).factor_real(slot, c);
         }
-        let n = self.jac.nrows();
+        let (n, rows) = (self.lead, self.jac.nrows());
         while self.real.len() <= slot {
             self.real.push(DenseLu::new(n));
         }
         let m = self.real[slot].matrix_mut();
-        for (a, &b) in m.iter_mut().zip(self.jac.as_slice()) {
-            *a = -b;
+        for (col, jc) in m
+            .chunks_exact_mut(n)
+            .zip(self.jac.as_slice().chunks_exact(rows))
+        {
+            for (a, &b) in col.iter_mut().zip(&jc[..n]) {
+                *a = -b;
+            }
         }
         for i in 0..n {
             m[i + i * n] += c;
@@ -97,16 +123,22 @@ impl IterationMatrices {
         slot: usize,
         c: Complex<f64>,
     ) -> bool {
+        set_slot(&mut self.shifts.1, slot, c);
         if self.structured {
             return solver(system).factor_complex(slot, c);
         }
-        let n = self.jac.nrows();
+        let (n, rows) = (self.lead, self.jac.nrows());
         while self.complex.len() <= slot {
             self.complex.push(ComplexLu::new(n));
         }
         let (re, im) = self.complex[slot].matrix_mut();
-        for (a, &b) in re.iter_mut().zip(self.jac.as_slice()) {
-            *a = -b;
+        for (col, jc) in re
+            .chunks_exact_mut(n)
+            .zip(self.jac.as_slice().chunks_exact(rows))
+        {
+            for (a, &b) in col.iter_mut().zip(&jc[..n]) {
+                *a = -b;
+            }
         }
         im.fill(0.0);
         for i in 0..n {
@@ -123,10 +155,18 @@ impl IterationMatrices {
         slot: usize,
         b: &mut [f64],
     ) {
+        let quadratures = self.lead < b.len();
+        let (dy, q) = b.split_at_mut(self.lead);
+        if quadratures {
+            self.b_lead.0.copy_from_slice(dy);
+        }
         if self.structured {
-            solver(system).solve_real(slot, b);
+            solver(system).solve_real(slot, dy);
         } else {
-            self.real[slot].solve_in_place(b);
+            self.real[slot].solve_in_place(dy);
+        }
+        if quadratures {
+            system.quadrature_step_real(self.shifts.0[slot], &self.b_lead.0, dy, q);
         }
     }
 
@@ -138,12 +178,32 @@ impl IterationMatrices {
         re: &mut [f64],
         im: &mut [f64],
     ) {
+        let quadratures = self.lead < re.len();
+        let (dy_re, q_re) = re.split_at_mut(self.lead);
+        let (dy_im, q_im) = im.split_at_mut(self.lead);
+        if quadratures {
+            self.b_lead.0.copy_from_slice(dy_re);
+            self.b_lead.1.copy_from_slice(dy_im);
+        }
         if self.structured {
-            solver(system).solve_complex(slot, re, im);
+            solver(system).solve_complex(slot, dy_re, dy_im);
         } else {
-            self.complex[slot].solve_in_place(re, im);
+            self.complex[slot].solve_in_place(dy_re, dy_im);
+        }
+        if quadratures {
+            let lead = (self.b_lead.0.as_slice(), self.b_lead.1.as_slice());
+            let dy = (&*dy_re, &*dy_im);
+            system.quadrature_step_complex(self.shifts.1[slot], lead, dy, (q_re, q_im));
         }
     }
+}
+
+/// `slots[slot] = value`, growing `slots` as needed.
+fn set_slot<T: Copy + Default>(slots: &mut Vec<T>, slot: usize, value: T) {
+    if slots.len() <= slot {
+        slots.resize(slot + 1, T::default());
+    }
+    slots[slot] = value;
 }
 
 fn solver<S: OdeSystem + ?Sized>(system: &mut S) -> &mut dyn super::NewtonSolver {

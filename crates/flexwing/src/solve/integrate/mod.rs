@@ -77,6 +77,44 @@ pub trait OdeSystem {
         None
     }
 
+    /// The number of trailing components of `y` that are quadratures: their rates depend on the
+    /// other components, and no rate depends on them (the energy audit's work and dissipation
+    /// integrals). The implicit integrators then solve their Newton systems for the other
+    /// components alone (the Jacobian's leading block, or the system's [`NewtonSolver`] on the
+    /// leading part) and take the quadratures' part from [`OdeSystem::quadrature_step_real`] and
+    /// [`OdeSystem::quadrature_step_complex`], so that one Newton iteration converges them
+    /// with the other stages. Default 0.
+    fn quadrature_states(&self) -> usize {
+        0
+    }
+
+    /// The quadratures' part of the Newton step `(c I − J) Δ = b` for a real shift `c`: `lead`
+    /// is `b`'s leading part as it was, `dy` its solution, and `q` the quadratures' part of `b`,
+    /// replaced by theirs: with `g_k` the gradient of quadrature `k`'s rate with respect to the
+    /// leading components (its row of `J`), `Δq_k = (b_q,k + g_k·dy) / c`. Default: `g = 0`.
+    fn quadrature_step_real(&mut self, c: f64, lead: &[f64], dy: &[f64], q: &mut [f64]) {
+        let _ = (lead, dy);
+        for v in q {
+            *v /= c;
+        }
+    }
+
+    /// As [`OdeSystem::quadrature_step_real`] for a complex shift, each vector as its real and
+    /// imaginary parts.
+    fn quadrature_step_complex(
+        &mut self,
+        c: Complex<f64>,
+        lead: (&[f64], &[f64]),
+        dy: (&[f64], &[f64]),
+        q: (&mut [f64], &mut [f64]),
+    ) {
+        let _ = (lead, dy);
+        for (r, i) in q.0.iter_mut().zip(q.1.iter_mut()) {
+            let v = Complex::new(*r, *i) / c;
+            (*r, *i) = (v.re, v.im);
+        }
+    }
+
     /// Told by [`integrate`] before it runs which method and settings will solve the system, so
     /// that a system with several ways to solve its Newton systems can take the faster one for
     /// them (the equations of motion: `NewtonSystems::Auto`, whose dense/chain crossover depends
@@ -87,7 +125,8 @@ pub trait OdeSystem {
 }
 
 /// Solves the Newton systems `(c I − J̃) x = b` of the implicit integrators for real and complex
-/// shifts `c`, `J̃` the system's Jacobian or an approximation of it (then the integrators' Newton
+/// shifts `c` (on the components before the quadratures, [`OdeSystem::quadrature_states`]: `b`
+/// has `dim − quadrature_states` entries), `J̃` the system's Jacobian or an approximation of it (then the integrators' Newton
 /// iterations are simplified Newton iterations, and converge more slowly), taken at the point
 /// of the last [`NewtonSolver::linearize`]. Shifts are factored into numbered slots that are
 /// kept independently (Radau IIA keeps a real and a complex one; BDF, the midpoint rule and
@@ -235,20 +274,6 @@ pub(crate) fn error_norm(err: &[f64], a: &[f64], b: &[f64], atol: &[f64], rtol: 
         }
     }
     (s / count.max(1) as f64).sqrt()
-}
-
-/// Fewest Newton iterations of an implicit step: 2 when a component is left out of the error
-/// control (an infinite tolerance scale: a quadrature state such as the energy audit's work
-/// integral), else 1. Newton's update of such a state is exact for the stages it was evaluated
-/// at, the previous iterate's; a step accepted after one iteration would leave it lagging by one
-/// iteration (measured: the audit's balance error of a ramped load, rtol 1e-6, 9.7e-6 with one
-/// iteration allowed, 7.3e-8 with two).
-pub(crate) fn min_newton_iterations(scale: &[f64]) -> usize {
-    if scale.iter().any(|s| s.is_infinite()) {
-        2
-    } else {
-        1
-    }
 }
 
 /// RMS norm of `v / scale` over the error-controlled components: those of finite scale. A

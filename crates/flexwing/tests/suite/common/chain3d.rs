@@ -2,8 +2,10 @@
 //! public API only.
 #![allow(dead_code)]
 
+use flexwing::beam::{Discretization, InertiaAxis, Profile};
 use flexwing::model::chain3d::{
-    Beam3d, Chain3d, Geometry3d, JointCalibration, SectionInertia, SectionStiffness,
+    Beam3d, Chain3d, ElementInertia, Geometry3d, JointCalibration, SectionInertia,
+    SectionStiffness, StiffnessCoupling,
 };
 
 /// A straight uniform cantilever of length `l` in `n` elements with the compliance calibration,
@@ -111,4 +113,53 @@ pub fn reference_rows(file: &str) -> Vec<Vec<String>> {
         .filter(|l| !l.trim().is_empty())
         .map(|l| l.split(',').map(str::to_string).collect())
         .collect()
+}
+
+/// A swept, dihedral, pretwisted, bend–twist coupled cantilever with offsets in both directions:
+/// flap, lag and twist coupled through the geometry, the section and the inertia (the
+/// `chain3d_dynamics`, `chain3d_newton_systems` and `chain3d_reduced` tests' general case).
+pub fn coupled_chain(n: usize) -> Chain3d {
+    let l = 1.0;
+    let geometry = Geometry3d::Span {
+        length: l,
+        discretization: Discretization::Uniform(n),
+        sweep: Profile::Uniform(0.2),
+        dihedral: Profile::Table {
+            x: vec![0.0, l],
+            value: vec![0.0, 0.15],
+        },
+        pretwist: Profile::Table {
+            x: vec![0.0, l],
+            value: vec![0.1, -0.2],
+        },
+    };
+    let stiffness = SectionStiffness {
+        gj: Profile::Uniform(8.0),
+        ei_flap: Profile::Uniform(10.0),
+        ei_lag: Profile::Uniform(60.0),
+        coupling: Some(StiffnessCoupling {
+            twist_flap: Profile::Uniform(2.0),
+            twist_lag: Profile::Uniform(0.0),
+            lag_flap: Profile::Uniform(-1.0),
+        }),
+    };
+    let inertia = SectionInertia {
+        mass_per_length: Profile::Uniform(0.5),
+        polar_inertia: Profile::Uniform(0.004),
+        polar_inertia_about: InertiaAxis::MassCentre,
+        d0: Profile::Uniform(0.04),
+        d0_normal: Profile::Uniform(-0.01),
+        rotary_inertia_flap: Profile::Uniform(0.0),
+        rotary_inertia_lag: Profile::Uniform(0.002),
+        element_inertia: ElementInertia::Bar,
+    };
+    Chain3d::new(
+        Beam3d::new(
+            &geometry,
+            &stiffness,
+            &inertia,
+            JointCalibration::Compliance,
+        )
+        .unwrap(),
+    )
 }
