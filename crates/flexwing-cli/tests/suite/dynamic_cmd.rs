@@ -1152,7 +1152,13 @@ fn newton_failures_are_counted_and_a_long_chain_gets_a_note() {
     let full = model(&doc, "full");
     let failed = full["stats"]["newton_failures"].as_u64().unwrap();
     let steps = full["stats"]["steps"].as_u64().unwrap();
-    // Measured: 79 of 84 rejections failed Newton against 107 accepted steps (n = 4000).
+    // Measured: 79 of 81 rejections failed Newton against 100 accepted steps (n = 4000), energy
+    // balance error 9e-4 (limit 0.1). atol = 5e-5 rad is applied as given since issue 24 (Radau
+    // applied 0.464 × 5e-5 = 2.3e-5 before); the case keeps 5e-5 because it is the tolerance a
+    // user of a chain this long would pick (20 rtol / n, examples/long_chain.toml's rule, is
+    // 5e-5 at rtol 1e-2) and it fails Newton as the test needs. The count is very sensitive to
+    // atol on this chain (measured 88 failures / 108 steps at 2e-5, 222 / 145 at 2.3e-5, and
+    // over 7000 / 4500 steps in 300 s at 3e-5): the pathology the note is about.
     assert!(failed >= 20 && 2 * failed >= steps, "{failed} of {steps}");
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(

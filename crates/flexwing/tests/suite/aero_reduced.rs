@@ -143,6 +143,7 @@ fn regression_reduced_gust_radau_audit_balance_at_rtol_1e_3() {
             amplitude: 1.0,
             start: 0.05,
             spanwise: Profile::Uniform(1.0),
+            penetration: GustPenetration::Uniform,
         }),
     };
     let wing = common::patil_wing(32, Aerodynamics::Peters { states: 6 });

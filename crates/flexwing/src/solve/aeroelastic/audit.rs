@@ -369,6 +369,7 @@ mod tests {
                     amplitude: 1.5,
                     start: 0.0,
                     spanwise: Profile::Uniform(1.0),
+                    penetration: GustPenetration::Uniform,
                 }),
             };
             let damping = Damping::Rayleigh {
