@@ -36,6 +36,7 @@
 
 mod aero;
 mod beam;
+mod chain3d;
 mod dynamic;
 mod error;
 mod linearize;
@@ -44,6 +45,7 @@ mod plan;
 mod property;
 mod spec;
 mod spec_aero;
+mod spec_chain3d;
 mod statics;
 mod words;
 
@@ -65,6 +67,7 @@ pub use spec_aero::{
     AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustShapeSpec, GustSpec,
     LinearizeSpec, SpeedSweepSpec, StatesSpec,
 };
+pub use spec_chain3d::{CouplingSpec, StructureSpec, StudyParameterSpec, StudySpec};
 pub use words::{in_user_terms, keys, JARGON};
 
 /// Largest case file read (bytes): 16 MiB, a thousand times the largest example; tables of
