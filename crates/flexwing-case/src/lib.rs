@@ -266,7 +266,11 @@ mod tests {
                 "polar_inertia",
                 "polar_inertia_about",
                 "d0",
-                "rotary_inertia"
+                "rotary_inertia",
+                "EI_lag",
+                "d0_normal",
+                "rotary_inertia_lag",
+                "coupling"
             ]
         );
         assert!(keys::<IntegrationSpec>().contains(&"spectral_radius"));
