@@ -983,3 +983,106 @@ fn study(
         wall_time_s: start.elapsed().as_secs_f64(),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::beam::Profile;
+    use crate::model::aero::{AeroSection, Aerodynamics};
+    use crate::model::chain3d::{Beam3d, Geometry3d, JointCalibration, SectionInertia};
+    use crate::model::chain3d::{SectionStiffness, SpatialVector};
+
+    fn chain() -> Chain3d {
+        Chain3d::new(
+            Beam3d::new(
+                &Geometry3d::straight(1.0, 4),
+                &SectionStiffness::uncoupled(8.0, 10.0, 60.0),
+                &SectionInertia::uniform(0.5, 0.004),
+                JointCalibration::Compliance,
+            )
+            .unwrap(),
+        )
+    }
+
+    fn flutter3d(aerodynamics: Aerodynamics) -> Flutter3d {
+        Flutter3d {
+            aero: Aero {
+                section: AeroSection::new(Profile::Uniform(0.1), Profile::Uniform(0.5)),
+                density: 1.2,
+                aerodynamics,
+            },
+            flight: FlightCondition::at_speed(0.0),
+            sweep: Some(SpeedSweep {
+                speeds: vec![1.0, 2.0],
+            }),
+            loads: Vec::new(),
+            modes: None,
+            tolerance: 1e-6,
+            pk: false,
+            static_options: StaticOptions::default(),
+        }
+    }
+
+    #[test]
+    fn errors_name_the_callers_fields() {
+        let fields = crate::analysis::aero::Fields {
+            loads: "loads",
+            aero: "aero",
+            statics: "static",
+            analysis: "flutter",
+        };
+        let plan = |analysis| Chain3dPlan {
+            model: chain(),
+            analysis,
+        };
+        let tip = SpatialLoad::PointForce {
+            span: 1.0,
+            force: SpatialVector::Dead([0.0, 1.0, 0.0]),
+        };
+        let mut pk = flutter3d(Aerodynamics::Steady);
+        pk.pk = true;
+        let mut no_sweep = flutter3d(Aerodynamics::Wagner);
+        no_sweep.sweep = None;
+        let mut tolerance = flutter3d(Aerodynamics::Wagner);
+        tolerance.tolerance = 2.0;
+        let cases: Vec<(Analysis3d, &str)> = vec![
+            (
+                Analysis3d::Modes { count: 13 },
+                "flutter.count: must be between 1 and the number of degrees of freedom (12)",
+            ),
+            (
+                Analysis3d::Static(Static3d {
+                    loads: Vec::new(),
+                    options: StaticOptions::default(),
+                    sweep: None,
+                    modes: None,
+                    load_names: Vec::new(),
+                }),
+                "loads: a static analysis needs at least one load",
+            ),
+            (
+                Analysis3d::Static(Static3d {
+                    loads: vec![tip],
+                    options: StaticOptions::default(),
+                    sweep: Some(Sweep {
+                        load: 0,
+                        scales: vec![0.0, f64::NAN],
+                    }),
+                    modes: None,
+                    load_names: Vec::new(),
+                }),
+                "flutter.sweep.scales[1]: must be finite",
+            ),
+            (Analysis3d::Flutter(pk), "flutter.pk: the p-k method"),
+            (Analysis3d::Flutter(no_sweep), "aero.sweep: missing"),
+            (
+                Analysis3d::Flutter(tolerance),
+                "flutter.tolerance: must be in (0, 1)",
+            ),
+        ];
+        for (analysis, expected) in cases {
+            let e = plan(analysis).validate(&fields).unwrap_err().to_string();
+            assert!(e.starts_with(expected), "{e}");
+        }
+    }
+}
