@@ -190,6 +190,13 @@ impl Case {
 
     /// `[aero]`, the full model and the library's aerodynamics of the case.
     pub(crate) fn aero_parts(&self) -> Result<(&AeroSpec, FullModel, Aero), InputError> {
+        let (spec, aero) = self.aero_of()?;
+        let model = FullModel::new(self.to_beam()?);
+        Ok((spec, model, aero))
+    }
+
+    /// `[aero]` and the library's aerodynamics of the case (for either structural model).
+    pub(crate) fn aero_of(&self) -> Result<(&AeroSpec, Aero), InputError> {
         let spec = self.aero.as_ref().ok_or_else(|| {
             InputError::new(
                 "aero",
@@ -197,7 +204,6 @@ impl Case {
                  elastic_axis, density and aerodynamics)",
             )
         })?;
-        let model = FullModel::new(self.to_beam()?);
         let section = AeroSection {
             chord: spec.chord.0.clone(),
             elastic_axis: spec.elastic_axis.0.clone(),
@@ -237,7 +243,7 @@ impl Case {
             density: spec.density,
             aerodynamics,
         };
-        Ok((spec, model, aero))
+        Ok((spec, aero))
     }
 
     /// The loads of an aeroelastic run: gravity belongs to the flight (it follows the root
@@ -358,7 +364,7 @@ fn gust(g: &crate::GustSpec) -> Result<Gust, InputError> {
 }
 
 /// The speeds of `[aero.sweep]`: listed, or evenly spaced.
-fn speed_sweep(spec: &SpeedSweepSpec, prefix: &str) -> Result<SpeedSweep, InputError> {
+pub(crate) fn speed_sweep(spec: &SpeedSweepSpec, prefix: &str) -> Result<SpeedSweep, InputError> {
     let speeds = match (&spec.speeds, spec.from, spec.to, spec.steps) {
         (Some(v), None, None, None) => v.clone(),
         (None, Some(from), Some(to), Some(steps)) => evenly_spaced(prefix, from, to, steps)?,

@@ -53,16 +53,17 @@ impl BeamSpec {
     /// The lumped-mass beam of this `[beam]` table, validated by [`Beam::new`].
     pub(crate) fn to_beam(&self) -> Result<Beam, InputError> {
         let b = self;
+        b.planar_only()?;
         let section = section(&b.section)?;
         let beam = Beam::named(
             "beam",
             b.length,
             &section,
             &discretization(b)?,
-            calibration(b.calibration),
+            calibration(b.calibration.unwrap_or_default())?,
         )?;
         let rotary = RotaryInertia {
-            elements: b.element_inertia == ElementInertiaSpec::Bar,
+            elements: b.element_inertia == Some(ElementInertiaSpec::Bar),
             section: b.section.rotary_inertia.as_ref().map(|p| p.0.clone()),
         };
         if rotary == RotaryInertia::default() {
@@ -72,7 +73,7 @@ impl BeamSpec {
     }
 }
 
-fn discretization(b: &BeamSpec) -> Result<Discretization, InputError> {
+pub(crate) fn discretization(b: &BeamSpec) -> Result<Discretization, InputError> {
     match (b.elements, &b.stations) {
         (Some(n), None) => Ok(Discretization::Uniform(n)),
         (None, Some(x)) => Ok(Discretization::Stations(x.clone())),
@@ -89,10 +90,15 @@ fn discretization(b: &BeamSpec) -> Result<Discretization, InputError> {
     }
 }
 
-fn calibration(c: CalibrationSpec) -> Calibration {
+fn calibration(c: CalibrationSpec) -> Result<Calibration, InputError> {
     match c {
-        CalibrationSpec::TipLoad => Calibration::TipLoad,
-        CalibrationSpec::Uniform => Calibration::Uniform,
+        CalibrationSpec::TipLoad => Ok(Calibration::TipLoad),
+        CalibrationSpec::Uniform => Ok(Calibration::Uniform),
+        CalibrationSpec::Compliance => Err(InputError::new(
+            "beam.calibration",
+            "\"compliance\" is the 3-D chain's calibration (beam.model = \"chain3d\"); the \
+             planar chain takes \"tip-load\" or \"uniform\"",
+        )),
     }
 }
 

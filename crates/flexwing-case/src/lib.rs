@@ -36,6 +36,7 @@
 
 mod aero;
 mod beam;
+mod chain3d;
 mod dynamic;
 mod error;
 mod linearize;
@@ -44,6 +45,7 @@ mod plan;
 mod property;
 mod spec;
 mod spec_aero;
+mod spec_chain3d;
 mod statics;
 mod words;
 
@@ -65,6 +67,7 @@ pub use spec_aero::{
     AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustPenetrationSpec,
     GustShapeSpec, GustSpec, LinearizeSpec, SpeedSweepSpec, StatesSpec,
 };
+pub use spec_chain3d::{CouplingSpec, StructureSpec, StudyParameterSpec, StudySpec};
 pub use words::{in_user_terms, keys, JARGON};
 
 /// Largest case file read (bytes): 16 MiB, a thousand times the largest example; tables of
@@ -263,7 +266,11 @@ mod tests {
                 "polar_inertia",
                 "polar_inertia_about",
                 "d0",
-                "rotary_inertia"
+                "rotary_inertia",
+                "EI_lag",
+                "d0_normal",
+                "rotary_inertia_lag",
+                "coupling"
             ]
         );
         assert!(keys::<IntegrationSpec>().contains(&"spectral_radius"));

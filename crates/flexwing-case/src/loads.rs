@@ -44,7 +44,48 @@ pub fn library_loads(specs: &[LoadSpec], beam: &Beam) -> Result<Vec<Load>, Input
     specs
         .iter()
         .enumerate()
-        .map(|(i, spec)| load(i, spec, beam))
+        .map(|(i, spec)| load(i, spec, beam.nodes()))
+        .collect()
+}
+
+/// The loads of `[[loads]]` on a chain with node stations `nodes`, as [`library_loads`], with
+/// `fz` allowed (the 3-D chain): each planar load and the `fz` of a dead force, in order.
+pub(crate) fn loads_with_fz(
+    specs: &[LoadSpec],
+    nodes: &[f64],
+) -> Result<Vec<(Load, Option<Profile>)>, InputError> {
+    check_names(specs)?;
+    specs
+        .iter()
+        .enumerate()
+        .map(|(i, spec)| {
+            let Some(fz) = &spec.fz else {
+                return load(i, spec, nodes).map(|l| (l, None));
+            };
+            let dead = spec.direction == Some(DirectionSpec::Dead);
+            let takes = matches!(
+                spec.kind,
+                LoadKindSpec::PointForce | LoadKindSpec::Distributed
+            );
+            if !(dead && takes) {
+                return Err(InputError::new(
+                    format!("loads[{i}].fz"),
+                    "belongs to a dead point force or distributed force (global z component)",
+                ));
+            }
+            let mut planar = spec.clone();
+            planar.fz = None;
+            if planar.fx.is_none() && planar.fy.is_none() {
+                planar.fy = Some(crate::Property(Profile::Uniform(0.0)));
+            }
+            if spec.kind == LoadKindSpec::PointForce && !matches!(fz.0, Profile::Uniform(_)) {
+                return Err(InputError::new(
+                    format!("loads[{i}].fz"),
+                    "a point force takes a number (N), not a table",
+                ));
+            }
+            load(i, &planar, nodes).map(|l| (l, Some(fz.0.clone())))
+        })
         .collect()
 }
 
@@ -100,6 +141,7 @@ fn given(spec: &LoadSpec) -> Vec<&'static str> {
         ("direction", spec.direction.is_some()),
         ("fx", spec.fx.is_some()),
         ("fy", spec.fy.is_some()),
+        ("fz", spec.fz.is_some()),
         ("tangential", spec.tangential.is_some()),
         ("normal", spec.normal.is_some()),
         ("value", spec.value.is_some()),
@@ -128,6 +170,11 @@ fn check_keys(i: usize, spec: &LoadSpec) -> Result<(), InputError> {
     };
     match given(spec).into_iter().find(|k| !allowed.contains(k)) {
         None => Ok(()),
+        Some("fz") => Err(InputError::new(
+            format!("loads[{i}].fz"),
+            "is a key of the 3-D chain (beam.model = \"chain3d\"): the planar chain carries \
+             forces in the x-y plane only",
+        )),
         Some(key) => Err(InputError::new(
             format!("loads[{i}].{key}"),
             format!(
@@ -139,12 +186,12 @@ fn check_keys(i: usize, spec: &LoadSpec) -> Result<(), InputError> {
     }
 }
 
-fn load(i: usize, spec: &LoadSpec, beam: &Beam) -> Result<Load, InputError> {
+fn load(i: usize, spec: &LoadSpec, nodes: &[f64]) -> Result<Load, InputError> {
     check_keys(i, spec)?;
     let field = |key: &str| format!("loads[{i}].{key}");
     Ok(match spec.kind {
         LoadKindSpec::PointForce => {
-            let span = position(i, spec, beam)?;
+            let span = position(i, spec, nodes)?;
             let [a, b] = components(i, spec, "point force")?;
             let number = |key: &str, p: Option<&Profile>| match p {
                 None => Ok(0.0),
@@ -167,11 +214,11 @@ fn load(i: usize, spec: &LoadSpec, beam: &Beam) -> Result<Load, InputError> {
             Load::PointForce { span, force }
         }
         LoadKindSpec::Moment => Load::Moment {
-            span: position(i, spec, beam)?,
+            span: position(i, spec, nodes)?,
             value: value(i, spec, "the moment about z (N·m)")?,
         },
         LoadKindSpec::Torque => Load::Torque {
-            span: position(i, spec, beam)?,
+            span: position(i, spec, nodes)?,
             value: value(i, spec, "the torque about the beam axis (N·m)")?,
         },
         LoadKindSpec::Distributed => {
@@ -253,11 +300,10 @@ fn value(i: usize, spec: &LoadSpec, what: &str) -> Result<f64, InputError> {
 }
 
 /// `span` as given, or the station of `node`.
-fn position(i: usize, spec: &LoadSpec, beam: &Beam) -> Result<f64, InputError> {
+fn position(i: usize, spec: &LoadSpec, nodes: &[f64]) -> Result<f64, InputError> {
     match (spec.span, spec.node) {
         (Some(span), None) => Ok(span),
         (None, Some(node)) => {
-            let nodes = beam.nodes();
             let last = nodes.len() - 1;
             nodes.get(node).copied().ok_or_else(|| {
                 InputError::new(

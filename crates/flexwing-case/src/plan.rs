@@ -23,16 +23,19 @@ pub enum Analysis {
     /// Linear state-space models about the static aeroelastic equilibrium at
     /// `aero.flight.speed` (`[aero]`, `[linearize]`).
     Linearize,
+    /// Flutter and divergence against a load level (`[flutter.study]`; the 3-D chain).
+    Study,
 }
 
 impl Analysis {
     /// Every analysis.
-    pub const ALL: [Analysis; 5] = [
+    pub const ALL: [Analysis; 6] = [
         Analysis::Modes,
         Analysis::Static,
         Analysis::Dynamic,
         Analysis::Flutter,
         Analysis::Linearize,
+        Analysis::Study,
     ];
 
     /// `modes`, `static`, `dynamic`, `flutter` or `linearize`: the CLI's subcommand.
@@ -43,6 +46,7 @@ impl Analysis {
             Analysis::Dynamic => "dynamic",
             Analysis::Flutter => "flutter",
             Analysis::Linearize => "linearize",
+            Analysis::Study => "study",
         }
     }
 
@@ -76,6 +80,9 @@ impl Case {
     /// ```
     pub fn plan(&self, analysis: Analysis) -> Result<Plan, CaseError> {
         let aero = self.is_aeroelastic();
+        if self.is_chain3d() {
+            return Ok(Plan::Chain3d(self.chain3d_plan(analysis)?));
+        }
         Ok(match analysis {
             Analysis::Modes => Plan::Modes(self.modes_plan()?),
             Analysis::Static if aero => Plan::AeroStatic(self.aero_static_plan()?),
@@ -84,6 +91,13 @@ impl Case {
             Analysis::Dynamic => Plan::Dynamic(self.dynamic_plan()?),
             Analysis::Flutter => Plan::Flutter(self.flutter_plan()?),
             Analysis::Linearize => Plan::Linearize(self.linearize_plan()?),
+            Analysis::Study => {
+                return Err(self.error(flexwing::InputError::new(
+                    "beam.model",
+                    "the flutter study against a load level runs on the 3-D chain: set                      beam.model = \"chain3d\" (the planar chain's flutter speed ignores the \
+                     deflection)",
+                )))
+            }
         })
     }
 }

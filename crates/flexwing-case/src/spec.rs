@@ -8,6 +8,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::property::Property;
 use super::spec_aero::{AeroSpec, FlutterSpec, LinearizeSpec};
+use super::spec_chain3d::{CouplingSpec, StructureSpec};
 use super::words::word_enum;
 
 /// The whole case file.
@@ -49,7 +50,10 @@ pub struct Case {
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct BeamSpec {
-    /// Span `L` (m).
+    /// The structural model: the paper's planar chain (default) or the 3-D chain.
+    #[serde(default, skip_serializing_if = "is_default")]
+    pub model: StructureSpec,
+    /// Span `L` (m): the arc length of the reference axis on the 3-D chain.
     pub length: f64,
     /// Number of equal elements; exclusive with `stations`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -57,12 +61,22 @@ pub struct BeamSpec {
     /// Node stations `0 … L` (m); exclusive with `elements`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stations: Option<Vec<f64>>,
-    /// Bending spring calibration.
-    #[serde(default)]
-    pub calibration: CalibrationSpec,
-    /// What an element is in bending: a point mass (the paper's) or a rigid bar.
-    #[serde(default, skip_serializing_if = "is_default")]
-    pub element_inertia: ElementInertiaSpec,
+    /// Bending spring calibration (planar default `tip-load`, 3-D default `compliance`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub calibration: Option<CalibrationSpec>,
+    /// What an element is in bending: a point mass (the paper's, the planar default) or a rigid
+    /// bar (the 3-D default).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub element_inertia: Option<ElementInertiaSpec>,
+    /// Sweep angle along the span (rad, positive back; 3-D chain only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sweep: Option<Property>,
+    /// Dihedral angle along the span (rad, positive tip up; 3-D chain only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dihedral: Option<Property>,
+    /// Pretwist along the span (rad, positive nose-up; 3-D chain only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pretwist: Option<Property>,
     /// `[beam.section]`.
     pub section: SectionSpec,
 }
@@ -76,9 +90,11 @@ pub enum CalibrationSpec {
     TipLoad,
     /// `EI/ℓ` at every joint.
     Uniform,
+    /// The 3-D chain's joint stiffness from the half-element compliances.
+    Compliance,
 }
 
-word_enum!(CalibrationSpec { TipLoad = "tip-load", Uniform = "uniform" });
+word_enum!(CalibrationSpec { TipLoad = "tip-load", Uniform = "uniform", Compliance = "compliance" });
 
 /// `beam.element_inertia`.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
@@ -122,6 +138,18 @@ pub struct SectionSpec {
     /// Rayleigh beam's term.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotary_inertia: Option<Property>,
+    /// Lag (in-plane) bending stiffness (N·m²; 3-D chain only, required there).
+    #[serde(rename = "EI_lag", default, skip_serializing_if = "Option::is_none")]
+    pub ei_lag: Option<Property>,
+    /// Mass-centre offset along the section normal (m; 3-D chain only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub d0_normal: Option<Property>,
+    /// Rotary (lag) inertia per length about the section normal (kg·m; 3-D chain only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotary_inertia_lag: Option<Property>,
+    /// `[beam.section.coupling]`: off-diagonal section stiffnesses (3-D chain only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coupling: Option<CouplingSpec>,
 }
 
 /// `beam.section.polar_inertia_about`.
@@ -171,6 +199,10 @@ pub struct LoadSpec {
     /// Global vertical component: N (point force) or N/m (distributed).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fy: Option<Property>,
+    /// Global chordwise component, toward the leading edge: N or N/m (dead forces on the 3-D
+    /// chain only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fz: Option<Property>,
     /// Component along the element axis: N or N/m.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tangential: Option<Property>,

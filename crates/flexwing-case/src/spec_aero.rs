@@ -189,6 +189,9 @@ pub struct FlutterSpec {
     /// Also run the p-k method with Theodorsen's function.
     #[serde(default)]
     pub pk: bool,
+    /// `[flutter.study]`: the flutter study against a load level (`flexwing study`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub study: Option<crate::spec_chain3d::StudySpec>,
 }
 
 /// `[linearize]`: the models, signals and states of `flexwing linearize` (the equilibrium's
@@ -254,6 +257,7 @@ impl Default for FlutterSpec {
             modes: None,
             tolerance: None,
             pk: false,
+            study: None,
         }
     }
 }

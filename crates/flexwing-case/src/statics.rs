@@ -41,7 +41,7 @@ impl Case {
         Ok(plan)
     }
 
-    fn sweep(&self, spec: &SweepSpec) -> Result<Sweep, InputError> {
+    pub(crate) fn sweep(&self, spec: &SweepSpec) -> Result<Sweep, InputError> {
         let load = self
             .load_index(&spec.load)
             .ok_or_else(|| InputError::new("static.sweep.load", self.unknown_load(&spec.load)))?;

@@ -178,6 +178,22 @@ pub fn run(analysis: Analysis, args: &CaseArgs, overrides: &Overrides) -> Result
                 .map_err(|e| Failure::input(format!("{name}: {e}")))?;
         }
         Plan::Dynamic(p) => p.snapshots = render::snapshot_indices(p.output_times.len()),
+        Plan::Chain3d(p) => {
+            use flexwing::analysis::chain3d::Analysis3d;
+            if let (Analysis3d::Modes { count: c }, Some(count)) = (&mut p.analysis, count) {
+                *c = count;
+                let fields = flexwing::analysis::aero::Fields {
+                    analysis: "--",
+                    ..flexwing::analysis::aero::Fields::RELATIVE
+                };
+                p.validate(&fields).map_err(|e| {
+                    Failure::input(format!(
+                        "{name}: {}",
+                        e.to_string().replacen("--.", "--", 1)
+                    ))
+                })?;
+            }
+        }
         _ => {}
     }
     let modes = matches!(plan, Plan::Modes(_));

@@ -88,6 +88,17 @@ enum Command {
         gets no flutter speed. See docs/cli.md."
     )]
     Flutter(CaseArgs),
+    /// Flutter and divergence against a load level on the 3-D chain ([flutter.study]).
+    #[command(
+        long_about = "The flutter study of a case of the 3-D chain (beam.model = \"chain3d\"): \
+        the flutter analysis of [aero.sweep] and [flutter] at every level of \
+        [flutter.study] (a tip force, a gravity factor or a root angle), with the tip \
+        deflection at rest, the flutter speed and frequency and the divergence speed at each \
+        level, beside the undeformed wing's flutter speed (what the planar model gives at \
+        every level). Writes study.csv and status.txt; with --plot study.svg/.png (flutter \
+        speed against tip deflection). See docs/cli.md."
+    )]
+    Study(CaseArgs),
     /// Linear state-space models A, B, C, D about the static aeroelastic equilibrium.
     #[command(
         long_about = "Linear state-space models x' = A x + B u, y = C x + D u about the static \
@@ -172,6 +183,10 @@ fn main() -> ExitCode {
         Command::Flutter(a) => (
             a.json,
             driver::run(Analysis::Flutter, a, &Overrides::default()),
+        ),
+        Command::Study(a) => (
+            a.json,
+            driver::run(Analysis::Study, a, &Overrides::default()),
         ),
         Command::Linearize(a) => {
             let o = Overrides {

@@ -359,6 +359,20 @@ impl PyCase {
         })
     }
 
+    /// Flutter and divergence against a load level on the 3-D chain (``beam.model =
+    /// "chain3d"``, ``[flutter.study]``): at every level of a tip force, gravity factor or root
+    /// angle, the tip deflection at rest, the flutter speed and frequency and the divergence
+    /// speed, beside the undeformed wing's flutter speed, as a ``Chain3dStudyResult`` (as
+    /// ``flexwing study``). Keyword arguments as ``statics``.
+    #[pyo3(signature = (**kwargs))]
+    fn study<'py>(
+        &self,
+        py: Python<'py>,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        errors::guard(py, || self.analysis(py, Analysis::Study, kwargs, "study"))
+    }
+
     /// An ``AeroStepper`` of the case's aeroelastic response (``[aero]``, ``[dynamic]``): the run
     /// ``dynamics()`` makes, advanced by ``step(dt, inputs)`` with named inputs set between calls
     /// (docs/python.md). Keyword arguments: ``inputs`` (names; default

@@ -136,6 +136,7 @@ pub fn to_python<'py>(
         (Plan::AeroDynamic(p), Outcome::AeroDynamic(o)) => aero_dynamics::raw(py, p, o)?,
         (Plan::Flutter(p), Outcome::Flutter(o)) => flutter::raw(py, p, o)?,
         (Plan::Linearize(p), Outcome::Linearize(o)) => linearize::raw(py, p, o)?,
+        (Plan::Chain3d(p), Outcome::Chain3d(o)) => chain3d::raw(py, p, o)?,
         (plan, _) => {
             let what = format!("the outcome of a {} plan is of another kind", plan.name());
             return Err(errors::internal(py, &what));
@@ -143,7 +144,11 @@ pub fn to_python<'py>(
     };
     raw.set_item("rust_time_s", rust_time_s)?;
     let incomplete = first_incomplete(py, &done.outcome)?;
-    Ok((convert::build(py, done.plan.name(), raw)?, incomplete))
+    let kind = match &done.plan {
+        Plan::Chain3d(p) => convert::chain3d::kind(p),
+        plan => plan.name().to_string(),
+    };
+    Ok((convert::build(py, &kind, raw)?, incomplete))
 }
 
 /// The `SolverError` of an incomplete result.

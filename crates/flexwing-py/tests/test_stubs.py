@@ -97,7 +97,7 @@ def test_the_analysis_names_of_the_stub_are_the_extensions():
         flexwing.solve_many([], "no-such-analysis")
     except flexwing.InputError as e:
         names = set(re.findall(r'"([a-z-]+)"', e.reason)) - {"no-such-analysis"}
-    assert stub_names == names == {"modes", "static", "dynamic", "flutter", "linearize"}
+    assert stub_names == names == {"modes", "static", "dynamic", "flutter", "linearize", "study"}
 
 
 def test_every_result_field_is_documented():
@@ -105,9 +105,9 @@ def test_every_result_field_is_documented():
     docstring, where its units and shape are given."""
     import dataclasses
 
-    from flexwing import _aero_results, _results
+    from flexwing import _aero_results, _chain3d_results, _results
 
-    for module in (_results, _aero_results):
+    for module in (_results, _aero_results, _chain3d_results):
         for name in module.__all__:
             cls = getattr(module, name)
             if not dataclasses.is_dataclass(cls):

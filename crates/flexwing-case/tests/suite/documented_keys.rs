@@ -17,10 +17,11 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/case-file.md");
     let text = std::fs::read_to_string(path).expect("docs/case-file.md");
     // The key tables of each section, in the order they appear.
-    let sections: [(&str, &[&str]); 16] = [
+    let sections: [(&str, &[&str]); 18] = [
         ("### Top level", &[""]),
         ("### `[beam]`", &["beam"]),
         ("### `[beam.section]`", &["beam.section"]),
+        ("### `[beam.section.coupling]`", &["beam.section.coupling"]),
         ("### `[modes]`", &["modes"]),
         ("### `[[loads]]`", &["loads"]),
         ("### `[static]`", &["static"]),
@@ -33,6 +34,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
         ("### `[aero.flight.gust]`", &["aero.flight.gust"]),
         ("### `[aero.sweep]`", &["aero.sweep"]),
         ("### `[flutter]`", &["flutter"]),
+        ("### `[flutter.study]`", &["flutter.study"]),
         ("### `[linearize]`", &["linearize"]),
     ];
     let mut tables = BTreeMap::new();
@@ -149,6 +151,14 @@ fn schema_keys(table: &str) -> BTreeSet<String> {
             BASE.replace("{ type = \"none\" }", "{ type = \"none\", zzz_bogus = 1 }")
         }
         "loads" => BASE.replace("[[loads]]\n", &format!("[[loads]]\n{bogus}")),
+        "beam.section.coupling" => BASE.replace(
+            "[modes]\n",
+            &format!("[beam.section.coupling]\n{bogus}\n[modes]\n"),
+        ),
+        "flutter.study" => base_aero().replace(
+            "[flutter]\n",
+            &format!("[flutter]\n\n[flutter.study]\n{bogus}"),
+        ),
         "aero.aerodynamics" => base_aero().replace(
             "{ model = \"steady\" }",
             "{ model = \"steady\", zzz_bogus = 1 }",
@@ -196,6 +206,8 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
                 "linearize",
             ],
             "beam" => &["section"],
+            "beam.section" => &["coupling"],
+            "flutter" => &["study"],
             "aero" => &["flight", "sweep"],
             "aero.flight" => &["gust"],
             "static" => &["sweep"],
@@ -214,7 +226,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
         let documented: BTreeSet<String> = keys.keys().cloned().collect();
         assert_eq!(documented, schema, "keys of [{table}]");
     }
-    assert_eq!(docs.len(), 18, "{:?}", docs.keys());
+    assert_eq!(docs.len(), 20, "{:?}", docs.keys());
 }
 
 /// The default the code uses for each key whose documented default is a literal.
@@ -245,6 +257,17 @@ fn actual_defaults() -> BTreeMap<(&'static str, &'static str), String> {
         Calibration::Uniform => "uniform",
     };
     put("beam", "calibration", format!("\"{calibration}\""));
+    let model = if case.is_chain3d() {
+        "chain3d"
+    } else {
+        "planar"
+    };
+    put("beam", "model", format!("\"{model}\""));
+    put(
+        "flutter.study",
+        "divergence",
+        study_divergence().to_string(),
+    );
     // Point masses: no element has rotary inertia in bending.
     let point_masses = statics
         .model
@@ -418,6 +441,46 @@ fn actual_defaults() -> BTreeMap<(&'static str, &'static str), String> {
     assert_eq!(q, [0.0; 4], "q defaults to zeros, as documented");
     aero_defaults(&mut put);
     d
+}
+
+/// Whether the study of a 3-D case without `flutter.study.divergence` runs the divergence.
+fn study_divergence() -> bool {
+    use flexwing::analysis::chain3d::Analysis3d;
+    let text = r#"
+[beam]
+model = "chain3d"
+length = 1.0
+elements = 4
+
+[beam.section]
+EI = 50
+EI_lag = 500
+GJ = 20
+mass_per_length = 0.2
+polar_inertia = 0.01
+polar_inertia_about = "mass-centre"
+
+[aero]
+chord = 0.1
+elastic_axis = 0.5
+density = 1.2
+aerodynamics = { model = "quasi-steady" }
+
+[aero.sweep]
+speeds = [1.0, 2.0]
+
+[flutter.study]
+parameter = "tip-force"
+levels = [0.0]
+"#;
+    let plan = Case::from_toml_str(text)
+        .unwrap()
+        .chain3d_plan(flexwing_case::Analysis::Study)
+        .unwrap();
+    match plan.analysis {
+        Analysis3d::Study(s) => s.divergence,
+        _ => panic!("a study"),
+    }
 }
 
 /// The defaults of the aeroelastic tables, from the plans of a case without those keys.

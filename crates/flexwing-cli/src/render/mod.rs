@@ -9,6 +9,7 @@
 
 mod aero_dynamic;
 mod aero_static;
+mod chain3d;
 mod dynamic;
 mod flutter;
 mod linearize;
@@ -24,6 +25,7 @@ use flexwing::analysis::aero::flutter::{FlutterOutcome, FlutterPlan};
 use flexwing::analysis::aero::linearize::{LinearizeOutcome, LinearizePlan};
 use flexwing::analysis::aero::response::{AeroDynamicOutcome, AeroDynamicPlan};
 use flexwing::analysis::aero::statics::{AeroPoint, AeroStaticOutcome, AeroStaticPlan};
+use flexwing::analysis::chain3d::{Chain3dOutcome, Chain3dPlan};
 use flexwing::analysis::dynamics::{DynamicOutcome, DynamicPlan};
 use flexwing::analysis::modes::{ModesOutcome, ModesPlan};
 use flexwing::analysis::statics::{StaticOutcome, StaticPlan};
@@ -102,6 +104,8 @@ pub enum View<'a> {
     AeroDynamic(&'a AeroDynamicPlan, &'a AeroDynamicOutcome),
     /// Linear state-space models.
     Linearize(&'a LinearizePlan, &'a LinearizeOutcome),
+    /// The 3-D chain's analyses.
+    Chain3d(&'a Chain3dPlan, &'a Chain3dOutcome),
 }
 
 impl<'a> View<'a> {
@@ -115,13 +119,15 @@ impl<'a> View<'a> {
             (Plan::Flutter(p), Outcome::Flutter(o)) => View::Flutter(p, o),
             (Plan::AeroDynamic(p), Outcome::AeroDynamic(o)) => View::AeroDynamic(p, o),
             (Plan::Linearize(p), Outcome::Linearize(o)) => View::Linearize(p, o),
+            (Plan::Chain3d(p), Outcome::Chain3d(o)) => View::Chain3d(p, o),
             _ => return None,
         })
     }
 
-    /// The full model the analysis is of.
-    fn model(&self) -> &FullModel {
-        match self {
+    /// The line describing the model the analysis is of.
+    fn model_line(&self) -> String {
+        Some(match self {
+            View::Chain3d(p, _) => return chain3d::model_line(p),
             View::Modes(p, _) => &p.model,
             View::Static(p, _) => &p.model,
             View::Dynamic(p, _) => &p.model,
@@ -129,7 +135,8 @@ impl<'a> View<'a> {
             View::Flutter(p, _) => &p.model,
             View::AeroDynamic(p, _) => &p.structure.model,
             View::Linearize(p, _) => &p.model,
-        }
+        })
+        .map_or_else(String::new, model_line)
     }
 
     /// The aerodynamic model and the air density of an aeroelastic analysis.
@@ -139,6 +146,7 @@ impl<'a> View<'a> {
             View::Flutter(p, _) => &p.aero,
             View::AeroDynamic(p, _) => &p.aero,
             View::Linearize(p, _) => &p.aero,
+            View::Chain3d(p, _) => return chain3d::aero(p),
             _ => return None,
         };
         Some((a.aerodynamics, a.density))
@@ -156,6 +164,7 @@ pub fn previous_files(plan: &Plan) -> &'static [&'static str] {
         Plan::Flutter(_) => flutter::FILES,
         Plan::AeroDynamic(_) => aero_dynamic::FILES,
         Plan::Linearize(_) => linearize::FILES,
+        Plan::Chain3d(_) => chain3d::FILES,
         _ => &[],
     }
 }
@@ -171,6 +180,7 @@ pub fn files(ctx: &Context, view: &View, dir: &Path, plot: bool) -> Result<Vec<P
         View::Flutter(p, o) => flutter::files(ctx, p, o, dir, plot),
         View::AeroDynamic(p, o) => aero_dynamic::files(ctx, p, o, dir, plot),
         View::Linearize(p, o) => linearize::files(ctx, p, o, dir),
+        View::Chain3d(p, o) => chain3d::files(ctx, p, o, dir, plot),
     }
 }
 
@@ -180,7 +190,7 @@ pub fn text(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
     if let Some(title) = &ctx.case.title {
         let _ = writeln!(s, "{title}");
     }
-    let _ = writeln!(s, "{}", model_line(view.model()));
+    let _ = writeln!(s, "{}", view.model_line());
     if let Some((aerodynamics, density)) = view.aero() {
         let _ = writeln!(s, "{}", aero_line(aerodynamics, density));
     }
@@ -192,9 +202,14 @@ pub fn text(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
         View::Flutter(p, o) => flutter::text(&mut s, ctx, p, o),
         View::AeroDynamic(_, o) => aero_dynamic::text(&mut s, o),
         View::Linearize(p, o) => linearize::text(&mut s, p, o),
+        View::Chain3d(_, o) => chain3d::text(&mut s, o),
     }
     let _ = writeln!(s);
-    if !matches!(view, View::Modes(..)) {
+    let modes3d = matches!(
+        view,
+        View::Chain3d(_, flexwing::analysis::chain3d::Chain3dOutcome::Modes { .. })
+    );
+    if !matches!(view, View::Modes(..)) && !modes3d {
         if ctx.incomplete.is_empty() {
             let _ = writeln!(s, "status: complete");
         }
@@ -220,6 +235,7 @@ pub fn json(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
         View::Flutter(p, o) => document(ctx, flutter::json(ctx, p, o), files),
         View::AeroDynamic(p, o) => document(ctx, aero_dynamic::json(ctx, p, o), files),
         View::Linearize(p, o) => document(ctx, linearize::json(ctx, p, o), files),
+        View::Chain3d(p, o) => document(ctx, chain3d::json(ctx, p, o), files),
     }
 }
 

@@ -66,6 +66,12 @@ from ._aero_results import (
     FlutterRun,
     Stability,
 )
+from ._chain3d_results import (
+    Chain3dFlutterResult,
+    Chain3dModesResult,
+    Chain3dStaticResult,
+    Chain3dStudyResult,
+)
 from ._linear import LinearizeResult, LinearModel
 from ._progress import tqdm_progress
 from ._results import (
@@ -102,6 +108,10 @@ __all__ = [
     "AeroDynamicResult",
     "LinearModel",
     "LinearizeResult",
+    "Chain3dModesResult",
+    "Chain3dStaticResult",
+    "Chain3dFlutterResult",
+    "Chain3dStudyResult",
     "BatchItem",
     "Batch",
     "tqdm_progress",

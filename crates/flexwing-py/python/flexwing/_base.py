@@ -47,7 +47,7 @@ def _build(kind: str, raw: Dict[str, Any]):
     """Build the result of the analysis ``kind`` from the bindings' dict (called by
     ``flexwing._native``)."""
     if not _KINDS:
-        from . import _aero_results, _linear, _results  # noqa: F401 (they register their kinds)
+        from . import _aero_results, _chain3d_results, _linear, _results  # noqa: F401 (they register their kinds)
     return _from_raw(_KINDS[kind], raw)
 
 

@@ -16,6 +16,12 @@ import numpy as np
 import numpy.typing as npt
 
 from ._aero_results import AeroDynamicResult, AeroStaticResult, FlutterResult
+from ._chain3d_results import (
+    Chain3dFlutterResult,
+    Chain3dModesResult,
+    Chain3dStaticResult,
+    Chain3dStudyResult,
+)
 from ._linear import LinearizeResult
 from ._results import Batch, DynamicResult, ModesResult, StaticResult
 
@@ -30,7 +36,7 @@ Load = Mapping[str, Any]
 #: ``callback(done, label)``: ``done`` the fraction of the analysis (0 to 1), ``label`` the model
 #: running (``"full"``, ``"reduced-r2"``, …).
 ProgressCallback = Callable[[float, str], Any]
-AnalysisName = Literal["modes", "static", "dynamic", "flutter", "linearize"]
+AnalysisName = Literal["modes", "static", "dynamic", "flutter", "linearize", "study"]
 
 class Case:
     """A flexwing case: the beam, the loads and the settings of its analyses, with the keys of
@@ -109,6 +115,13 @@ class Case:
         data (1/s, rad/s), flutter speeds (m/s) and frequencies (rad/s), divergence speeds,
         equilibria and the p-k check, per model. ``check`` raises if an eigen-analysis stopped
         before the last speed."""
+    def study(
+        self, *, progress: Optional[ProgressCallback] = None, check: bool = True
+    ) -> Chain3dStudyResult:
+        """Flutter and divergence against a load level on the 3-D chain (``beam.model =
+        "chain3d"``, ``[flutter.study]``): the tip deflection at rest (m), the flutter speed
+        (m/s) and frequency (rad/s) and the divergence speed at every level, beside the
+        undeformed wing's flutter speed. ``check`` raises if the study was cut short."""
     def linearize(
         self,
         *,
@@ -137,6 +150,10 @@ class Case:
         AeroDynamicResult,
         FlutterResult,
         LinearizeResult,
+        Chain3dModesResult,
+        Chain3dStaticResult,
+        Chain3dFlutterResult,
+        Chain3dStudyResult,
     ]:
         """Run the analysis named ``analysis`` (as the method of the same name)."""
     def __eq__(self, other: object) -> bool: ...

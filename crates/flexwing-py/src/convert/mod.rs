@@ -7,6 +7,7 @@
 
 pub mod aero_dynamics;
 pub mod aero_statics;
+pub mod chain3d;
 pub mod dynamics;
 pub mod flutter;
 pub mod linearize;

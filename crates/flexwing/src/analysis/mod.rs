@@ -10,6 +10,7 @@
 //! | flutter (V-g, V-ω, p-k check) | [`aero::flutter::FlutterPlan`] | [`aero::flutter::run`] | [`aero::flutter::FlutterOutcome`] |
 //! | gust and manoeuvre responses | [`aero::response::AeroDynamicPlan`] | [`aero::response::run`] | [`aero::response::AeroDynamicOutcome`] |
 //! | linear state-space models | [`aero::linearize::LinearizePlan`] | [`aero::linearize::run`] | [`aero::linearize::LinearizeOutcome`] |
+//! | the 3-D chain: modes, statics, flutter, flutter against a load | [`chain3d::Chain3dPlan`] | [`chain3d::run`] | [`chain3d::Chain3dOutcome`] |
 //! | any of these | [`Plan`] | [`run`] | [`Outcome`] |
 //!
 //! [`Plan`], [`run`] and [`Outcome`] are the one dispatcher every front end calls (the case
@@ -45,6 +46,7 @@
 //! ```
 
 pub mod aero;
+pub mod chain3d;
 pub mod dynamics;
 mod models;
 pub mod modes;

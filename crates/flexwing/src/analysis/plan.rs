@@ -11,6 +11,7 @@ use super::aero::flutter::{self, FlutterOutcome, FlutterPlan};
 use super::aero::linearize::{self, LinearizeOutcome, LinearizePlan};
 use super::aero::response::{self, AeroDynamicOutcome, AeroDynamicPlan};
 use super::aero::statics::{self as aero_statics, AeroStaticOutcome, AeroStaticPlan};
+use super::chain3d::{self, Chain3dOutcome, Chain3dPlan};
 use super::dynamics::{self, DynamicOutcome, DynamicPlan};
 use super::modes::{self, ModesOutcome, ModesPlan};
 use super::statics::{self, StaticOutcome, StaticPlan};
@@ -39,6 +40,8 @@ pub enum Plan {
     AeroDynamic(AeroDynamicPlan),
     /// Linear state-space models about the static aeroelastic equilibrium.
     Linearize(LinearizePlan),
+    /// An analysis of the 3-D chain (modes, statics, flutter, the study against a load).
+    Chain3d(Chain3dPlan),
 }
 
 /// What any analysis produced.
@@ -60,6 +63,8 @@ pub enum Outcome {
     AeroDynamic(AeroDynamicOutcome),
     /// Linear state-space models.
     Linearize(LinearizeOutcome),
+    /// An analysis of the 3-D chain.
+    Chain3d(Chain3dOutcome),
 }
 
 impl Plan {
@@ -73,12 +78,13 @@ impl Plan {
             Plan::Flutter(_) => "flutter",
             Plan::AeroDynamic(_) => "aero-dynamic",
             Plan::Linearize(_) => "linearize",
+            Plan::Chain3d(p) => p.name(),
         }
     }
 
-    /// The full model (in vacuo) the analysis is of.
-    pub fn model(&self) -> &FullModel {
-        match self {
+    /// The planar full model (in vacuo) the analysis is of; `None` for the 3-D chain's.
+    pub fn model(&self) -> Option<&FullModel> {
+        Some(match self {
             Plan::Modes(p) => &p.model,
             Plan::Static(p) => &p.model,
             Plan::Dynamic(p) => &p.model,
@@ -86,7 +92,8 @@ impl Plan {
             Plan::Flutter(p) => &p.model,
             Plan::AeroDynamic(p) => &p.structure.model,
             Plan::Linearize(p) => &p.model,
-        }
+            Plan::Chain3d(_) => return None,
+        })
     }
 
     /// Whether the analysis polls its caller's [`Progress::cancelled`] only between parts that
@@ -95,7 +102,11 @@ impl Plan {
     pub fn checks_seldom(&self) -> bool {
         matches!(
             self,
-            Plan::Static(_) | Plan::AeroStatic(_) | Plan::Flutter(_) | Plan::Linearize(_)
+            Plan::Static(_)
+                | Plan::AeroStatic(_)
+                | Plan::Flutter(_)
+                | Plan::Linearize(_)
+                | Plan::Chain3d(_)
         )
     }
 }
@@ -115,6 +126,7 @@ pub fn run(plan: &Plan, progress: &mut dyn Progress) -> Result<Outcome, Error> {
         Plan::Flutter(p) => Outcome::Flutter(flutter::run(p, progress)?),
         Plan::AeroDynamic(p) => Outcome::AeroDynamic(response::run(p, progress)?),
         Plan::Linearize(p) => Outcome::Linearize(linearize::run(p, progress)?),
+        Plan::Chain3d(p) => Outcome::Chain3d(chain3d::run(p, progress)?),
     })
 }
 
@@ -139,6 +151,11 @@ impl Outcome {
         };
         match self {
             Outcome::Modes(_) => Vec::new(),
+            Outcome::Chain3d(o) => o
+                .entries()
+                .into_iter()
+                .map(|(label, status)| Entry { label, status })
+                .collect(),
             Outcome::Static(o) => {
                 let mut v: Vec<Entry> = o.runs.iter().map(|r| entry(&r.kind, &r.status)).collect();
                 if let Some(Err(e)) = &o.loaded_modes {
@@ -203,6 +220,7 @@ impl Outcome {
             Outcome::Dynamic(o) => o.runs.iter().flat_map(|r| of(&r.kind, &r.notes)).collect(),
             Outcome::Flutter(o) => o.runs.iter().flat_map(|r| of(&r.kind, &r.notes)).collect(),
             Outcome::Linearize(o) => o.runs.iter().flat_map(|r| of(&r.kind, &r.notes)).collect(),
+            Outcome::Chain3d(o) => o.notes().into_iter().map(|n| ("full".into(), n)).collect(),
             _ => Vec::new(),
         }
     }

@@ -1,0 +1,266 @@
+"""The results of the 3-D chain's analyses (``beam.model = "chain3d"``): the library's outcome
+(``flexwing::analysis::chain3d``) with the names of the CLI's JSON, and NumPy arrays of the 3-D
+data as properties: node positions ``x, y, z`` and each element's section rotation vector.
+
+Units are SI: m, rad, s, N. Node arrays have ``n + 1`` rows (0 = clamp), element arrays ``n``;
+the last axis of a position or rotation is ``(x, y, z)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional
+
+import numpy as np
+
+from ._base import _Result, _summary
+
+__all__ = [
+    "Chain3dModesResult",
+    "Chain3dStaticResult",
+    "Chain3dFlutterResult",
+    "Chain3dStudyResult",
+]
+
+
+def _speed(point: Optional[Dict[str, Any]], key: str = "speed") -> float:
+    return float("nan") if point is None else float(point[key])
+
+
+@dataclass(eq=False, repr=False)
+class Chain3dModesResult(_Result):
+    """Natural modes of the 3-D chain about its undeformed state, by increasing frequency.
+
+    Attributes:
+        modes: one dict per mode: ``mode``, ``omega`` (rad/s), ``frequency_hz``,
+            ``energy_fraction`` (``twist``, ``lag``, ``flap``: shares of the strain energy),
+            ``displacement`` (node displacements per unit modal amplitude, mass normalized, m,
+            ``(n + 1, 3)``), ``rotation`` (element rotations, rad, ``(n, 3)``).
+        shape: the undeformed chain: ``span`` (m), ``position`` (m), ``rotation`` (rad).
+        n_elements, n_dofs: size of the chain (``3 n`` coordinates).
+        rust_time_s: wall time of the analysis on the Rust side (s).
+
+    Properties ``omega`` ``(k,)``, ``position`` ``(n + 1, 3)``, ``displacement``
+    ``(k, n + 1, 3)`` and ``rotation`` ``(k, n, 3)`` are NumPy arrays of the same data.
+    """
+
+    _kind = "chain3d-modes"
+
+    modes: List[Dict[str, Any]]
+    shape: Dict[str, Any]
+    n_elements: int
+    n_dofs: int
+    rust_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def omega(self) -> np.ndarray:
+        """Circular frequencies (rad/s), ``(k,)``."""
+        return np.array([m["omega"] for m in self.modes], dtype=float)
+
+    @property
+    def position(self) -> np.ndarray:
+        """Undeformed node positions (m), ``(n + 1, 3)``."""
+        return np.array(self.shape["position"], dtype=float)
+
+    @property
+    def displacement(self) -> np.ndarray:
+        """Mode shapes: node displacements (m per unit modal amplitude), ``(k, n + 1, 3)``."""
+        return np.array([m["displacement"] for m in self.modes], dtype=float)
+
+    @property
+    def rotation(self) -> np.ndarray:
+        """Mode shapes: element rotations (rad per unit modal amplitude), ``(k, n, 3)``."""
+        return np.array([m["rotation"] for m in self.modes], dtype=float)
+
+    def __repr__(self) -> str:
+        return _summary(self, ["n_elements", "n_dofs"]) + f" with {len(self.modes)} modes"
+
+
+@dataclass(eq=False, repr=False)
+class Chain3dStaticResult(_Result):
+    """Non-linear static equilibria of the 3-D chain over the load sweep.
+
+    Attributes:
+        points: one dict per converged point: ``scale``, ``scales``, ``shape`` (``span``,
+            ``position`` (m), ``rotation`` (rad)), ``q`` (joint rotations), ``stable``,
+            ``stats``.
+        status: how the sweep ended: ``status``, ``stop``, ``message``.
+        loaded_modes: the modes about the last equilibrium (as ``Chain3dModesResult.modes``), or
+            ``None``; loaded_modes_status: how their computation ended.
+        dofs: coordinates of the chain; wall_time_s: wall time of the solve (s).
+        n_elements, n_dofs: size of the chain.
+        rust_time_s: wall time of the analysis on the Rust side (s).
+
+    Properties ``scale`` ``(p,)``, ``tip`` ``(p, 3)``, ``position`` ``(p, n + 1, 3)`` and
+    ``rotation`` ``(p, n, 3)`` are NumPy arrays of the same data.
+    """
+
+    _kind = "chain3d-static"
+
+    points: List[Dict[str, Any]]
+    status: Dict[str, Any]
+    loaded_modes: Optional[List[Dict[str, Any]]]
+    loaded_modes_status: Dict[str, Any]
+    dofs: int
+    wall_time_s: float
+    n_elements: int
+    n_dofs: int
+    rust_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def scale(self) -> np.ndarray:
+        """Scale of the swept load at each point, ``(p,)``."""
+        return np.array([p["scale"] for p in self.points], dtype=float)
+
+    @property
+    def position(self) -> np.ndarray:
+        """Node positions (m), ``(p, n + 1, 3)``."""
+        return np.array([p["shape"]["position"] for p in self.points], dtype=float)
+
+    @property
+    def rotation(self) -> np.ndarray:
+        """Element section rotation vectors (rad), ``(p, n, 3)``."""
+        return np.array([p["shape"]["rotation"] for p in self.points], dtype=float)
+
+    @property
+    def tip(self) -> np.ndarray:
+        """Tip positions (m), ``(p, 3)``."""
+        return self.position[:, -1, :] if self.points else np.zeros((0, 3))
+
+    def __repr__(self) -> str:
+        return _summary(self, ["n_elements", "n_dofs"]) + f" with {len(self.points)} points"
+
+
+@dataclass(eq=False, repr=False)
+class Chain3dFlutterResult(_Result):
+    """Flutter and divergence of the 3-D chain about its deformed equilibria along the speeds.
+
+    Attributes:
+        equilibria: one dict per speed reached: ``speed`` (m/s), ``dynamic_pressure`` (Pa),
+            ``tip`` (tip displacement, m), ``tip_twist`` (rad), ``lift`` (N),
+            ``divergence_pressure`` (Pa), ``shape`` (``span``, ``position``, ``rotation``).
+        divergence: the divergence point (``speed``, m/s) or ``None``.
+        equilibria_status: how the equilibria ended (past divergence they stop).
+        stability: the eigen-analysis: ``method``, ``speeds``, ``branches`` (``mode``,
+            ``wet_frequency``, ``real``, ``imag``), ``flutter`` (``speed``, ``frequency``) or
+            ``None``, ``unstable_at_start``, ``status``, ``wall_time_s``.
+        pk: the p-k check (as ``stability``) or ``None``.
+        notes: advice as data (equilibria that stopped, branches unstable from the start).
+        dofs: coordinates of the chain; wall_time_s: wall time of the analysis (s).
+        n_elements, n_dofs: size of the chain.
+        rust_time_s: wall time of the analysis on the Rust side (s).
+
+    Properties ``flutter_speed``, ``flutter_frequency``, ``divergence_speed`` (NaN when there is
+    none), ``speed`` ``(k,)``, ``tip`` ``(k, 3)`` and ``position`` ``(k, n + 1, 3)``.
+    """
+
+    _kind = "chain3d-flutter"
+
+    equilibria: List[Dict[str, Any]]
+    divergence: Optional[Dict[str, Any]]
+    equilibria_status: Dict[str, Any]
+    stability: Dict[str, Any]
+    pk: Optional[Dict[str, Any]]
+    notes: List[Dict[str, Any]]
+    dofs: int
+    wall_time_s: float
+    n_elements: int
+    n_dofs: int
+    rust_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def flutter_speed(self) -> float:
+        """The flutter speed of the eigen-analysis (m/s), NaN if none."""
+        return _speed(self.stability["flutter"])
+
+    @property
+    def flutter_frequency(self) -> float:
+        """The flutter frequency (rad/s), NaN if none."""
+        return _speed(self.stability["flutter"], "frequency")
+
+    @property
+    def divergence_speed(self) -> float:
+        """The divergence speed (m/s), NaN if none."""
+        return _speed(self.divergence)
+
+    @property
+    def speed(self) -> np.ndarray:
+        """The speeds of the equilibria (m/s), ``(k,)``."""
+        return np.array([e["speed"] for e in self.equilibria], dtype=float)
+
+    @property
+    def tip(self) -> np.ndarray:
+        """Tip displacements of the equilibria (m), ``(k, 3)``."""
+        return np.array([e["tip"] for e in self.equilibria], dtype=float).reshape(-1, 3)
+
+    @property
+    def position(self) -> np.ndarray:
+        """Node positions of the equilibria (m), ``(k, n + 1, 3)``."""
+        return np.array([e["shape"]["position"] for e in self.equilibria], dtype=float)
+
+    def __repr__(self) -> str:
+        return _summary(self, ["n_elements", "n_dofs"]) + f", flutter {self.flutter_speed:.4g} m/s"
+
+
+@dataclass(eq=False, repr=False)
+class Chain3dStudyResult(_Result):
+    """Flutter and divergence of the 3-D chain against a load level (``[flutter.study]``).
+
+    Attributes:
+        parameter: ``"tip-force"``, ``"gravity-factor"`` or ``"root-angle"``.
+        points: one dict per level: ``level``, ``tip`` (tip displacement at rest, m),
+            ``tip_twist`` (rad), ``tip_at_flutter`` (m, or ``None``), ``flutter`` (``speed``,
+            ``frequency``) or ``None``, ``divergence`` (``speed``) or ``None``, ``status``.
+        undeformed: the undeformed wing's flutter point (what the planar model gives at every
+            level), or ``None``.
+        status: whether every level ran (``status``, ``stop``, ``message``).
+        wall_time_s: wall time of the study (s).
+        n_elements, n_dofs: size of the chain.
+        rust_time_s: wall time of the analysis on the Rust side (s).
+
+    Properties ``level``, ``flutter_speed``, ``flutter_frequency``, ``divergence_speed``
+    ``(L,)`` (NaN where there is none) and ``tip`` ``(L, 3)``.
+    """
+
+    _kind = "chain3d-study"
+
+    parameter: str
+    points: List[Dict[str, Any]]
+    undeformed: Optional[Dict[str, Any]]
+    status: Dict[str, Any]
+    wall_time_s: float
+    n_elements: int
+    n_dofs: int
+    rust_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def level(self) -> np.ndarray:
+        """The levels, ``(L,)``."""
+        return np.array([p["level"] for p in self.points], dtype=float)
+
+    @property
+    def tip(self) -> np.ndarray:
+        """Tip displacements at rest (m), ``(L, 3)``."""
+        return np.array([p["tip"] for p in self.points], dtype=float).reshape(-1, 3)
+
+    @property
+    def flutter_speed(self) -> np.ndarray:
+        """Flutter speeds (m/s), ``(L,)``."""
+        return np.array([_speed(p["flutter"]) for p in self.points])
+
+    @property
+    def flutter_frequency(self) -> np.ndarray:
+        """Flutter frequencies (rad/s), ``(L,)``."""
+        return np.array([_speed(p["flutter"], "frequency") for p in self.points])
+
+    @property
+    def divergence_speed(self) -> np.ndarray:
+        """Divergence speeds (m/s), ``(L,)``."""
+        return np.array([_speed(p["divergence"]) for p in self.points])
+
+    def __repr__(self) -> str:
+        return _summary(self, ["parameter", "n_elements"]) + f" with {len(self.points)} levels"
