@@ -7,7 +7,6 @@
 //! `{"status": "error", "error": …, "exit_status": …}` when it failed before printing one.
 
 mod driver;
-mod formats;
 mod interrupt;
 mod output;
 mod plot;

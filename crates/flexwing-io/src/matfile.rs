@@ -76,11 +76,25 @@ fn variable(out: &mut Vec<u8>, name: &str, value: &Value) {
             }
             matrix(out, MX_CELL, 0, &[list.len(), 1], name, &body);
         }
+        Value::Array { shape, .. } => {
+            let mut body = Vec::new();
+            element(
+                &mut body,
+                MI_DOUBLE,
+                &doubles(value.column_major().into_iter()),
+            );
+            let dims: Vec<usize> = match shape.len() {
+                0 => vec![1, 1],
+                1 => vec![shape[0], 1],
+                _ => shape.clone(),
+            };
+            matrix(out, MX_DOUBLE, 0, &dims, name, &body);
+        }
     }
 }
 
 /// The bytes of a MAT-file holding `variables`, with the header text `description`.
-pub fn bytes(description: &str, variables: &[(&str, Value)]) -> Vec<u8> {
+pub fn bytes<N: AsRef<str>>(description: &str, variables: &[(N, Value)]) -> Vec<u8> {
     let mut out = Vec::new();
     let mut text = format!("MATLAB 5.0 MAT-file, {description}");
     text.truncate(116);
@@ -91,7 +105,7 @@ pub fn bytes(description: &str, variables: &[(&str, Value)]) -> Vec<u8> {
     out.extend_from_slice(&0x0100u16.to_le_bytes());
     out.extend_from_slice(b"IM");
     for (name, value) in variables {
-        variable(&mut out, name, value);
+        variable(&mut out, name.as_ref(), value);
     }
     out
 }
