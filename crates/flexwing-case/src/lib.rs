@@ -44,6 +44,7 @@ mod plan;
 mod property;
 mod spec;
 mod spec_aero;
+mod spec_output;
 mod statics;
 mod words;
 
@@ -65,6 +66,7 @@ pub use spec_aero::{
     AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustShapeSpec, GustSpec,
     LinearizeSpec, SpeedSweepSpec, StatesSpec,
 };
+pub use spec_output::{thinned_indices, NodeTimesSpec, OutputFormatSpec, OutputSpec};
 pub use words::{in_user_terms, keys, JARGON};
 
 /// Largest case file read (bytes): 16 MiB, a thousand times the largest example; tables of

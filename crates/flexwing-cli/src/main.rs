@@ -74,7 +74,7 @@ enum Command {
         progress bar appears on a terminal's stderr after a second. An integration that stops \
         keeps the output times reached; the exit status is then 1. See docs/cli.md."
     )]
-    Dynamic(CaseArgs),
+    Dynamic(DynamicArgs),
     /// Divergence and flutter speeds along a sweep in free-stream speed, full and reduced models.
     #[command(
         long_about = "Aeroelastic stability along [aero.sweep] for the full and reduced models of \
@@ -121,6 +121,16 @@ struct ModesArgs {
     count: Option<usize>,
 }
 
+/// Options of `flexwing dynamic`.
+#[derive(Debug, clap::Args)]
+struct DynamicArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+
+    #[command(flatten)]
+    output: driver::OutputArgs,
+}
+
 /// Options of `flexwing linearize`.
 #[derive(Debug, clap::Args)]
 struct LinearizeArgs {
@@ -164,10 +174,13 @@ fn main() -> ExitCode {
             a.json,
             driver::run(Analysis::Static, a, &Overrides::default()),
         ),
-        Command::Dynamic(a) => (
-            a.json,
-            driver::run(Analysis::Dynamic, a, &Overrides::default()),
-        ),
+        Command::Dynamic(a) => {
+            let o = Overrides {
+                output: Some(&a.output),
+                ..Overrides::default()
+            };
+            (a.case.json, driver::run(Analysis::Dynamic, &a.case, &o))
+        }
         Command::Flutter(a) => (
             a.json,
             driver::run(Analysis::Flutter, a, &Overrides::default()),

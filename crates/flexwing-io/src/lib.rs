@@ -5,6 +5,7 @@
 
 pub mod atomic;
 pub mod matfile;
+pub mod nodes;
 pub mod npz;
 
 pub use atomic::{write_atomic, write_bytes};
@@ -24,6 +25,8 @@ pub enum Value {
     Complex(Vec<(f64, f64)>),
     /// A list of strings (MATLAB: a cell column; NumPy: a unicode array).
     Strings(Vec<String>),
+    /// A column of whole numbers (indices).
+    Ints(Vec<i64>),
     /// A real array of any rank, row-major (C order: the last index varies fastest), as NumPy
     /// lays arrays out by default.
     Array {
@@ -60,6 +63,7 @@ impl Value {
         match self {
             Value::Matrix { data, .. } => data.clone(),
             Value::Complex(_) | Value::Strings(_) => Vec::new(),
+            Value::Ints(v) => v.iter().map(|&i| i as f64).collect(),
             Value::Array { shape, data } => {
                 // Row-major strides; walk the indices with the first varying fastest.
                 let mut out = Vec::with_capacity(data.len());

@@ -11,10 +11,12 @@ const MI_INT32: u32 = 5;
 const MI_UINT32: u32 = 6;
 const MI_DOUBLE: u32 = 9;
 const MI_MATRIX: u32 = 14;
+const MI_INT64: u32 = 12;
 const MI_UTF8: u32 = 16;
 const MX_CELL: u32 = 1;
 const MX_CHAR: u32 = 4;
 const MX_DOUBLE: u32 = 6;
+const MX_INT64: u32 = 14;
 const COMPLEX: u32 = 0x0800;
 
 /// A data element: tag (type, byte count) and data, padded to 8 bytes.
@@ -75,6 +77,12 @@ fn variable(out: &mut Vec<u8>, name: &str, value: &Value) {
                 string(&mut body, "", s);
             }
             matrix(out, MX_CELL, 0, &[list.len(), 1], name, &body);
+        }
+        Value::Ints(v) => {
+            let mut body = Vec::new();
+            let data: Vec<u8> = v.iter().flat_map(|i| i.to_le_bytes()).collect();
+            element(&mut body, MI_INT64, &data);
+            matrix(out, MX_INT64, 0, &[v.len(), 1], name, &body);
         }
         Value::Array { shape, .. } => {
             let mut body = Vec::new();

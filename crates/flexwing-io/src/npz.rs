@@ -70,6 +70,10 @@ fn array(value: &Value) -> Vec<u8> {
             }
             npy(&format!("<U{width}"), &[list.len()], &bytes)
         }
+        Value::Ints(v) => {
+            let bytes: Vec<u8> = v.iter().flat_map(|i| i.to_le_bytes()).collect();
+            npy("<i8", &[v.len()], &bytes)
+        }
         Value::Array { shape, data } => {
             let bytes: Vec<u8> = data.iter().flat_map(|v| v.to_le_bytes()).collect();
             npy_with("<f8", false, shape, &bytes)

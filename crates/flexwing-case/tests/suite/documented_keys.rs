@@ -17,7 +17,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/case-file.md");
     let text = std::fs::read_to_string(path).expect("docs/case-file.md");
     // The key tables of each section, in the order they appear.
-    let sections: [(&str, &[&str]); 16] = [
+    let sections: [(&str, &[&str]); 17] = [
         ("### Top level", &[""]),
         ("### `[beam]`", &["beam"]),
         ("### `[beam.section]`", &["beam.section"]),
@@ -34,6 +34,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
         ("### `[aero.sweep]`", &["aero.sweep"]),
         ("### `[flutter]`", &["flutter"]),
         ("### `[linearize]`", &["linearize"]),
+        ("### `[output]`", &["output"]),
     ];
     let mut tables = BTreeMap::new();
     let mut pending: Vec<&str> = Vec::new();
@@ -106,6 +107,8 @@ damping = { type = "none" }
 
 [dynamic.initial]
 type = "rest"
+
+[output]
 "#;
 
 /// BASE with every aeroelastic table (its structural plans are then refused: it is aeroelastic).
@@ -194,6 +197,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
                 "aero",
                 "flutter",
                 "linearize",
+                "output",
             ],
             "beam" => &["section"],
             "aero" => &["flight", "sweep"],
@@ -214,7 +218,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
         let documented: BTreeSet<String> = keys.keys().cloned().collect();
         assert_eq!(documented, schema, "keys of [{table}]");
     }
-    assert_eq!(docs.len(), 18, "{:?}", docs.keys());
+    assert_eq!(docs.len(), 19, "{:?}", docs.keys());
 }
 
 /// The default the code uses for each key whose documented default is a literal.
@@ -245,6 +249,17 @@ fn actual_defaults() -> BTreeMap<(&'static str, &'static str), String> {
         Calibration::Uniform => "uniform",
     };
     put("beam", "calibration", format!("\"{calibration}\""));
+    put(
+        "output",
+        "format",
+        format!("\"{}\"", case.output.format().name()),
+    );
+    put(
+        "output",
+        "node_times",
+        case.output.max_node_times().to_string(),
+    );
+    put("output", "vtk", case.output.vtk().to_string());
     // Point masses: no element has rotary inertia in bending.
     let point_masses = statics
         .model

@@ -33,7 +33,7 @@ use flexwing::model::{FullModel, Shape};
 use flexwing_case::Case;
 use serde::Serialize;
 
-pub use dynamic::snapshot_indices;
+pub use dynamic::plot_indices;
 
 use crate::output::short;
 use crate::plot::ModelShapes;
@@ -187,10 +187,10 @@ pub fn text(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
     match view {
         View::Modes(_, o) => modes::text(&mut s, o),
         View::Static(p, o) => statics::text(&mut s, p, o),
-        View::Dynamic(p, o) => dynamic::text(&mut s, p, o),
+        View::Dynamic(p, o) => dynamic::text(ctx, &mut s, p, o),
         View::AeroStatic(_, o) => aero_static::text(&mut s, o),
         View::Flutter(p, o) => flutter::text(&mut s, ctx, p, o),
-        View::AeroDynamic(_, o) => aero_dynamic::text(&mut s, o),
+        View::AeroDynamic(p, o) => aero_dynamic::text(ctx, &mut s, p, o),
         View::Linearize(p, o) => linearize::text(&mut s, p, o),
     }
     let _ = writeln!(s);

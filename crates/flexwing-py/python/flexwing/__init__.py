@@ -66,6 +66,7 @@ from ._aero_results import (
     FlutterRun,
     Stability,
 )
+from ._files import load_npz
 from ._linear import LinearizeResult, LinearModel
 from ._progress import tqdm_progress
 from ._results import (
@@ -105,6 +106,7 @@ __all__ = [
     "BatchItem",
     "Batch",
     "tqdm_progress",
+    "load_npz",
     "FlexwingError",
     "InputError",
     "CaseFileError",

@@ -441,3 +441,13 @@ def solve_many(
     (the interpreter released); ``progress``: ``callback(done, total)`` on the calling thread,
     ``done`` counting up. A raising callback or Ctrl-C stops the batch and raises with the
     items so far as ``result``."""
+
+def write_node_npz(
+    path: str,
+    fields: List[Tuple[str, str]],
+    histories: List[Tuple[str, npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.float64]]],
+) -> None:
+    """Write node histories to ``path`` (``.npz``, atomically) in the layout of ``flexwing
+    dynamic --format npz``: ``fields`` the (name, unit) pairs of the last axis; each history
+    (label, ``t`` ``(S,)``, ``index`` ``(S,)``, values ``(S, nodes, fields)``). Used by
+    ``DynamicResult.save_npz``."""

@@ -24,6 +24,7 @@ __all__ = [
 
 
 from ._base import _Result, _Run, _Runs, _summary
+from ._files import _NodeFiles
 
 
 @dataclass(eq=False, repr=False)
@@ -238,7 +239,7 @@ class DynamicRun(_Run):
 
 
 @dataclass(eq=False, repr=False)
-class DynamicResult(_Runs):
+class DynamicResult(_NodeFiles, _Runs):
     """What a dynamic analysis produced.
 
     Attributes:
