@@ -50,6 +50,18 @@ pub struct OutputArgs {
     /// `[output] node_times` [default: 201].
     #[arg(long, value_name = "N|all")]
     pub node_times: Option<String>,
+
+    #[command(flatten)]
+    pub vtk: VtkArgs,
+}
+
+/// `--vtk` of `flexwing modes`, `static` and `dynamic`.
+#[derive(Debug, Args)]
+pub struct VtkArgs {
+    /// Also write VTK XML files for ParaView into DIR/vtk (a .vtu per output time, load step or
+    /// mode, a .pvd per model); sets `[output] vtk = true`.
+    #[arg(long)]
+    pub vtk: bool,
 }
 
 impl OutputArgs {
@@ -156,6 +168,8 @@ fn status_text(incomplete: &[Entry]) -> String {
 pub struct Overrides<'a> {
     /// `--format`, `--node-times`: `[output]`.
     pub output: Option<&'a OutputArgs>,
+    /// `--vtk`: `[output] vtk`.
+    pub vtk: Option<&'a VtkArgs>,
     /// `--count`.
     pub count: Option<usize>,
     /// `--speed`: `aero.flight.speed`.
@@ -173,6 +187,10 @@ impl Overrides<'_> {
     fn apply(&self, case: &mut Case) -> Result<(), Failure> {
         if let Some(o) = self.output {
             o.apply(&mut case.output)?;
+        }
+        let vtk = self.vtk.or(self.output.map(|o| &o.vtk));
+        if vtk.is_some_and(|v| v.vtk) {
+            case.output.vtk = Some(true);
         }
         if self.count.is_some() {
             // `--count` wins over `[modes] count`.
@@ -234,6 +252,7 @@ pub fn run(analysis: Analysis, args: &CaseArgs, overrides: &Overrides) -> Result
         .clone()
         .unwrap_or_else(|| default_out_dir(&args.case));
     output::prepare_dir(&dir, render::previous_files(&plan), !modes).map_err(Failure::Run)?;
+    render::vtk::remove_previous(&dir).map_err(Failure::Run)?;
 
     // A bar of the simulated time for dynamic runs (and Ctrl-C polled by every analysis but
     // the modal one).

@@ -62,7 +62,7 @@ enum Command {
         status.txt; with --plot static_shapes.svg/.png. A model that fails to converge stops, \
         the others still run; the exit status is then 1. See docs/cli.md."
     )]
-    Static(CaseArgs),
+    Static(StaticArgs),
     /// Time histories of the full, simplified and reduced models under time-varying loads.
     #[command(
         long_about = "Non-linear dynamics of the full, simplified (gyroscopic term neglected) and \
@@ -119,6 +119,19 @@ struct ModesArgs {
     /// [default: min(10, n_dofs)].
     #[arg(long, short = 'n', value_name = "N")]
     count: Option<usize>,
+
+    #[command(flatten)]
+    vtk: driver::VtkArgs,
+}
+
+/// Options of `flexwing static`.
+#[derive(Debug, clap::Args)]
+struct StaticArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+
+    #[command(flatten)]
+    vtk: driver::VtkArgs,
 }
 
 /// Options of `flexwing dynamic`.
@@ -166,14 +179,18 @@ fn main() -> ExitCode {
         Command::Modes(a) => {
             let o = Overrides {
                 count: a.count,
+                vtk: Some(&a.vtk),
                 ..Overrides::default()
             };
             (a.case.json, driver::run(Analysis::Modes, &a.case, &o))
         }
-        Command::Static(a) => (
-            a.json,
-            driver::run(Analysis::Static, a, &Overrides::default()),
-        ),
+        Command::Static(a) => {
+            let o = Overrides {
+                vtk: Some(&a.vtk),
+                ..Overrides::default()
+            };
+            (a.case.json, driver::run(Analysis::Static, &a.case, &o))
+        }
         Command::Dynamic(a) => {
             let o = Overrides {
                 output: Some(&a.output),

@@ -7,6 +7,7 @@ pub mod atomic;
 pub mod matfile;
 pub mod nodes;
 pub mod npz;
+pub mod vtk;
 
 pub use atomic::{write_atomic, write_bytes};
 

@@ -3,11 +3,12 @@
 
 use std::path::PathBuf;
 
-use numpy::{PyReadonlyArray1, PyReadonlyArray3};
+use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3};
 use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 
 use flexwing_io::nodes::{self, NodeHistory};
+use flexwing_io::vtk;
 
 /// One model's history as Python passes it: label, `t` `(S,)`, `index` `(S,)`, values
 /// `(S, nodes, fields)`.
@@ -54,5 +55,60 @@ pub fn write_node_npz(
     }
     let vars = nodes::variables(&fields, &list);
     py.detach(|| flexwing_io::atomic::write_with(&path, |f| flexwing_io::npz::write(f, &vars)))
+        .map_err(|e| PyOSError::new_err(e.to_string()))
+}
+
+/// Write a planar chain's frames to `folder` as `STEM_0000.vtu`, … and `STEM.pvd`
+/// (`flexwing_io::vtk::write_series`); returns the `.pvd`'s path. Per frame `k`: `times[k]`,
+/// the nodes `x[k]`, `y[k]` (deformed positions; with `modes`, the nodal displacements of a
+/// mode shape drawn on the undeformed nodes), `twist[k]`; `stations` the undeformed nodes'
+/// spanwise positions.
+#[pyfunction]
+#[pyo3(signature = (folder, stem, times, x, y, twist, stations, modes = false))]
+#[allow(clippy::too_many_arguments)]
+pub fn write_planar_vtk(
+    py: Python<'_>,
+    folder: PathBuf,
+    stem: String,
+    times: PyReadonlyArray1<'_, f64>,
+    x: PyReadonlyArray2<'_, f64>,
+    y: PyReadonlyArray2<'_, f64>,
+    twist: PyReadonlyArray2<'_, f64>,
+    stations: PyReadonlyArray1<'_, f64>,
+    modes: bool,
+) -> PyResult<String> {
+    let (times, x, y, twist) = (
+        times.as_array(),
+        x.as_array(),
+        y.as_array(),
+        twist.as_array(),
+    );
+    let stations: Vec<f64> = stations.as_array().iter().copied().collect();
+    let shape = (times.len(), stations.len());
+    for (name, a) in [("x", &x), ("y", &y), ("twist", &twist)] {
+        if a.dim() != shape {
+            return Err(crate::errors::input(
+                py,
+                name,
+                &format!("shape {:?}, expected {shape:?} (times, nodes)", a.dim()),
+            ));
+        }
+    }
+    let reference = vtk::straight(&stations);
+    let row = |a: &numpy::ndarray::ArrayView2<f64>, k: usize| -> Vec<f64> {
+        a.row(k).iter().copied().collect()
+    };
+    let frames: Vec<vtk::Frame> = (0..times.len())
+        .map(|k| {
+            let (xk, yk, tk) = (row(&x, k), row(&y, k), row(&twist, k));
+            if modes {
+                vtk::planar_mode_frame(times[k], &xk, &yk, &tk, &reference)
+            } else {
+                vtk::planar_frame(times[k], &xk, &yk, &tk, &reference)
+            }
+        })
+        .collect();
+    py.detach(|| vtk::write_series(&folder, &stem, &frames))
+        .map(|p| p.to_string_lossy().into_owned())
         .map_err(|e| PyOSError::new_err(e.to_string()))
 }

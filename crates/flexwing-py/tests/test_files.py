@@ -5,6 +5,7 @@ of the same run (parsed here with the csv module) and with the run's arrays."""
 from __future__ import annotations
 
 import csv
+import pathlib
 import json
 import subprocess
 
@@ -98,3 +99,90 @@ def test_node_times_thin_the_snapshots_of_both_front_ends(cli, tmp_path):
     np.testing.assert_array_equal(back["full"]["y"][:, -1], full.tip_y[::5])
     every = case.replace({"output": {"node_times": "all"}}).dynamics().full
     assert every.snapshots["x"].shape == (201, 21)
+
+
+# --- VTK ------------------------------------------------------------------------------------
+
+import xml.etree.ElementTree as ET
+
+import meshio
+
+
+def pvd(path):
+    """(timestep, file) of a .pvd collection, parsed with the standard library's XML reader."""
+    root = ET.parse(path).getroot()
+    assert root.get("type") == "Collection"
+    return [(float(d.get("timestep")), d.get("file")) for d in root.iter("DataSet")]
+
+
+def check_frame(mesh, x, y, twist, reference_x, tol=0.0):
+    """A .vtu read by meshio: the nodes at (x, y, 0), lines between consecutive nodes, and the
+    point data `displacement` = (x, y, 0) − (station, 0, 0) and `twist`."""
+    n = len(x)
+    np.testing.assert_array_equal(mesh.points, np.column_stack([x, y, np.zeros(n)]))
+    assert [c.type for c in mesh.cells] == ["line"]
+    np.testing.assert_array_equal(mesh.cells[0].data, np.column_stack([np.arange(n - 1), np.arange(1, n)]))
+    d = mesh.point_data["displacement"]
+    np.testing.assert_allclose(d, np.column_stack([x - reference_x, y, np.zeros(n)]), rtol=0, atol=tol)
+    np.testing.assert_array_equal(mesh.point_data["twist"], twist)
+
+
+def test_dynamic_vtk_files_hold_the_run(cli, tmp_path):
+    """`flexwing dynamic --vtk`: per model a .pvd whose times are the snapshot times, one .vtu
+    per time with the nodes of the run (from the CLI's CSV) and the displacement from the
+    case's undeformed stations (20 equal elements of 1 m: i / 20, exact in binary only to
+    round-off, hence the 1e-15 m); Python's write_vtk of the same case writes the same frames
+    (its stations from the arc length: 1e-14 m, the round-off of 20 hypot sums)."""
+    run(cli, CASE, tmp_path / "cli", "--vtk")
+    ref = csv_nodes(tmp_path / "cli" / "dynamic_nodes.csv")
+    stations = np.arange(21) / 20.0
+    for label, (t, x, y, twist) in ref.items():
+        entries = pvd(tmp_path / "cli" / "vtk" / f"dynamic_{label}.pvd")
+        np.testing.assert_array_equal([e[0] for e in entries], t)
+        for k in (0, 100, 200):
+            mesh = meshio.read(tmp_path / "cli" / "vtk" / entries[k][1])
+            check_frame(mesh, x[k], y[k], twist[k], stations, tol=1e-15)
+    result = flexwing.Case.load(CASE).dynamics()
+    paths = result.write_vtk(tmp_path / "py")
+    assert [pathlib.Path(p).name for p in paths] == [f"dynamic_{r.label}.pvd" for r in result.runs]
+    for r in result.runs:
+        s = r.snapshots
+        entries = pvd(tmp_path / "py" / f"dynamic_{r.label}.pvd")
+        assert entries == pvd(tmp_path / "cli" / "vtk" / f"dynamic_{r.label}.pvd")
+        k = len(entries) - 1
+        check_frame(meshio.read(tmp_path / "py" / entries[k][1]), s["x"][k], s["y"][k],
+                    s["twist"][k], stations, tol=1e-14)
+
+
+def test_static_and_modes_vtk_files(cli, tmp_path):
+    """`flexwing static --vtk`: one frame per load step, timed by the sweep's increasing
+    scales; `flexwing modes --vtk`: one frame per mode at the undeformed nodes, the shape as
+    `displacement`; both against the Python results' arrays, and Python's write_vtk."""
+    case = example("paper_static.toml")
+    out = tmp_path / "static"
+    subprocess.run([str(cli), "static", str(case), "--out", str(out), "--vtk"], check=True,
+                   capture_output=True)
+    result = flexwing.Case.load(case).statics()
+    for r in result.runs:
+        entries = pvd(out / "vtk" / f"static_{r.label}.pvd")
+        np.testing.assert_array_equal([e[0] for e in entries], r.scale)
+        stations = np.linspace(0.0, 1.0, r.x.shape[1])
+        for k, (_, name) in enumerate(entries):
+            check_frame(meshio.read(out / "vtk" / name), r.x[k], r.y[k], r.twist[k], stations,
+                        tol=1e-15)
+    py = result.write_vtk(tmp_path / "py-static")
+    assert len(py) == len(result.runs)
+    out = tmp_path / "modes"
+    subprocess.run([str(cli), "modes", str(CASE), "--out", str(out), "--vtk"], check=True,
+                   capture_output=True)
+    m = flexwing.Case.load(CASE).modes()
+    entries = pvd(out / "vtk" / "modes.pvd")
+    assert [e[0] for e in entries] == list(m.mode.astype(float))
+    for k, (_, name) in enumerate(entries):
+        mesh = meshio.read(out / "vtk" / name)
+        n = len(m.x)
+        np.testing.assert_array_equal(mesh.points, np.column_stack([m.x, np.zeros(n), np.zeros(n)]))
+        np.testing.assert_array_equal(mesh.point_data["displacement"],
+                                      np.column_stack([m.dx[k], m.dy[k], np.zeros(n)]))
+        np.testing.assert_array_equal(mesh.point_data["twist"], m.twist[k])
+    assert pvd(m.write_vtk(tmp_path / "py-modes")) == entries

@@ -15,6 +15,7 @@ mod linearize;
 mod modes;
 mod statics;
 mod table;
+pub mod vtk;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -163,7 +164,7 @@ pub fn previous_files(plan: &Plan) -> &'static [&'static str] {
 /// Write the result files of `view` into `dir` (plots with `plot`); the paths in order.
 pub fn files(ctx: &Context, view: &View, dir: &Path, plot: bool) -> Result<Vec<PathBuf>> {
     crate::output::create_dir(dir)?;
-    match view {
+    let mut written = match view {
         View::Modes(p, o) => modes::files(ctx, p, o, dir, plot),
         View::Static(p, o) => statics::files(ctx, p, o, dir, plot),
         View::Dynamic(p, o) => dynamic::files(ctx, p, o, dir, plot),
@@ -171,7 +172,11 @@ pub fn files(ctx: &Context, view: &View, dir: &Path, plot: bool) -> Result<Vec<P
         View::Flutter(p, o) => flutter::files(ctx, p, o, dir, plot),
         View::AeroDynamic(p, o) => aero_dynamic::files(ctx, p, o, dir, plot),
         View::Linearize(p, o) => linearize::files(ctx, p, o, dir),
+    }?;
+    if ctx.case.output.vtk() {
+        written.extend(vtk::files(ctx, view, dir)?);
     }
+    Ok(written)
 }
 
 /// The text report: the header, the renderer's tables, the footer.

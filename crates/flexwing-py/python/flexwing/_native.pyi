@@ -451,3 +451,19 @@ def write_node_npz(
     dynamic --format npz``: ``fields`` the (name, unit) pairs of the last axis; each history
     (label, ``t`` ``(S,)``, ``index`` ``(S,)``, values ``(S, nodes, fields)``). Used by
     ``DynamicResult.save_npz``."""
+
+def write_planar_vtk(
+    folder: Union[str, os.PathLike[str]],
+    stem: str,
+    times: npt.NDArray[np.float64],
+    x: npt.NDArray[np.float64],
+    y: npt.NDArray[np.float64],
+    twist: npt.NDArray[np.float64],
+    stations: npt.NDArray[np.float64],
+    modes: bool = False,
+) -> str:
+    """Write a planar chain's frames to ``folder`` as ``STEM_0000.vtu``, … and ``STEM.pvd``
+    (VTK XML, ASCII; the CLI's writer) and return the ``.pvd``'s path. Per frame ``k``:
+    ``times[k]``, the nodes ``x[k]``, ``y[k]`` (m; with ``modes``, a mode's nodal
+    displacements drawn on the undeformed nodes), ``twist[k]`` (rad); ``stations`` the
+    undeformed nodes (m). Used by ``write_vtk``."""
