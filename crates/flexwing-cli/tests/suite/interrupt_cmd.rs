@@ -291,11 +291,17 @@ fn a_killed_run_leaves_no_file_that_looks_complete() {
                 continue;
             }
             let text = std::fs::read_to_string(&path).unwrap();
-            assert!(text.ends_with("</VTKFile>\n"), "{ms} ms: {name} is truncated");
+            assert!(
+                text.ends_with("</VTKFile>\n"),
+                "{ms} ms: {name} is truncated"
+            );
             if name.ends_with(".pvd") {
                 for file in text.split("file=\"").skip(1) {
                     let file = &file[..file.find('"').unwrap()];
-                    assert!(vtk.join(file).is_file(), "{ms} ms: {name} names a missing {file}");
+                    assert!(
+                        vtk.join(file).is_file(),
+                        "{ms} ms: {name} names a missing {file}"
+                    );
                 }
             }
         }
