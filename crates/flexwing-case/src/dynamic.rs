@@ -55,6 +55,9 @@ impl Case {
         plan.damping = equations.to_damping("dynamic")?;
         plan.initial = self.initial(d.initial.as_ref(), n_dofs)?;
         plan.load_names = self.load_names();
+        // The node histories of `[output] node_times` (every front end writes these).
+        plan.snapshots =
+            crate::thinned_indices(plan.output_times.len(), self.output.max_node_times());
         plan.validate("loads", "dynamic")?;
         Ok(plan)
     }

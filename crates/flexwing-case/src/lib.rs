@@ -46,6 +46,7 @@ mod property;
 mod spec;
 mod spec_aero;
 mod spec_chain3d;
+mod spec_output;
 mod statics;
 mod words;
 
@@ -68,6 +69,7 @@ pub use spec_aero::{
     GustShapeSpec, GustSpec, LinearizeSpec, SpeedSweepSpec, StatesSpec,
 };
 pub use spec_chain3d::{CouplingSpec, StructureSpec, StudyParameterSpec, StudySpec};
+pub use spec_output::{thinned_indices, NodeTimesSpec, OutputFormatSpec, OutputSpec};
 pub use words::{in_user_terms, keys, JARGON};
 
 /// Largest case file read (bytes): 16 MiB, a thousand times the largest example; tables of

@@ -37,6 +37,58 @@ pub struct CaseArgs {
     pub json: bool,
 }
 
+/// The output options of the commands that write node histories or VTK files; each overrides
+/// its `[output]` key (docs/case-file.md).
+#[derive(Debug, Args)]
+pub struct OutputArgs {
+    /// Format of the node histories: `csv` or `npz` (NumPy); overrides `[output] format`
+    /// [default: csv].
+    #[arg(long, value_name = "FORMAT", value_parser = ["csv", "npz"])]
+    pub format: Option<String>,
+
+    /// Most output times in the node histories, a whole number ≥ 1 or `all`; overrides
+    /// `[output] node_times` [default: 201].
+    #[arg(long, value_name = "N|all")]
+    pub node_times: Option<String>,
+
+    #[command(flatten)]
+    pub vtk: VtkArgs,
+}
+
+/// `--vtk` of `flexwing modes`, `static` and `dynamic`.
+#[derive(Debug, Args)]
+pub struct VtkArgs {
+    /// Also write VTK XML files for ParaView into DIR/vtk (a .vtu per output time, load step or
+    /// mode, a .pvd per model); sets `[output] vtk = true`.
+    #[arg(long)]
+    pub vtk: bool,
+}
+
+impl OutputArgs {
+    /// Change `output` as the options say.
+    fn apply(&self, output: &mut flexwing_case::OutputSpec) -> Result<(), Failure> {
+        use flexwing_case::{NodeTimesSpec, OutputFormatSpec};
+        if let Some(f) = &self.format {
+            output.format = Some(match f.as_str() {
+                "npz" => OutputFormatSpec::Npz,
+                _ => OutputFormatSpec::Csv,
+            });
+        }
+        if let Some(n) = &self.node_times {
+            output.node_times = Some(match (n.as_str(), n.parse::<usize>()) {
+                ("all", _) => NodeTimesSpec::All,
+                (_, Ok(k)) if k >= 1 => NodeTimesSpec::Most(k),
+                _ => {
+                    return Err(Failure::input(format!(
+                        "--node-times: expected a whole number ≥ 1 or \"all\", got {n:?}"
+                    )))
+                }
+            });
+        }
+        Ok(())
+    }
+}
+
 /// Why a command failed.
 #[derive(Debug)]
 pub enum Failure {
@@ -113,7 +165,11 @@ fn status_text(incomplete: &[Entry]) -> String {
 /// What a command's options change in its case: `flexwing modes --count`, `flexwing linearize
 /// --speed --inputs --outputs --states`.
 #[derive(Debug, Default)]
-pub struct Overrides {
+pub struct Overrides<'a> {
+    /// `--format`, `--node-times`: `[output]`.
+    pub output: Option<&'a OutputArgs>,
+    /// `--vtk`: `[output] vtk`.
+    pub vtk: Option<&'a VtkArgs>,
     /// `--count`.
     pub count: Option<usize>,
     /// `--speed`: `aero.flight.speed`.
@@ -126,9 +182,16 @@ pub struct Overrides {
     pub states: Option<String>,
 }
 
-impl Overrides {
+impl Overrides<'_> {
     /// Change `case` as the options say (into its keys, so that errors name them).
     fn apply(&self, case: &mut Case) -> Result<(), Failure> {
+        if let Some(o) = self.output {
+            o.apply(&mut case.output)?;
+        }
+        let vtk = self.vtk.or(self.output.map(|o| &o.vtk));
+        if vtk.is_some_and(|v| v.vtk) {
+            case.output.vtk = Some(true);
+        }
         if self.count.is_some() {
             // `--count` wins over `[modes] count`.
             case.modes.count = None;
@@ -177,7 +240,10 @@ pub fn run(analysis: Analysis, args: &CaseArgs, overrides: &Overrides) -> Result
             *p = ModesPlan::new(p.model.clone(), count, "--count")
                 .map_err(|e| Failure::input(format!("{name}: {e}")))?;
         }
-        Plan::Dynamic(p) => p.snapshots = render::snapshot_indices(p.output_times.len()),
+        // The node file's snapshots (`[output] node_times`, in the plan) and the plot's.
+        Plan::Dynamic(p) => p
+            .snapshots
+            .extend(render::plot_indices(p.output_times.len())),
         Plan::Chain3d(p) => {
             use flexwing::analysis::chain3d::Analysis3d;
             if let (Analysis3d::Modes { count: c }, Some(count)) = (&mut p.analysis, count) {
@@ -202,6 +268,7 @@ pub fn run(analysis: Analysis, args: &CaseArgs, overrides: &Overrides) -> Result
         .clone()
         .unwrap_or_else(|| default_out_dir(&args.case));
     output::prepare_dir(&dir, render::previous_files(&plan), !modes).map_err(Failure::Run)?;
+    render::vtk::remove_previous(&dir).map_err(Failure::Run)?;
 
     // A bar of the simulated time for dynamic runs (and Ctrl-C polled by every analysis but
     // the modal one).

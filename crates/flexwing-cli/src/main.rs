@@ -7,7 +7,6 @@
 //! `{"status": "error", "error": …, "exit_status": …}` when it failed before printing one.
 
 mod driver;
-mod formats;
 mod interrupt;
 mod output;
 mod plot;
@@ -63,7 +62,7 @@ enum Command {
         status.txt; with --plot static_shapes.svg/.png. A model that fails to converge stops, \
         the others still run; the exit status is then 1. See docs/cli.md."
     )]
-    Static(CaseArgs),
+    Static(StaticArgs),
     /// Time histories of the full, simplified and reduced models under time-varying loads.
     #[command(
         long_about = "Non-linear dynamics of the full, simplified (gyroscopic term neglected) and \
@@ -75,7 +74,7 @@ enum Command {
         progress bar appears on a terminal's stderr after a second. An integration that stops \
         keeps the output times reached; the exit status is then 1. See docs/cli.md."
     )]
-    Dynamic(CaseArgs),
+    Dynamic(DynamicArgs),
     /// Divergence and flutter speeds along a sweep in free-stream speed, full and reduced models.
     #[command(
         long_about = "Aeroelastic stability along [aero.sweep] for the full and reduced models of \
@@ -131,6 +130,29 @@ struct ModesArgs {
     /// [default: min(10, n_dofs)].
     #[arg(long, short = 'n', value_name = "N")]
     count: Option<usize>,
+
+    #[command(flatten)]
+    vtk: driver::VtkArgs,
+}
+
+/// Options of `flexwing static`.
+#[derive(Debug, clap::Args)]
+struct StaticArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+
+    #[command(flatten)]
+    vtk: driver::VtkArgs,
+}
+
+/// Options of `flexwing dynamic`.
+#[derive(Debug, clap::Args)]
+struct DynamicArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+
+    #[command(flatten)]
+    output: driver::OutputArgs,
 }
 
 /// Options of `flexwing linearize`.
@@ -168,18 +190,25 @@ fn main() -> ExitCode {
         Command::Modes(a) => {
             let o = Overrides {
                 count: a.count,
+                vtk: Some(&a.vtk),
                 ..Overrides::default()
             };
             (a.case.json, driver::run(Analysis::Modes, &a.case, &o))
         }
-        Command::Static(a) => (
-            a.json,
-            driver::run(Analysis::Static, a, &Overrides::default()),
-        ),
-        Command::Dynamic(a) => (
-            a.json,
-            driver::run(Analysis::Dynamic, a, &Overrides::default()),
-        ),
+        Command::Static(a) => {
+            let o = Overrides {
+                vtk: Some(&a.vtk),
+                ..Overrides::default()
+            };
+            (a.case.json, driver::run(Analysis::Static, &a.case, &o))
+        }
+        Command::Dynamic(a) => {
+            let o = Overrides {
+                output: Some(&a.output),
+                ..Overrides::default()
+            };
+            (a.case.json, driver::run(Analysis::Dynamic, &a.case, &o))
+        }
         Command::Flutter(a) => (
             a.json,
             driver::run(Analysis::Flutter, a, &Overrides::default()),

@@ -1,51 +1,22 @@
-//! Writing result files: atomically (temporary file in the same directory, then rename), so an
-//! interrupted run never leaves a half-written file that looks complete.
+//! Writing result files: atomically (`flexwing_io::atomic`: temporary file in the same directory,
+//! then rename), so an interrupted run never leaves a half-written file that looks complete; CSV
+//! without non-finite cells; the output folder.
 
-use std::fs::{self, File};
-use std::io::Write;
+use std::fs;
 use std::path::Path;
 
 use anyhow::{anyhow, Context, Result};
 
-/// Write `path` through `write`, which must create the file it is given. The temporary file lives
-/// in the same directory (so the rename is atomic) and keeps the extension of `path` (some
-/// encoders pick the format from it). On failure the temporary file is removed.
+/// Write `path` through `write`, which must create the file it is given, atomically
+/// (`flexwing_io::write_atomic`); the error names the file.
 pub fn write_atomic(path: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let stem = path
-        .file_stem()
-        .ok_or_else(|| anyhow!("{}: not a file name", path.display()))?
-        .to_string_lossy();
-    let mut tmp_name = format!(".{stem}.{}.tmp", std::process::id());
-    if let Some(ext) = path.extension() {
-        tmp_name.push('.');
-        tmp_name.push_str(&ext.to_string_lossy());
-    }
-    let tmp = dir.join(tmp_name);
-    let result = write(&tmp)
-        .and_then(|()| {
-            // Make the content durable before the rename makes it visible.
-            File::open(&tmp)
-                .and_then(|f| f.sync_all())
-                .map_err(Into::into)
-        })
-        .and_then(|()| fs::rename(&tmp, path).map_err(Into::into));
-    if result.is_err() {
-        let _ = fs::remove_file(&tmp);
-    }
-    result.with_context(|| format!("cannot write {}", path.display()))
+    flexwing_io::write_atomic(path, write)
+        .with_context(|| format!("cannot write {}", path.display()))
 }
 
 /// Write `bytes` to `path` atomically.
 pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<()> {
-    write_atomic(path, |tmp| {
-        let mut f = File::create(tmp)?;
-        f.write_all(bytes)?;
-        Ok(())
-    })
+    Ok(flexwing_io::write_bytes(path, bytes)?)
 }
 
 /// Serialize `rows` as CSV (header from the field names) and write it atomically to `path`.
@@ -162,27 +133,5 @@ mod tests {
         // The label "inf" is text, but nothing tells it from the number: it goes too; labels
         // are model names, never "inf".
         assert_eq!(String::from_utf8(text).unwrap(), "name,a,b\nx,1.5,\n,,\n");
-    }
-
-    #[test]
-    fn atomic_write_replaces_and_leaves_no_temporary() {
-        let dir = std::env::temp_dir().join(format!("flexwing-output-{}", std::process::id()));
-        fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("a.csv");
-        write_bytes(&path, b"old").unwrap();
-        write_bytes(&path, b"new").unwrap();
-        assert_eq!(fs::read(&path).unwrap(), b"new");
-        let failed = write_atomic(&path, |tmp| {
-            fs::write(tmp, b"half")?;
-            Err(anyhow!("interrupted"))
-        });
-        assert!(failed.is_err());
-        assert_eq!(fs::read(&path).unwrap(), b"new");
-        let names: Vec<_> = fs::read_dir(&dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name())
-            .collect();
-        assert_eq!(names.len(), 1, "{names:?}");
-        fs::remove_dir_all(&dir).unwrap();
     }
 }

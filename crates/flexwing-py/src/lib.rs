@@ -15,6 +15,7 @@
 //! | `arrays` | NumPy in (checked, converted, copied) and out |
 //! | `errors` | library errors into Python exceptions; panics caught at the boundary |
 //! | `values` | Python values into the case crate's serde types, errors naming the key path |
+//! | `files` | result files through the output crate (`flexwing-io`): `.npz` node histories, VTK |
 //! | `kwargs`, `progress` | keyword arguments checked by name; the progress callback |
 //!
 //! A new analysis of the library (a variant of `flexwing::analysis::Plan` and `Outcome`, built
@@ -30,6 +31,7 @@ mod case;
 mod convert;
 mod equations;
 mod errors;
+mod files;
 mod kwargs;
 mod model;
 mod progress;
@@ -77,6 +79,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<equations::PyStepper>()?;
     m.add_class::<aero_stepper::PyAeroStepper>()?;
     m.add_function(wrap_pyfunction!(batch::solve_many, m)?)?;
+    m.add_function(wrap_pyfunction!(files::write_node_npz, m)?)?;
+    m.add_function(wrap_pyfunction!(files::write_planar_vtk, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

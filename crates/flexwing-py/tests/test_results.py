@@ -46,7 +46,8 @@ def test_shapes(static_case, sine_case):
     assert d.t.shape == d.tip_y.shape == d.total.shape == (201,)
     assert d.t.dtype == np.float64
     np.testing.assert_allclose(d.total, d.kinetic + d.strain, rtol=1e-15)
-    assert d.snapshots["x"].shape == (0, n + 1)
+    # [output] node_times: every output time up to 201.
+    assert d.snapshots["x"].shape == (201, n + 1)
     m = sine_case.modes()
     assert m.dx.shape == (10, n + 1) and m.mode.dtype.kind == "i"
 
@@ -61,8 +62,7 @@ def test_to_dict_has_every_field(sine_case):
 
 
 def test_snapshots_at_chosen_output_times(sine_case):
-    """Snapshots are not a case-file key of [dynamic]; without them the dict is empty with the
-    right number of columns (tested above). The full model's final tip equals the last node of
+    """Snapshots follow [output] node_times (test_files.py). The full model's final tip equals the last node of
     the shape a FullModel computes from the same joint rotations (a static point's q)."""
     s = flexwing.Case.load(example("paper_tip_force.toml")).statics()
     full = s.full

@@ -17,7 +17,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/case-file.md");
     let text = std::fs::read_to_string(path).expect("docs/case-file.md");
     // The key tables of each section, in the order they appear.
-    let sections: [(&str, &[&str]); 18] = [
+    let sections: [(&str, &[&str]); 19] = [
         ("### Top level", &[""]),
         ("### `[beam]`", &["beam"]),
         ("### `[beam.section]`", &["beam.section"]),
@@ -36,6 +36,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
         ("### `[flutter]`", &["flutter"]),
         ("### `[flutter.study]`", &["flutter.study"]),
         ("### `[linearize]`", &["linearize"]),
+        ("### `[output]`", &["output"]),
     ];
     let mut tables = BTreeMap::new();
     let mut pending: Vec<&str> = Vec::new();
@@ -108,6 +109,8 @@ damping = { type = "none" }
 
 [dynamic.initial]
 type = "rest"
+
+[output]
 "#;
 
 /// BASE with every aeroelastic table (its structural plans are then refused: it is aeroelastic).
@@ -204,6 +207,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
                 "aero",
                 "flutter",
                 "linearize",
+                "output",
             ],
             "beam" => &["section"],
             "beam.section" => &["coupling"],
@@ -226,7 +230,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
         let documented: BTreeSet<String> = keys.keys().cloned().collect();
         assert_eq!(documented, schema, "keys of [{table}]");
     }
-    assert_eq!(docs.len(), 20, "{:?}", docs.keys());
+    assert_eq!(docs.len(), 21, "{:?}", docs.keys());
 }
 
 /// The default the code uses for each key whose documented default is a literal.
@@ -268,6 +272,17 @@ fn actual_defaults() -> BTreeMap<(&'static str, &'static str), String> {
         "divergence",
         study_divergence().to_string(),
     );
+    put(
+        "output",
+        "format",
+        format!("\"{}\"", case.output.format().name()),
+    );
+    put(
+        "output",
+        "node_times",
+        case.output.max_node_times().to_string(),
+    );
+    put("output", "vtk", case.output.vtk().to_string());
     // Point masses: no element has rotary inertia in bending.
     let point_masses = statics
         .model

@@ -1,7 +1,8 @@
 //! `flexwing dynamic` on a case with `[aero]`: the aeroelastic response of every model (a gust,
 //! changes of speed or root angle); `dynamic_aero.csv` (tip, twist, root bending moment, lift,
 //! speed, energies, the work of the loads, the dissipated energy, the energy balance per output
-//! time), `dynamic_summary.csv` and the tip-history plot. Non-finite numbers (none expected) are
+//! time), `dynamic_nodes.csv` or `.npz` (as `flexwing dynamic`'s), `dynamic_summary.csv` and the
+//! tip-history plot. Non-finite numbers (none expected) are
 //! written as empty fields (CSV) or `null` (JSON).
 
 use std::fmt::Write as _;
@@ -14,13 +15,15 @@ use flexwing::analysis::aero::response::{
 use flexwing::analysis::dynamics::EnergyAudit;
 use serde::Serialize;
 
-use super::dynamic::{history, SummaryRow, Tip};
+use super::dynamic::{history, write_nodes, NodeOutput, SummaryRow, Tip};
 use super::{finite, Context};
 use crate::output;
 use crate::plot::{self, HistoryPlot};
 
 pub const FILES: &[&str] = &[
     "dynamic_aero.csv",
+    "dynamic_nodes.csv",
+    "dynamic_nodes.npz",
     "dynamic_summary.csv",
     "dynamic_tip.svg",
     "dynamic_tip.png",
@@ -96,9 +99,16 @@ pub fn files(
     let runs = &outcome.runs;
     let tip = dir.join("dynamic_aero.csv");
     output::write_csv(&tip, runs.iter().flat_map(samples))?;
+    let nodes = write_nodes(
+        &ctx.case.output,
+        plan.structure.output_times.len(),
+        runs.iter()
+            .map(|r| (r.kind.label(), r.snapshots.as_slice())),
+        dir,
+    )?;
     let sum = dir.join("dynamic_summary.csv");
     output::write_csv(&sum, runs.iter().map(|r| summary(ctx, r)))?;
-    let mut files = vec![tip, sum];
+    let mut files = vec![tip, nodes, sum];
     if with_plot {
         let s = &plan.structure;
         let plot = HistoryPlot {
@@ -131,7 +141,9 @@ fn peak(r: &AeroDynamicRun, f: impl Fn(&AeroSample) -> f64) -> String {
         )
 }
 
-pub fn text(s: &mut String, outcome: &AeroDynamicOutcome) {
+pub fn text(ctx: &Context, s: &mut String, plan: &AeroDynamicPlan, outcome: &AeroDynamicOutcome) {
+    let times = plan.structure.output_times.len();
+    let _ = writeln!(s, "{}", NodeOutput::of(&ctx.case.output, times).line());
     let _ = writeln!(s);
     let w = super::label_width(outcome.runs.iter().map(|r| &r.kind));
     // The columns after the model's label and their widths; the status last.
@@ -200,6 +212,7 @@ pub struct Json {
     /// The gust's penetration (`uniform`, `kussner`), absent without a gust.
     #[serde(skip_serializing_if = "Option::is_none")]
     penetration: Option<&'static str>,
+    node_output: NodeOutput,
     models: Vec<JsonModel>,
 }
 
@@ -215,6 +228,7 @@ pub fn json(ctx: &Context, plan: &AeroDynamicPlan, outcome: &AeroDynamicOutcome)
         model: super::model_line(&plan.structure.model),
         aerodynamics: super::aero_line(plan.aero.aerodynamics, plan.aero.density),
         penetration: plan.flight.gust.as_ref().map(|g| g.penetration.name()),
+        node_output: NodeOutput::of(&ctx.case.output, plan.structure.output_times.len()),
         models: outcome
             .runs
             .iter()

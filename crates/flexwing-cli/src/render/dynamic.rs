@@ -8,11 +8,13 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use flexwing::analysis::dynamics::{
     gyroscopic_name, Comparison, DynamicOutcome, DynamicPlan, DynamicRun, EnergyAudit, Initial,
-    Sample,
+    Sample, Snapshot,
 };
 use flexwing::analysis::Status;
 use flexwing::solve::integrate::{IntegratorStats, Method};
 use flexwing::solve::{Damping, Gyroscopic, TimeFunction};
+use flexwing_case::{OutputFormatSpec, OutputSpec};
+use flexwing_io::nodes::{self, NodeHistory};
 use serde::Serialize;
 
 use super::{polyline, table, Context, Fields};
@@ -22,6 +24,7 @@ use crate::plot::{self, HistoryPlot, HistorySeries, ModelShapes, ShapePlot};
 pub const FILES: &[&str] = &[
     "dynamic_tip.csv",
     "dynamic_nodes.csv",
+    "dynamic_nodes.npz",
     "dynamic_summary.csv",
     "dynamic_tip.svg",
     "dynamic_tip.png",
@@ -29,19 +32,125 @@ pub const FILES: &[&str] = &[
     "dynamic_snapshots.png",
 ];
 
-/// Most node snapshots per model in `dynamic_nodes.csv`: with more output times, every k-th is
-/// written.
-pub const MAX_NODE_SNAPSHOTS: usize = 201;
 /// Number of intervals between the snapshots of the snapshot plot (so 11 shapes).
 pub const PLOT_SNAPSHOT_INTERVALS: usize = 10;
 
 const MISSING: &str = "-";
 
-/// Indices of the output times written to `dynamic_nodes.csv`: all of them up to
-/// [`MAX_NODE_SNAPSHOTS`], else every k-th from the first with `k = ⌈n / MAX⌉`.
-pub fn node_indices(n: usize) -> Vec<usize> {
-    let k = n.div_ceil(MAX_NODE_SNAPSHOTS).max(1);
-    (0..n).step_by(k).collect()
+/// Indices of the output times written to the node file (`[output] node_times`): all of them
+/// up to its value, else every k-th from the first (`flexwing_case::thinned_indices`).
+pub fn node_indices(output: &OutputSpec, n: usize) -> Vec<usize> {
+    flexwing_case::thinned_indices(n, output.max_node_times())
+}
+
+/// What the node file holds: its format and which output times (the summary and the JSON say
+/// when it was thinned).
+#[derive(Serialize)]
+pub struct NodeOutput {
+    /// `csv` or `npz`.
+    pub format: &'static str,
+    /// Output times written per model.
+    pub times: usize,
+    /// Output times of the run.
+    pub of: usize,
+    /// Every `every`-th output time is written (1: all of them).
+    pub every: usize,
+}
+
+impl NodeOutput {
+    pub fn of(output: &OutputSpec, n: usize) -> Self {
+        let written = node_indices(output, n);
+        Self {
+            format: output.format().name(),
+            times: written.len(),
+            of: n,
+            every: written.get(1).copied().unwrap_or(1),
+        }
+    }
+
+    /// The summary's line.
+    pub fn line(&self) -> String {
+        let file = format!("dynamic_nodes.{}", self.format);
+        if self.every <= 1 {
+            format!("node output: {file}, every output time ({})", self.of)
+        } else {
+            format!(
+                "node output: {file}, every {}th of {} output times ({} written; [output] \
+                 node_times = \"all\" or --node-times all writes every one)",
+                self.every, self.of, self.times
+            )
+        }
+    }
+}
+
+/// The node histories of `runs` at the output times `written`, for `.npz`.
+pub fn node_histories<'a>(
+    runs: impl Iterator<Item = (String, &'a [Snapshot])>,
+    written: &[usize],
+) -> Vec<NodeHistory> {
+    runs.map(|(label, shots)| {
+        let kept: Vec<&Snapshot> = shots
+            .iter()
+            .filter(|s| written.binary_search(&s.index).is_ok())
+            .collect();
+        let nodes = kept.first().map_or(0, |s| s.shape.x.len());
+        let mut values = Vec::with_capacity(kept.len() * nodes * 3);
+        for s in &kept {
+            for i in 0..nodes {
+                values.extend([s.shape.x[i], s.shape.y[i], s.shape.twist[i]]);
+            }
+        }
+        NodeHistory {
+            label,
+            t: kept.iter().map(|s| s.t).collect(),
+            index: kept.iter().map(|s| s.index as i64).collect(),
+            nodes,
+            values,
+        }
+    })
+    .collect()
+}
+
+/// Write the node file of `runs` (CSV or `.npz`, `[output] format`) into `dir`.
+pub fn write_nodes<'a>(
+    output: &OutputSpec,
+    n_times: usize,
+    runs: impl Iterator<Item = (String, &'a [Snapshot])> + Clone,
+    dir: &Path,
+) -> Result<PathBuf> {
+    let written = node_indices(output, n_times);
+    match output.format() {
+        OutputFormatSpec::Csv => {
+            let path = dir.join("dynamic_nodes.csv");
+            output::write_csv(
+                &path,
+                runs.flat_map(|(label, shots)| {
+                    let written = &written;
+                    shots
+                        .iter()
+                        .filter(move |s| written.binary_search(&s.index).is_ok())
+                        .flat_map(move |s| {
+                            let label = label.clone();
+                            (0..s.shape.x.len()).map(move |i| NodeRow {
+                                model: label.clone(),
+                                t_s: s.t,
+                                node: i,
+                                x_m: s.shape.x[i],
+                                y_m: s.shape.y[i],
+                                twist_rad: s.shape.twist[i],
+                            })
+                        })
+                }),
+            )?;
+            Ok(path)
+        }
+        OutputFormatSpec::Npz => {
+            let path = dir.join("dynamic_nodes.npz");
+            let vars = nodes::variables(&nodes::PLANAR, &node_histories(runs, &written));
+            flexwing_io::atomic::write_with(&path, |f| flexwing_io::npz::write(f, &vars))?;
+            Ok(path)
+        }
+    }
 }
 
 /// Indices of about [`PLOT_SNAPSHOT_INTERVALS`] + 1 evenly spaced output times, first and last
@@ -55,11 +164,6 @@ pub fn plot_indices(n: usize) -> Vec<usize> {
         .collect();
     v.dedup();
     v
-}
-
-/// The snapshots a run of `n` output times records: those of the nodes file and of the plot.
-pub fn snapshot_indices(n: usize) -> Vec<usize> {
-    node_indices(n).into_iter().chain(plot_indices(n)).collect()
 }
 
 #[derive(Serialize)]
@@ -183,25 +287,12 @@ pub fn files(
             })
         }),
     )?;
-    let written = node_indices(plan.output_times.len());
-    let nodes = dir.join("dynamic_nodes.csv");
-    output::write_csv(
-        &nodes,
-        runs.iter().flat_map(|r| {
-            r.snapshots
-                .iter()
-                .filter(|s| written.binary_search(&s.index).is_ok())
-                .flat_map(move |s| {
-                    (0..s.shape.x.len()).map(move |i| NodeRow {
-                        model: r.kind.label(),
-                        t_s: s.t,
-                        node: i,
-                        x_m: s.shape.x[i],
-                        y_m: s.shape.y[i],
-                        twist_rad: s.shape.twist[i],
-                    })
-                })
-        }),
+    let nodes = write_nodes(
+        &ctx.case.output,
+        plan.output_times.len(),
+        runs.iter()
+            .map(|r| (r.kind.label(), r.snapshots.as_slice())),
+        dir,
     )?;
     let summary = dir.join("dynamic_summary.csv");
     output::write_csv(
@@ -387,7 +478,7 @@ fn tolerances_line(plan: &DynamicPlan) -> String {
     s
 }
 
-pub fn text(s: &mut String, plan: &DynamicPlan, outcome: &DynamicOutcome) {
+pub fn text(ctx: &Context, s: &mut String, plan: &DynamicPlan, outcome: &DynamicOutcome) {
     let initial = match &plan.initial {
         Initial::Static { loads } => loads.clone(),
         _ => Vec::new(),
@@ -427,6 +518,11 @@ pub fn text(s: &mut String, plan: &DynamicPlan, outcome: &DynamicOutcome) {
     );
     let _ = writeln!(s, "damping: {}", damping_line(&plan.damping));
     let _ = writeln!(s, "tolerances: {}", tolerances_line(plan));
+    let _ = writeln!(
+        s,
+        "{}",
+        NodeOutput::of(&ctx.case.output, times.len()).line()
+    );
     let _ = writeln!(s);
     s.push_str(&table::rows(
         &outcome
@@ -517,6 +613,7 @@ pub struct Json<'a> {
     n_elements: usize,
     has_torsion: bool,
     end_time_s: f64,
+    node_output: NodeOutput,
     models: Vec<JsonModel<'a>>,
 }
 
@@ -579,6 +676,7 @@ pub fn json<'a>(ctx: &Context, plan: &DynamicPlan, outcome: &'a DynamicOutcome) 
         n_elements: plan.model.n_elements(),
         has_torsion: plan.model.has_torsion(),
         end_time_s: plan.end_time,
+        node_output: NodeOutput::of(&ctx.case.output, plan.output_times.len()),
         models: outcome.runs.iter().map(model).collect(),
     }
 }
@@ -589,16 +687,24 @@ mod tests {
 
     #[test]
     fn node_snapshots_are_capped() {
-        assert_eq!(node_indices(5), [0, 1, 2, 3, 4]);
-        assert_eq!(node_indices(201).len(), 201);
-        let v = node_indices(202);
+        let o = OutputSpec::default();
+        let max = OutputSpec::DEFAULT_NODE_TIMES;
+        assert_eq!(node_indices(&o, 5), [0, 1, 2, 3, 4]);
+        assert_eq!(node_indices(&o, 201).len(), 201);
+        let v = node_indices(&o, 202);
         assert_eq!(v[1], 2);
-        assert!(v.len() <= MAX_NODE_SNAPSHOTS);
-        let v = node_indices(100_000);
+        assert!(v.len() <= max);
+        let v = node_indices(&o, 100_000);
+        assert!(v.len() <= max && v.len() > 190, "{}", v.len());
+        let all = OutputSpec {
+            node_times: Some(flexwing_case::NodeTimesSpec::All),
+            ..OutputSpec::default()
+        };
+        assert_eq!(node_indices(&all, 100_000).len(), 100_000);
+        let line = NodeOutput::of(&o, 2001).line();
         assert!(
-            v.len() <= MAX_NODE_SNAPSHOTS && v.len() > 190,
-            "{}",
-            v.len()
+            line.contains("every 10th of 2001 output times (201 written"),
+            "{line}"
         );
     }
 

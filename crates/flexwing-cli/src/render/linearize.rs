@@ -14,8 +14,8 @@ use flexwing::solve::aeroelastic::{Signal, StateSpace};
 use serde::Serialize;
 
 use super::{finite, Context};
-use crate::formats::{matfile, npz, Value};
 use crate::output;
+use flexwing_io::{matfile, npz, Value};
 
 pub const FILES: &[&str] = &["linear_summary.csv", "linear_poles.csv"];
 

@@ -16,6 +16,7 @@ mod linearize;
 mod modes;
 mod statics;
 mod table;
+pub mod vtk;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -35,7 +36,7 @@ use flexwing::model::{FullModel, Shape};
 use flexwing_case::Case;
 use serde::Serialize;
 
-pub use dynamic::snapshot_indices;
+pub use dynamic::plot_indices;
 
 use crate::output::short;
 use crate::plot::ModelShapes;
@@ -172,7 +173,7 @@ pub fn previous_files(plan: &Plan) -> &'static [&'static str] {
 /// Write the result files of `view` into `dir` (plots with `plot`); the paths in order.
 pub fn files(ctx: &Context, view: &View, dir: &Path, plot: bool) -> Result<Vec<PathBuf>> {
     crate::output::create_dir(dir)?;
-    match view {
+    let mut written = match view {
         View::Modes(p, o) => modes::files(ctx, p, o, dir, plot),
         View::Static(p, o) => statics::files(ctx, p, o, dir, plot),
         View::Dynamic(p, o) => dynamic::files(ctx, p, o, dir, plot),
@@ -181,7 +182,11 @@ pub fn files(ctx: &Context, view: &View, dir: &Path, plot: bool) -> Result<Vec<P
         View::AeroDynamic(p, o) => aero_dynamic::files(ctx, p, o, dir, plot),
         View::Linearize(p, o) => linearize::files(ctx, p, o, dir),
         View::Chain3d(p, o) => chain3d::files(ctx, p, o, dir, plot),
+    }?;
+    if ctx.case.output.vtk() {
+        written.extend(vtk::files(ctx, view, dir)?);
     }
+    Ok(written)
 }
 
 /// The text report: the header, the renderer's tables, the footer.
@@ -197,10 +202,10 @@ pub fn text(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
     match view {
         View::Modes(_, o) => modes::text(&mut s, o),
         View::Static(p, o) => statics::text(&mut s, p, o),
-        View::Dynamic(p, o) => dynamic::text(&mut s, p, o),
+        View::Dynamic(p, o) => dynamic::text(ctx, &mut s, p, o),
         View::AeroStatic(_, o) => aero_static::text(&mut s, o),
         View::Flutter(p, o) => flutter::text(&mut s, ctx, p, o),
-        View::AeroDynamic(_, o) => aero_dynamic::text(&mut s, o),
+        View::AeroDynamic(p, o) => aero_dynamic::text(ctx, &mut s, p, o),
         View::Linearize(p, o) => linearize::text(&mut s, p, o),
         View::Chain3d(_, o) => chain3d::text(&mut s, o),
     }

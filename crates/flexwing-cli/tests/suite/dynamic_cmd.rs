@@ -695,6 +695,73 @@ fn nodes_file_keeps_at_most_201_snapshots() {
     );
 }
 
+/// `--node-times` (over `[output] node_times`) sets how many output times the node file keeps;
+/// the text and the JSON say what was written; `--format npz` writes `.npz` instead of the CSV
+/// (its content is checked against the CSV with NumPy: crates/flexwing-py/tests/test_files.py).
+#[test]
+fn node_times_and_format_options() {
+    let dir = TempDir::new("node-times");
+    // 401 output times.
+    let case = dir.write(
+        "case.toml",
+        &edit("output_step = 0.01", "output_step = 0.0005"),
+    );
+    let (o, out) = run_dynamic(&dir, &case, &["--node-times", "50"]);
+    assert_success(&o);
+    let text = stdout(&o);
+    // k = ⌈401 / 50⌉ = 9: indices 0, 9, …, 396, 45 of them.
+    assert!(
+        text.contains("node output: dynamic_nodes.csv, every 9th of 401 output times (45 written"),
+        "{text}"
+    );
+    let (_, rows) = read_csv(&out.join("dynamic_nodes.csv"));
+    assert_eq!(rows.len(), 45 * 5);
+    // The second snapshot is the tenth output time, 9 × 0.0005 s (to round-off: k · step).
+    let t: f64 = rows[5][1].parse().unwrap();
+    assert!((t - 0.0045).abs() < 1e-15, "{t}");
+    let (o, out) = run_dynamic(&dir, &case, &["--node-times", "all", "--json"]);
+    assert_success(&o);
+    let doc = json(&o);
+    assert_eq!(doc["node_output"]["every"], 1);
+    assert_eq!(doc["node_output"]["times"], 401);
+    let (_, rows) = read_csv(&out.join("dynamic_nodes.csv"));
+    assert_eq!(rows.len(), 401 * 5);
+    // The case key, and the format: a previous run's CSV is removed, the .npz written.
+    let keyed = dir.write(
+        "keyed.toml",
+        &format!(
+            "{}\n[output]\nformat = \"npz\"\nnode_times = 3\n",
+            edit("output_step = 0.01", "output_step = 0.0005")
+        ),
+    );
+    let (o, out) = run_dynamic(&dir, &keyed, &["--json"]);
+    assert_success(&o);
+    let doc = json(&o);
+    assert_eq!(doc["node_output"]["format"], "npz");
+    assert_eq!(doc["node_output"]["times"], 3);
+    assert!(out.join("dynamic_nodes.npz").is_file());
+    assert!(!out.join("dynamic_nodes.csv").exists());
+    // Bad values name the option or the key.
+    for (args, expected) in [
+        (
+            &["--node-times", "0"][..],
+            "--node-times: expected a whole number ≥ 1",
+        ),
+        (&["--format", "parquet"][..], "--format"),
+    ] {
+        let (o, _) = run_dynamic(&dir, &case, args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        assert!(stderr(&o).contains(expected), "{}", stderr(&o));
+    }
+    let bad = dir.write(
+        "bad.toml",
+        &format!("{}\n[output]\nnode_times = 0\n", edit("", "")),
+    );
+    let (o, _) = run_dynamic(&dir, &bad, &[]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("output.node_times"), "{}", stderr(&o));
+}
+
 #[test]
 fn default_output_directory_and_json_only_on_stdout() {
     let dir = TempDir::new("dynamic-default-out");

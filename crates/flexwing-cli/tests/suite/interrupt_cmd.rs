@@ -215,3 +215,95 @@ fn ctrl_c_and_kill_stop_a_static_aeroelastic_sweep_and_keep_its_points() {
         assert!(rows > 1 && rows < 20_000, "{signal}: {rows} rows");
     }
 }
+
+/// A dynamic run whose output is the bulk of its time: 2000 elements, 201 output times, the
+/// node file as `.npz` and 202 VTK files (about 2.4 s in all on the shared machine, of which
+/// 0.4 s CPU: the rest is writing and syncing 90 MB).
+const WRITING: &str = r#"
+[beam]
+length = 1.0
+elements = 2000
+calibration = "tip-load"
+element_inertia = "bar"
+
+[beam.section]
+EI = 50.0
+mass_per_length = 0.2
+
+[[loads]]
+name = "F"
+type = "point-force"
+node = 2000
+direction = "dead"
+fy = 10.0
+time = { type = "sine", omega = 20.0, phase = 0.0 }
+
+[dynamic]
+end_time = 0.2
+output_step = 0.001
+integrator = "radau"
+rtol = 1e-3
+atol = 1e-5
+
+[output]
+format = "npz"
+vtk = true
+"#;
+
+/// Killed (SIGKILL: no handler runs) at any moment, a run never leaves a file that looks
+/// complete: `status.txt` says `running` unless the run ended; a `.npz` under its own name is
+/// a whole zip archive (it ends with the end-of-central-directory record); every `.vtu` ends
+/// with its closing tag; a `.pvd` exists only with every file it names. Half-written files are
+/// dot-named temporaries (`.NAME.PID.tmp.EXT`). Kill times spread over the computation and
+/// the writing.
+#[test]
+fn a_killed_run_leaves_no_file_that_looks_complete() {
+    let dir = TempDir::new("killed-writes");
+    let case = dir.write("case.toml", WRITING);
+    for ms in [300, 700, 1100, 1500, 1900, 2400] {
+        let out = dir.path().join(format!("out-{ms}"));
+        let args = [
+            "dynamic",
+            case.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        let (o, _) = interrupted_run(&args, "-KILL", Duration::from_millis(ms));
+        let status = std::fs::read_to_string(out.join("status.txt")).unwrap_or_default();
+        let finished = o.status.success();
+        assert!(
+            status == "running\n" || (finished && status == "complete\n"),
+            "{ms} ms: status {status:?}, exit {:?}",
+            o.status
+        );
+        let npz = out.join("dynamic_nodes.npz");
+        if let Ok(bytes) = std::fs::read(&npz) {
+            // End of central directory: signature, then 18 bytes (no archive comment).
+            let tail = &bytes[bytes.len().saturating_sub(22)..];
+            assert_eq!(&tail[..4], b"PK\x05\x06", "{ms} ms: a truncated .npz");
+        }
+        let vtk = out.join("vtk");
+        for entry in std::fs::read_dir(&vtk).into_iter().flatten() {
+            let path = entry.unwrap().path();
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            if name.starts_with('.') {
+                assert!(name.contains(".tmp."), "{ms} ms: {name}");
+                continue;
+            }
+            let text = std::fs::read_to_string(&path).unwrap();
+            assert!(
+                text.ends_with("</VTKFile>\n"),
+                "{ms} ms: {name} is truncated"
+            );
+            if name.ends_with(".pvd") {
+                for file in text.split("file=\"").skip(1) {
+                    let file = &file[..file.find('"').unwrap()];
+                    assert!(
+                        vtk.join(file).is_file(),
+                        "{ms} ms: {name} names a missing {file}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -72,6 +72,7 @@ from ._chain3d_results import (
     Chain3dStaticResult,
     Chain3dStudyResult,
 )
+from ._files import load_npz
 from ._linear import LinearizeResult, LinearModel
 from ._progress import tqdm_progress
 from ._results import (
@@ -115,6 +116,7 @@ __all__ = [
     "BatchItem",
     "Batch",
     "tqdm_progress",
+    "load_npz",
     "FlexwingError",
     "InputError",
     "CaseFileError",

@@ -18,6 +18,7 @@ from typing import Any, Dict, List, Optional
 import numpy as np
 
 from ._base import _Result, _Run, _Runs, _summary
+from ._files import _NodeFiles
 
 __all__ = [
     "AeroStaticRun",
@@ -358,7 +359,7 @@ class AeroDynamicRun(_Run):
 
 
 @dataclass(eq=False, repr=False)
-class AeroDynamicResult(_Runs):
+class AeroDynamicResult(_NodeFiles, _Runs):
     """What an aeroelastic response produced (``Case.dynamics()`` on a case with ``[aero]``).
 
     Attributes:

@@ -458,3 +458,29 @@ def solve_many(
     (the interpreter released); ``progress``: ``callback(done, total)`` on the calling thread,
     ``done`` counting up. A raising callback or Ctrl-C stops the batch and raises with the
     items so far as ``result``."""
+
+def write_node_npz(
+    path: str,
+    fields: List[Tuple[str, str]],
+    histories: List[Tuple[str, npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.float64]]],
+) -> None:
+    """Write node histories to ``path`` (``.npz``, atomically) in the layout of ``flexwing
+    dynamic --format npz``: ``fields`` the (name, unit) pairs of the last axis; each history
+    (label, ``t`` ``(S,)``, ``index`` ``(S,)``, values ``(S, nodes, fields)``). Used by
+    ``DynamicResult.save_npz``."""
+
+def write_planar_vtk(
+    folder: Union[str, os.PathLike[str]],
+    stem: str,
+    times: npt.NDArray[np.float64],
+    x: npt.NDArray[np.float64],
+    y: npt.NDArray[np.float64],
+    twist: npt.NDArray[np.float64],
+    stations: npt.NDArray[np.float64],
+    modes: bool = False,
+) -> str:
+    """Write a planar chain's frames to ``folder`` as ``STEM_0000.vtu``, … and ``STEM.pvd``
+    (VTK XML, ASCII; the CLI's writer) and return the ``.pvd``'s path. Per frame ``k``:
+    ``times[k]``, the nodes ``x[k]``, ``y[k]`` (m; with ``modes``, a mode's nodal
+    displacements drawn on the undeformed nodes), ``twist[k]`` (rad); ``stations`` the
+    undeformed nodes (m). Used by ``write_vtk``."""

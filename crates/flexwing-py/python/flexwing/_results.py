@@ -24,10 +24,11 @@ __all__ = [
 
 
 from ._base import _Result, _Run, _Runs, _summary
+from ._files import _ModeFiles, _NodeFiles, _StaticFiles
 
 
 @dataclass(eq=False, repr=False)
-class ModesResult(_Result):
+class ModesResult(_ModeFiles, _Result):
     """Natural modes of the full model about its undeformed state, by increasing frequency.
 
     Attributes:
@@ -123,7 +124,7 @@ class StaticRun(_Run):
 
 
 @dataclass(eq=False, repr=False)
-class StaticResult(_Runs):
+class StaticResult(_StaticFiles, _Runs):
     """What a static analysis found.
 
     Attributes:
@@ -238,7 +239,7 @@ class DynamicRun(_Run):
 
 
 @dataclass(eq=False, repr=False)
-class DynamicResult(_Runs):
+class DynamicResult(_NodeFiles, _Runs):
     """What a dynamic analysis produced.
 
     Attributes:

@@ -11,10 +11,12 @@ const MI_INT32: u32 = 5;
 const MI_UINT32: u32 = 6;
 const MI_DOUBLE: u32 = 9;
 const MI_MATRIX: u32 = 14;
+const MI_INT64: u32 = 12;
 const MI_UTF8: u32 = 16;
 const MX_CELL: u32 = 1;
 const MX_CHAR: u32 = 4;
 const MX_DOUBLE: u32 = 6;
+const MX_INT64: u32 = 14;
 const COMPLEX: u32 = 0x0800;
 
 /// A data element: tag (type, byte count) and data, padded to 8 bytes.
@@ -76,11 +78,31 @@ fn variable(out: &mut Vec<u8>, name: &str, value: &Value) {
             }
             matrix(out, MX_CELL, 0, &[list.len(), 1], name, &body);
         }
+        Value::Ints(v) => {
+            let mut body = Vec::new();
+            let data: Vec<u8> = v.iter().flat_map(|i| i.to_le_bytes()).collect();
+            element(&mut body, MI_INT64, &data);
+            matrix(out, MX_INT64, 0, &[v.len(), 1], name, &body);
+        }
+        Value::Array { shape, .. } => {
+            let mut body = Vec::new();
+            element(
+                &mut body,
+                MI_DOUBLE,
+                &doubles(value.column_major().into_iter()),
+            );
+            let dims: Vec<usize> = match shape.len() {
+                0 => vec![1, 1],
+                1 => vec![shape[0], 1],
+                _ => shape.clone(),
+            };
+            matrix(out, MX_DOUBLE, 0, &dims, name, &body);
+        }
     }
 }
 
 /// The bytes of a MAT-file holding `variables`, with the header text `description`.
-pub fn bytes(description: &str, variables: &[(&str, Value)]) -> Vec<u8> {
+pub fn bytes<N: AsRef<str>>(description: &str, variables: &[(N, Value)]) -> Vec<u8> {
     let mut out = Vec::new();
     let mut text = format!("MATLAB 5.0 MAT-file, {description}");
     text.truncate(116);
@@ -91,7 +113,7 @@ pub fn bytes(description: &str, variables: &[(&str, Value)]) -> Vec<u8> {
     out.extend_from_slice(&0x0100u16.to_le_bytes());
     out.extend_from_slice(b"IM");
     for (name, value) in variables {
-        variable(&mut out, name, value);
+        variable(&mut out, name.as_ref(), value);
     }
     out
 }

@@ -4,20 +4,21 @@
 //! crates that write `.npy` (`npyz`, `ndarray-npy`) bring a Python-literal parser for reading
 //! headers or the `ndarray` crate, for what is one header line per array.
 
-use std::io::Write as _;
-
-use anyhow::Result;
+use std::io::{self, Seek, Write};
 
 use super::Value;
 
-/// The `.npy` bytes of an array with dtype `descr`, Fortran order, `shape`, and `data`.
-fn npy(descr: &str, shape: &[usize], data: &[u8]) -> Vec<u8> {
+/// The `.npy` bytes of an array with dtype `descr`, Fortran (column-major) order or not,
+/// `shape`, and `data`.
+fn npy_with(descr: &str, fortran: bool, shape: &[usize], data: &[u8]) -> Vec<u8> {
     let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
     let shape = match dims.len() {
         1 => format!("({},)", dims[0]),
         _ => format!("({})", dims.join(", ")),
     };
-    let mut header = format!("{{'descr': '{descr}', 'fortran_order': True, 'shape': {shape}, }}");
+    let order = if fortran { "True" } else { "False" };
+    let mut header =
+        format!("{{'descr': '{descr}', 'fortran_order': {order}, 'shape': {shape}, }}");
     // Magic (6), version (2), length (2), header and a newline: a multiple of 64 bytes.
     let total = (10 + header.len() + 1).next_multiple_of(64);
     while 10 + header.len() + 1 < total {
@@ -29,6 +30,11 @@ fn npy(descr: &str, shape: &[usize], data: &[u8]) -> Vec<u8> {
     out.extend_from_slice(header.as_bytes());
     out.extend_from_slice(data);
     out
+}
+
+/// The `.npy` bytes of a column-major array.
+fn npy(descr: &str, shape: &[usize], data: &[u8]) -> Vec<u8> {
+    npy_with(descr, true, shape, data)
 }
 
 /// The `.npy` bytes of `value`.
@@ -64,19 +70,37 @@ fn array(value: &Value) -> Vec<u8> {
             }
             npy(&format!("<U{width}"), &[list.len()], &bytes)
         }
+        Value::Ints(v) => {
+            let bytes: Vec<u8> = v.iter().flat_map(|i| i.to_le_bytes()).collect();
+            npy("<i8", &[v.len()], &bytes)
+        }
+        Value::Array { shape, data } => {
+            let bytes: Vec<u8> = data.iter().flat_map(|v| v.to_le_bytes()).collect();
+            npy_with("<f8", false, shape, &bytes)
+        }
     }
 }
 
-/// The bytes of an `.npz` archive holding `variables` (`NAME.npy` each).
-pub fn bytes(variables: &[(&str, Value)]) -> Result<Vec<u8>> {
-    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
-    let options =
-        zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
+/// Write an `.npz` archive holding `variables` (`NAME.npy` each; `numpy.load` gives them back
+/// under `NAME`, which may contain `/`) to `out`.
+pub fn write<W: Write + Seek, N: AsRef<str>>(out: W, variables: &[(N, Value)]) -> io::Result<W> {
+    let mut zip = zip::ZipWriter::new(out);
     for (name, value) in variables {
-        zip.start_file(format!("{name}.npy"), options)?;
-        zip.write_all(&array(value))?;
+        let npy = array(value);
+        // Zip64 for entries past 4 GiB (a long run's node history can be).
+        let options = zip::write::SimpleFileOptions::default()
+            .compression_method(zip::CompressionMethod::Stored)
+            .large_file(npy.len() as u64 >= u64::from(u32::MAX));
+        zip.start_file(format!("{}.npy", name.as_ref()), options)
+            .map_err(io::Error::other)?;
+        zip.write_all(&npy)?;
     }
-    Ok(zip.finish()?.into_inner())
+    zip.finish().map_err(io::Error::other)
+}
+
+/// The bytes of an `.npz` archive holding `variables` (`NAME.npy` each).
+pub fn bytes<N: AsRef<str>>(variables: &[(N, Value)]) -> io::Result<Vec<u8>> {
+    Ok(write(io::Cursor::new(Vec::new()), variables)?.into_inner())
 }
 
 #[cfg(test)]
@@ -102,5 +126,13 @@ mod tests {
             .unwrap()
             .contains("'<U4'"));
         assert_eq!(s.len(), 10 + len + 2 * 4 * 4);
+        let a = array(&Value::Array {
+            shape: vec![2, 3, 4],
+            data: vec![0.0; 24],
+        });
+        let len = u16::from_le_bytes([a[8], a[9]]) as usize;
+        assert!(std::str::from_utf8(&a[10..10 + len])
+            .unwrap()
+            .starts_with("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3, 4), }"));
     }
 }
