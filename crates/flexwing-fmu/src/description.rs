@@ -375,6 +375,7 @@ pub fn fmu_bytes(
         inputs: inputs.clone(),
         outputs: outputs.clone(),
         model: options.model,
+        hold: options.hold.name().to_string(),
     };
     let settings_text = serde_json::to_string_pretty(&settings)
         .map_err(|e| FmuError::Io(format!("settings: {e}")))?;

@@ -154,10 +154,11 @@ impl Instance {
                 ));
             }
             let case = Case::load(&dir.join(CASE_FILE)).map_err(|e| e.to_string())?;
-            let stepper = stepper_of(&case, &settings, Hold::Zero)?;
-            Ok((case, settings, stepper))
+            let hold = settings.start_hold()?;
+            let stepper = stepper_of(&case, &settings, hold)?;
+            Ok((case, settings, stepper, hold))
         })();
-        let (case, settings, stepper) = match built {
+        let (case, settings, stepper, hold) = match built {
             Ok(b) => b,
             Err(e) => {
                 let message = format!("fmi2Instantiate: {e}");
@@ -172,7 +173,7 @@ impl Instance {
             case,
             settings,
             stepper,
-            hold: Hold::Zero,
+            hold,
             state: State::Instantiated,
             start_time: 0.0,
             stop_time: None,
@@ -302,10 +303,11 @@ impl Instance {
 
     /// `fmi2Reset`: back to the instantiated state, the stepper at its start.
     pub fn reset(&mut self) -> Status {
-        match stepper_of(&self.case, &self.settings, Hold::Zero) {
-            Ok(s) => {
+        let hold = self.settings.start_hold();
+        match hold.and_then(|h| stepper_of(&self.case, &self.settings, h).map(|s| (s, h))) {
+            Ok((s, hold)) => {
                 self.stepper = s;
-                self.hold = Hold::Zero;
+                self.hold = hold;
                 self.state = State::Instantiated;
                 self.start_time = 0.0;
                 self.stop_time = None;

@@ -61,6 +61,23 @@ pub struct Settings {
     pub outputs: Vec<String>,
     /// Index of the model among the plan's (the full model first if the case runs it).
     pub model: usize,
+    /// The `hold` parameter's start value (`zero` or `linear`): an instance starts with it.
+    pub hold: String,
+}
+
+impl Settings {
+    /// The `hold` parameter's start value.
+    ///
+    /// # Errors
+    /// Not `zero` or `linear`.
+    pub fn start_hold(&self) -> Result<Hold, String> {
+        Hold::from_name(&self.hold).ok_or_else(|| {
+            format!(
+                "hold: unknown value {:?} in the settings; expected \"zero\" or \"linear\"",
+                self.hold
+            )
+        })
+    }
 }
 
 /// The aeroelastic dynamic plan of `case`.

@@ -193,3 +193,20 @@ fn regression_steps_are_the_stepper_steps() {
     }
     assert!((i.time() - 0.05).abs() < 1e-15);
 }
+
+#[test]
+fn an_instance_starts_with_the_hold_the_fmu_was_written_with() {
+    let options = FmuOptions {
+        hold: Hold::Linear,
+        ..FmuOptions::default()
+    };
+    let (res, guid) = resources("linear", &options);
+    let uri = format!("file://{}", res.display());
+    let mut i = Instance::new(&guid, &uri, false, Box::new(|_, _, _| {})).unwrap();
+    assert_eq!(i.hold(), Hold::Linear);
+    assert_eq!(i.get_string(&[0]).unwrap(), ["linear"]);
+    assert_eq!(i.stepper().hold(), Hold::Linear);
+    assert_eq!(i.set_string(&[0], &[Some("zero")]), Status::Ok);
+    assert_eq!(i.reset(), Status::Ok);
+    assert_eq!(i.hold(), Hold::Linear, "reset: the start value again");
+}
