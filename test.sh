@@ -56,6 +56,12 @@ export FLEXWING_CLI="${FLEXWING_CLI:-$PWD/target/release/flexwing}"
 if [ ! -x "$FLEXWING_CLI" ]; then
     cargo build --release -p flexwing-cli
 fi
+# The co-simulation FMU's library (crates/flexwing-fmu, a cdylib) that `flexwing fmu` and
+# `Case.fmu` put into the FMUs test_fmu.py runs with FMPy.
+export FLEXWING_FMU_LIBRARY="${FLEXWING_FMU_LIBRARY:-$PWD/target/release/libflexwing_fmu.so}"
+if [ "$rust" = 1 ] || [ ! -f "$FLEXWING_FMU_LIBRARY" ]; then
+    cargo build --release -p flexwing-fmu
+fi
 status=0
 "$venv/bin/python" -m pytest crates/flexwing-py/tests "${pytest_args[@]}" || status=$?
 if [ "$status" = 5 ]; then

@@ -7,6 +7,7 @@
 //! `{"status": "error", "error": …, "exit_status": …}` when it failed before printing one.
 
 mod driver;
+mod fmu;
 mod interrupt;
 mod output;
 mod plot;
@@ -118,6 +119,16 @@ enum Command {
         results/). Times are medians of --repeats samples. See docs/reproduce.md."
     )]
     Reproduce(reproduce::ReproduceArgs),
+    /// A co-simulation FMU (FMI 2.0) of the case's aeroelastic response, for Simulink, Modelica.
+    #[command(
+        long_about = "A co-simulation FMU (FMI 2.0) of the aeroelastic response of the case \
+        ([aero] and [dynamic]): the stepper's inputs (root angle, speed, gust, node forces and \
+        torques) and outputs (tip position and twist, root moments, lift) as FMI variables with \
+        units, the case in its resources and the integrator inside; a `hold` parameter (zero or \
+        linear). Carries the compiled library of `cargo build --release -p flexwing-fmu` \
+        (found beside flexwing, or --library). See docs/control.md."
+    )]
+    Fmu(fmu::FmuArgs),
 }
 
 /// Options of `flexwing modes`.
@@ -228,6 +239,7 @@ fn main() -> ExitCode {
             (a.case.json, driver::run(Analysis::Linearize, &a.case, &o))
         }
         Command::Reproduce(a) => (false, reproduce::run(a)),
+        Command::Fmu(a) => (false, fmu::run(a)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -301,3 +301,73 @@ impl PyAeroStepper {
         )
     }
 }
+
+/// `Case.fmu(path, ...)`: the co-simulation FMU of the case, written by the same writer as
+/// `flexwing fmu` (the `flexwing-fmu` crate). Returns what was written as a dict.
+pub fn export_fmu<'py>(
+    py: Python<'py>,
+    case: &Case,
+    path: &Bound<'py, PyAny>,
+    kwargs: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use flexwing_fmu::description::find_library;
+    use flexwing_fmu::{write_fmu, FmuError, FmuOptions};
+    let kw = Kwargs::new(
+        py,
+        kwargs,
+        &["inputs", "outputs", "hold", "model", "library"],
+        "fmu",
+    )?;
+    let out: std::path::PathBuf = path
+        .extract()
+        .map_err(|_| errors::argument_type(py, "path", "must be a str or os.PathLike"))?;
+    let mut options = FmuOptions {
+        inputs: names(kw.get("inputs")?, "inputs")?,
+        outputs: names(kw.get("outputs")?, "outputs")?,
+        ..FmuOptions::default()
+    };
+    if let Some(h) = kw.get("hold")? {
+        let name = crate::arrays::text(&h, "hold")?;
+        options.hold = Hold::from_name(&name).ok_or_else(|| {
+            errors::input(
+                py,
+                "hold",
+                &format!("unknown value {name:?}; expected \"zero\" or \"linear\""),
+            )
+        })?;
+    }
+    if let Some(m) = kw.get("model")? {
+        options.model = m
+            .extract::<usize>()
+            .map_err(|_| errors::input(py, "model", "must be a non-negative integer"))?;
+    }
+    let library: Option<std::path::PathBuf> =
+        match kw.get("library")? {
+            Some(l) if !l.is_none() => Some(l.extract().map_err(|_| {
+                errors::argument_type(py, "library", "must be a str or os.PathLike")
+            })?),
+            _ => None,
+        };
+    let as_error = |e: FmuError| -> PyErr {
+        let text = e.to_string();
+        match (&e, text.split_once(": ")) {
+            (FmuError::Input(_), Some((field, reason))) => errors::input(py, field, reason),
+            (FmuError::Io(_), Some(("library", reason))) => errors::input(py, "library", reason),
+            (FmuError::Input(_), None) => errors::input(py, "case", &text),
+            (FmuError::Io(_), _) => pyo3::exceptions::PyOSError::new_err(text),
+        }
+    };
+    let library = find_library(library.as_deref(), None).map_err(as_error)?;
+    let summary =
+        errors::detached(py, || write_fmu(case, &options, &library, &out))?.map_err(as_error)?;
+    let d = PyDict::new(py);
+    d.set_item("path", out)?;
+    d.set_item("guid", summary.guid)?;
+    d.set_item("inputs", summary.inputs)?;
+    d.set_item("outputs", summary.outputs)?;
+    d.set_item("model", summary.model)?;
+    d.set_item("hold", options.hold.name())?;
+    d.set_item("platform", summary.platform)?;
+    d.set_item("bytes", summary.bytes)?;
+    Ok(d)
+}

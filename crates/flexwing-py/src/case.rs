@@ -391,6 +391,27 @@ impl PyCase {
         })
     }
 
+    /// Write a co-simulation FMU (FMI 2.0) of the case's aeroelastic response to ``path``
+    /// (as ``flexwing fmu``; docs/control.md) and return what it holds (a dict: ``path``,
+    /// ``guid``, ``inputs``, ``outputs``, ``model``, ``hold``, ``platform``, ``bytes``).
+    ///
+    /// Keyword arguments: ``inputs``, ``outputs``, ``model`` as ``stepper``; ``hold``
+    /// (``"zero"``, default, or ``"linear"``: the start value of the FMU's ``hold``
+    /// parameter); ``library``, the compiled FMU library (``libflexwing_fmu.so`` of ``cargo
+    /// build --release -p flexwing-fmu``; default: the environment variable
+    /// ``FLEXWING_FMU_LIBRARY``).
+    #[pyo3(signature = (path, **kwargs))]
+    fn fmu<'py>(
+        &self,
+        py: Python<'py>,
+        path: &Bound<'py, PyAny>,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        errors::guard(py, || {
+            crate::aero_stepper::export_fmu(py, &self.case, path, kwargs)
+        })
+    }
+
     /// The linear state-space models ``x' = A x + B u``, ``y = C x + D u`` about the static
     /// aeroelastic equilibrium at ``aero.flight.speed`` (m/s) of the full and reduced models
     /// of ``[linearize]``, as a ``LinearizeResult`` of ``LinearModel``s (as ``flexwing

@@ -11,6 +11,7 @@ mod common;
 mod dynamic_cmd;
 mod examples;
 mod flutter_cmd;
+mod fmu_cmd;
 mod fuzz_runs;
 mod interrupt_cmd;
 mod linearize_cmd;

@@ -108,6 +108,21 @@ class Case:
         ``force[k]`` (N), ``torque[k]`` (N·m) at node k) set between calls of ``step``, outputs
         (default ``tip_x``, ``tip_y`` (m), ``tip_twist`` (rad), ``root_bending_moment``,
         ``root_torque`` (N·m), ``lift`` (N)) read after each."""
+    def fmu(
+        self,
+        path: Union[str, "os.PathLike[str]"],
+        *,
+        inputs: Optional[Sequence[str]] = None,
+        outputs: Optional[Sequence[str]] = None,
+        hold: str = "zero",
+        model: int = 0,
+        library: Optional[Union[str, "os.PathLike[str]"]] = None,
+    ) -> Dict[str, Any]:
+        """Write a co-simulation FMU (FMI 2.0) of the case's aeroelastic response to ``path``
+        (as ``flexwing fmu``): the stepper's inputs and outputs as FMI variables, the case in
+        its resources, ``hold`` the start value of its ``hold`` parameter; ``library`` the
+        compiled ``libflexwing_fmu.so`` (default ``FLEXWING_FMU_LIBRARY``). Returns ``path``,
+        ``guid``, ``inputs``, ``outputs``, ``model``, ``hold``, ``platform``, ``bytes``."""
     def flutter(
         self, *, progress: Optional[ProgressCallback] = None, check: bool = True
     ) -> FlutterResult:

@@ -442,6 +442,10 @@ impl AeroStepper {
     pub fn hold(&self) -> Hold {
         self.hold
     }
+    /// Change the hold of the inputs (from the next interval on; the FMU's `hold` parameter).
+    pub fn set_hold(&mut self, hold: Hold) {
+        self.hold = hold;
+    }
     /// Time (s).
     pub fn t(&self) -> f64 {
         self.t

@@ -187,6 +187,22 @@ impl Input {
         }
     }
 
+    /// What the input is, in one sentence (the FMU's variable descriptions).
+    pub fn description(&self) -> String {
+        match self {
+            Input::RootAngle => "root angle of attack (nose-up rotation of the free stream)".into(),
+            Input::Speed => "free-stream speed".into(),
+            Input::Gust => "vertical gust velocity (up), uniform over the span".into(),
+            Input::StripGust(k) => {
+                format!("vertical gust velocity (up) at the strip of element {k}")
+            }
+            Input::Force(k) => format!("dead vertical force (up) at node {k}"),
+            Input::Torque(k) => {
+                format!("torque about the span axis (nose-up) on the element inboard of node {k}")
+            }
+        }
+    }
+
     /// The input as a named signal.
     pub fn signal(&self) -> Signal {
         Signal {
@@ -260,6 +276,24 @@ impl Output {
             Output::RootBendingMoment | Output::RootTorque => "N·m",
             Output::RootShear | Output::Lift => "N",
             Output::TipAcceleration | Output::Acceleration(_) => "m/s²",
+        }
+    }
+
+    /// What the output is, in one sentence (the FMU's variable descriptions).
+    pub fn description(&self) -> String {
+        match self {
+            Output::TipX => "tip node's spanwise position".into(),
+            Output::TipY => "tip node's vertical position (wing frame)".into(),
+            Output::TipTwist => "twist of the tip element (nose-up)".into(),
+            Output::X(k) => format!("node {k}'s spanwise position"),
+            Output::Y(k) => format!("node {k}'s vertical position (wing frame)"),
+            Output::Twist(k) => format!("twist of the element inboard of node {k} (nose-up)"),
+            Output::RootBendingMoment => "root bending moment (the clamp spring's)".into(),
+            Output::RootShear => "force of the wing on the clamp (up, wing frame)".into(),
+            Output::RootTorque => "root torque (the clamp's torsion spring)".into(),
+            Output::Lift => "total aerodynamic force along the ground's vertical".into(),
+            Output::TipAcceleration => "tip node's vertical acceleration".into(),
+            Output::Acceleration(k) => format!("node {k}'s vertical acceleration"),
         }
     }
 
