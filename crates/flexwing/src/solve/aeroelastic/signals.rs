@@ -196,6 +196,9 @@ impl Input {
             Input::StripGust(k) => {
                 format!("vertical gust velocity (up) at the strip of element {k}")
             }
+            Input::GustRate => {
+                "rate of the uniform vertical gust velocity (its apparent mass)".into()
+            }
             Input::Force(k) => format!("dead vertical force (up) at node {k}"),
             Input::Torque(k) => {
                 format!("torque about the span axis (nose-up) on the element inboard of node {k}")
