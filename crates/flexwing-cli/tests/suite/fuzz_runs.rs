@@ -131,6 +131,15 @@ const NULL_KEYS: &[&str] = &[
     ".pk",
     ".limit",
     ".energy_audit",
+    // The 3-D chain's documents (the library's serialized outcome): a complete status has no
+    // stop or message, a level no tip at a flutter point it lacks, a follower load no
+    // stability verdict, an undeformed wing without flutter no point.
+    ".stop",
+    ".message",
+    ".tip_at_flutter",
+    ".undeformed",
+    ".stable",
+    ".divergence_pressure",
 ];
 
 /// Paths (`a.b[2].c`) of the null values of `v`.

@@ -106,7 +106,6 @@ pub struct Study3d {
     pub divergence: bool,
 }
 
-/// The caller's names of a plan's parts: the aeroelastic [`Fields`], and `modes` for the count.
 impl Chain3dPlan {
     /// `modes`, `static`, `flutter` or `study`.
     pub fn name(&self) -> &'static str {
