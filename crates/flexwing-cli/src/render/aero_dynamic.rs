@@ -197,6 +197,9 @@ pub fn text(s: &mut String, outcome: &AeroDynamicOutcome) {
 pub struct Json {
     model: String,
     aerodynamics: String,
+    /// The gust's penetration (`uniform`, `kussner`), absent without a gust.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    penetration: Option<&'static str>,
     models: Vec<JsonModel>,
 }
 
@@ -211,6 +214,7 @@ pub fn json(ctx: &Context, plan: &AeroDynamicPlan, outcome: &AeroDynamicOutcome)
     Json {
         model: super::model_line(&plan.structure.model),
         aerodynamics: super::aero_line(plan.aero.aerodynamics, plan.aero.density),
+        penetration: plan.flight.gust.as_ref().map(|g| g.penetration.name()),
         models: outcome
             .runs
             .iter()
