@@ -193,11 +193,9 @@ impl Input {
             Input::RootAngle => "root angle of attack (nose-up rotation of the free stream)".into(),
             Input::Speed => "free-stream speed".into(),
             Input::Gust => "vertical gust velocity (up), uniform over the span".into(),
+            Input::GustRate => "rate of the uniform vertical gust velocity".into(),
             Input::StripGust(k) => {
                 format!("vertical gust velocity (up) at the strip of element {k}")
-            }
-            Input::GustRate => {
-                "rate of the uniform vertical gust velocity (its apparent mass)".into()
             }
             Input::Force(k) => format!("dead vertical force (up) at node {k}"),
             Input::Torque(k) => {
