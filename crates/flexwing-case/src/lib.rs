@@ -63,7 +63,7 @@ pub use spec::{
 };
 pub use spec_aero::{
     AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustShapeSpec, GustSpec,
-    LinearizeSpec, SpeedSweepSpec, StatesSpec,
+    LinearizeSpec, SpeedSweepSpec, StatesSpec, SurfaceSpec,
 };
 pub use words::{in_user_terms, keys, JARGON};
 

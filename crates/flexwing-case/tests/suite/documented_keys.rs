@@ -17,7 +17,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/case-file.md");
     let text = std::fs::read_to_string(path).expect("docs/case-file.md");
     // The key tables of each section, in the order they appear.
-    let sections: [(&str, &[&str]); 16] = [
+    let sections: [(&str, &[&str]); 17] = [
         ("### Top level", &[""]),
         ("### `[beam]`", &["beam"]),
         ("### `[beam.section]`", &["beam.section"]),
@@ -32,6 +32,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
         ("### `[aero.flight]`", &["aero.flight"]),
         ("### `[aero.flight.gust]`", &["aero.flight.gust"]),
         ("### `[aero.sweep]`", &["aero.sweep"]),
+        ("### `[[aero.surfaces]]`", &["aero.surfaces"]),
         ("### `[flutter]`", &["flutter"]),
         ("### `[linearize]`", &["linearize"]),
     ];
@@ -129,6 +130,12 @@ amplitude = 1.0
 [aero.sweep]
 speeds = [1.0, 2.0]
 
+[[aero.surfaces]]
+name = "aileron"
+from = 0.5
+to = 1.0
+hinge = 0.75
+
 [flutter]
 
 [linearize]
@@ -152,6 +159,10 @@ fn schema_keys(table: &str) -> BTreeSet<String> {
         "aero.aerodynamics" => base_aero().replace(
             "{ model = \"steady\" }",
             "{ model = \"steady\", zzz_bogus = 1 }",
+        ),
+        "aero.surfaces" => base_aero().replace(
+            "[[aero.surfaces]]\n",
+            &format!("[[aero.surfaces]]\n{bogus}"),
         ),
         t if t.starts_with("aero") || t == "flutter" || t == "linearize" => {
             let header = format!("[{t}]\n");
@@ -196,7 +207,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
                 "linearize",
             ],
             "beam" => &["section"],
-            "aero" => &["flight", "sweep"],
+            "aero" => &["flight", "sweep", "surfaces"],
             "aero.flight" => &["gust"],
             "static" => &["sweep"],
             "dynamic" => &["initial"],
@@ -214,7 +225,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
         let documented: BTreeSet<String> = keys.keys().cloned().collect();
         assert_eq!(documented, schema, "keys of [{table}]");
     }
-    assert_eq!(docs.len(), 18, "{:?}", docs.keys());
+    assert_eq!(docs.len(), 19, "{:?}", docs.keys());
 }
 
 /// The default the code uses for each key whose documented default is a literal.
@@ -442,6 +453,11 @@ fn aero_defaults(put: &mut impl FnMut(&'static str, &'static str, String)) {
     put("aero", "zero_lift_angle", uniform(&s.zero_lift_angle));
     put("aero", "cm0", uniform(&s.cm0));
     put("aero", "cd0", uniform(&s.cd0));
+    put(
+        "aero.surfaces",
+        "deflection",
+        s.surfaces[0].deflection.to_string(),
+    );
     assert_eq!(
         s.lift_slope,
         Profile::Uniform(2.0 * std::f64::consts::PI),

@@ -6,6 +6,8 @@
 
 use num_dual::DualNum;
 
+use super::flap::{FlapAir, StripFlap};
+
 /// Aerodynamic data of one strip (the element's midpoint, over its width).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct StripData {
@@ -25,6 +27,8 @@ pub(crate) struct StripData {
     pub(crate) width: f64,
     /// Span station of the strip's midpoint (m).
     pub(crate) station: f64,
+    /// The control surface on the strip, if any.
+    pub(crate) flap: Option<StripFlap>,
 }
 
 impl StripData {
@@ -45,6 +49,8 @@ pub(crate) struct Air {
     pub(crate) wind: [f64; 3],
     pub(crate) speed: f64,
     pub(crate) pressure: f64,
+    /// What the strip's flap adds (zero without one).
+    pub(crate) flap: FlapAir,
 }
 
 /// The motion of a strip's section: the trigonometry of its element, the velocity of its
@@ -144,6 +150,14 @@ pub(crate) fn section_loads<D: DualNum<Primitive = f64> + Copy>(
         }
         moment += fv * s.zeta_34();
     }
+    if s.flap.is_some() {
+        // The flap's non-circulatory normal force and its moment not carried by the lift at the
+        // quarter chord (Theodorsen; `flap.rs`).
+        for k in 0..3 {
+            force[k] += nu[k] * air.flap.normal;
+        }
+        moment += D::from(air.flap.moment);
+    }
     (force, moment)
 }
 
@@ -168,12 +182,14 @@ mod tests {
             cd0: 0.01,
             width: 1.0,
             station: 0.5,
+            flap: None,
         };
         let (rho, u) = (1.2, 10.0);
         let air = Air {
             wind: [0.0, 0.0, -u],
             speed: u,
             pressure: 0.5 * rho * u * u,
+            flap: FlapAir::default(),
         };
         let (th, ps): (f64, f64) = (0.2, 0.05);
         let n = [-th.sin(), th.cos()];
