@@ -42,7 +42,9 @@ pub fn aerodynamics<'py>(py: Python<'py>, aero: &Aero) -> PyResult<Bound<'py, Py
             Ok(s)
         })
         .collect::<PyResult<Vec<_>>>()?;
-    d.set_item("surfaces", surfaces)?;
+    if !surfaces.is_empty() {
+        d.set_item("surfaces", surfaces)?;
+    }
     Ok(d)
 }
 
