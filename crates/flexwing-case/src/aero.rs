@@ -11,7 +11,7 @@ use flexwing::analysis::aero::response::{AeroDynamicPlan, AeroStart};
 use flexwing::analysis::aero::statics::AeroStaticPlan;
 use flexwing::analysis::aero::{Aero, Fields, SpeedSweep};
 use flexwing::beam::Profile;
-use flexwing::model::aero::{AeroSection, Aerodynamics, FlightCondition};
+use flexwing::model::aero::{AeroSection, Aerodynamics, ControlSurface, FlightCondition};
 use flexwing::model::{FullModel, Load};
 use flexwing::solve::aeroelastic::{FlightHistory, Gust, GustPenetration, GustShape};
 use flexwing::solve::{StaticOptions, TimeFunction};
@@ -216,6 +216,7 @@ impl Case {
             zero_lift_angle: or_zero(spec.zero_lift_angle.as_ref()),
             cm0: or_zero(spec.cm0.as_ref()),
             cd0: or_zero(spec.cd0.as_ref()),
+            surfaces: spec.surfaces.iter().map(surface).collect(),
         };
         let a = spec.aerodynamics;
         let aerodynamics = match (a.model, a.states) {
@@ -272,6 +273,17 @@ impl Case {
         o.min_step = s.min_step.unwrap_or(o.min_step);
         o.line_search = s.line_search.unwrap_or(o.line_search);
         o
+    }
+}
+
+/// A control surface of `[[aero.surfaces]]`.
+fn surface(s: &super::spec_aero::SurfaceSpec) -> ControlSurface {
+    ControlSurface {
+        name: s.name.clone(),
+        from: s.from,
+        to: s.to,
+        hinge: s.hinge.0.clone(),
+        deflection: s.deflection.unwrap_or(0.0),
     }
 }
 

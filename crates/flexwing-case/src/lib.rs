@@ -66,7 +66,7 @@ pub use spec::{
 };
 pub use spec_aero::{
     AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustPenetrationSpec,
-    GustShapeSpec, GustSpec, LinearizeSpec, SpeedSweepSpec, StatesSpec,
+    GustShapeSpec, GustSpec, LinearizeSpec, SpeedSweepSpec, StatesSpec, SurfaceSpec,
 };
 pub use spec_chain3d::{CouplingSpec, StructureSpec, StudyParameterSpec, StudySpec};
 pub use spec_output::{thinned_indices, NodeTimesSpec, OutputFormatSpec, OutputSpec};

@@ -42,6 +42,27 @@ pub struct AeroSpec {
     /// `[aero.sweep]`: the speeds of a sweep (static) or of the V-g data (flutter).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sweep: Option<SpeedSweepSpec>,
+    /// `[[aero.surfaces]]`: trailing-edge control surfaces.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub surfaces: Vec<SurfaceSpec>,
+}
+
+/// `[[aero.surfaces]]`: one trailing-edge control surface
+/// ([`flexwing::model::aero::ControlSurface`]).
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SurfaceSpec {
+    /// Name of the surface (unique).
+    pub name: String,
+    /// Inboard end (m from the root).
+    pub from: f64,
+    /// Outboard end (m from the root).
+    pub to: f64,
+    /// Hinge line, fraction of the chord from the leading edge (number or table).
+    pub hinge: Property,
+    /// Deflection of the equilibrium (rad, trailing edge down); default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub deflection: Option<f64>,
 }
 
 /// `aero.aerodynamics`: the model and its state count.

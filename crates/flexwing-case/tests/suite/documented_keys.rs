@@ -17,7 +17,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/case-file.md");
     let text = std::fs::read_to_string(path).expect("docs/case-file.md");
     // The key tables of each section, in the order they appear.
-    let sections: [(&str, &[&str]); 19] = [
+    let sections: [(&str, &[&str]); 20] = [
         ("### Top level", &[""]),
         ("### `[beam]`", &["beam"]),
         ("### `[beam.section]`", &["beam.section"]),
@@ -33,6 +33,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
         ("### `[aero.flight]`", &["aero.flight"]),
         ("### `[aero.flight.gust]`", &["aero.flight.gust"]),
         ("### `[aero.sweep]`", &["aero.sweep"]),
+        ("### `[[aero.surfaces]]`", &["aero.surfaces"]),
         ("### `[flutter]`", &["flutter"]),
         ("### `[flutter.study]`", &["flutter.study"]),
         ("### `[linearize]`", &["linearize"]),
@@ -134,6 +135,12 @@ amplitude = 1.0
 [aero.sweep]
 speeds = [1.0, 2.0]
 
+[[aero.surfaces]]
+name = "aileron"
+from = 0.5
+to = 1.0
+hinge = 0.75
+
 [flutter]
 
 [linearize]
@@ -165,6 +172,10 @@ fn schema_keys(table: &str) -> BTreeSet<String> {
         "aero.aerodynamics" => base_aero().replace(
             "{ model = \"steady\" }",
             "{ model = \"steady\", zzz_bogus = 1 }",
+        ),
+        "aero.surfaces" => base_aero().replace(
+            "[[aero.surfaces]]\n",
+            &format!("[[aero.surfaces]]\n{bogus}"),
         ),
         t if t.starts_with("aero") || t == "flutter" || t == "linearize" => {
             let header = format!("[{t}]\n");
@@ -212,7 +223,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
             "beam" => &["section"],
             "beam.section" => &["coupling"],
             "flutter" => &["study"],
-            "aero" => &["flight", "sweep"],
+            "aero" => &["flight", "sweep", "surfaces"],
             "aero.flight" => &["gust"],
             "static" => &["sweep"],
             "dynamic" => &["initial"],
@@ -230,7 +241,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
         let documented: BTreeSet<String> = keys.keys().cloned().collect();
         assert_eq!(documented, schema, "keys of [{table}]");
     }
-    assert_eq!(docs.len(), 21, "{:?}", docs.keys());
+    assert_eq!(docs.len(), 22, "{:?}", docs.keys());
 }
 
 /// The default the code uses for each key whose documented default is a literal.
@@ -520,6 +531,11 @@ fn aero_defaults(put: &mut impl FnMut(&'static str, &'static str, String)) {
     put("aero", "zero_lift_angle", uniform(&s.zero_lift_angle));
     put("aero", "cm0", uniform(&s.cm0));
     put("aero", "cd0", uniform(&s.cd0));
+    put(
+        "aero.surfaces",
+        "deflection",
+        s.surfaces[0].deflection.to_string(),
+    );
     assert_eq!(
         s.lift_slope,
         Profile::Uniform(2.0 * std::f64::consts::PI),

@@ -19,6 +19,7 @@ use crate::plot::{self, ShapePlot};
 
 pub const FILES: &[&str] = &[
     "static_aero.csv",
+    "static_hinges.csv",
     "static_nodes.csv",
     "static_summary.csv",
     "static_shapes.svg",
@@ -96,6 +97,39 @@ pub fn node_rows<'a>(
     })
 }
 
+/// A row of `static_hinges.csv` (written when the wing has control surfaces): the hinge moment
+/// of one surface at one equilibrium.
+#[derive(Serialize)]
+pub struct HingeRow {
+    model: String,
+    speed_m_s: Option<f64>,
+    surface: String,
+    deflection_rad: f64,
+    hinge_moment_n_m: Option<f64>,
+}
+
+/// The hinge rows of `points`, of the model `kind`, for the surfaces of `plan`.
+fn hinge_rows<'a>(
+    plan: &'a AeroStaticPlan,
+    kind: &'a ModelKind,
+    points: &'a [AeroPoint],
+) -> impl Iterator<Item = HingeRow> + 'a {
+    points.iter().flat_map(move |p| {
+        plan.aero
+            .section
+            .surfaces
+            .iter()
+            .zip(&p.hinge_moments)
+            .map(move |(sf, &h)| HingeRow {
+                model: kind.label(),
+                speed_m_s: finite(p.speed),
+                surface: sf.name.clone(),
+                deflection_rad: sf.deflection,
+                hinge_moment_n_m: finite(h),
+            })
+    })
+}
+
 #[derive(Serialize)]
 struct SummaryRow {
     model: String,
@@ -145,6 +179,15 @@ pub fn files(
     let summary = dir.join("static_summary.csv");
     output::write_csv(&summary, summaries(ctx, outcome))?;
     let mut files = vec![points, nodes, summary];
+    if !plan.aero.section.surfaces.is_empty() {
+        let hinges = dir.join("static_hinges.csv");
+        output::write_csv(
+            &hinges,
+            runs.iter()
+                .flat_map(|r| hinge_rows(plan, &r.kind, &r.points)),
+        )?;
+        files.push(hinges);
+    }
     if with_plot {
         let plot = ShapePlot {
             title: format!("Static aeroelastic equilibria: {}", ctx.what()),
@@ -177,7 +220,7 @@ pub fn divergence_line(d: Option<&Divergence>) -> String {
     }
 }
 
-pub fn text(s: &mut String, outcome: &AeroStaticOutcome) {
+pub fn text(s: &mut String, plan: &AeroStaticPlan, outcome: &AeroStaticOutcome) {
     let _ = writeln!(s, "static aeroelastic equilibria (steady strip theory)");
     for r in &outcome.runs {
         let _ = writeln!(s);
@@ -198,6 +241,18 @@ pub fn text(s: &mut String, outcome: &AeroStaticOutcome) {
                 p.stats.iterations
             );
         }
+        let surfaces = &plan.aero.section.surfaces;
+        if !surfaces.is_empty() {
+            let _ = writeln!(s, "hinge moments (N·m, trailing edge down positive):");
+            for p in &r.points {
+                let list: Vec<String> = surfaces
+                    .iter()
+                    .zip(&p.hinge_moments)
+                    .map(|(sf, h)| format!("{} (δ = {} rad) {h:.6}", sf.name, short(sf.deflection)))
+                    .collect();
+                let _ = writeln!(s, "  U = {} m/s: {}", short(p.speed), list.join(", "));
+            }
+        }
         let _ = writeln!(s, "{}", divergence_line(r.divergence.as_ref()));
         let _ = writeln!(s, "wall time: {:.3} ms", 1e3 * r.wall_time_s);
     }
@@ -214,6 +269,8 @@ pub struct Json {
 struct JsonModel {
     summary: SummaryRow,
     points: Vec<PointRow>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    hinge_moments: Vec<HingeRow>,
 }
 
 pub fn json(ctx: &Context, plan: &AeroStaticPlan, outcome: &AeroStaticOutcome) -> Json {
@@ -225,6 +282,7 @@ pub fn json(ctx: &Context, plan: &AeroStaticPlan, outcome: &AeroStaticOutcome) -
             .map(|(summary, r)| JsonModel {
                 summary,
                 points: point_rows(&r.kind, &r.points, true).collect(),
+                hinge_moments: hinge_rows(plan, &r.kind, &r.points).collect(),
             })
             .collect(),
     }

@@ -203,7 +203,7 @@ pub fn text(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
         View::Modes(_, o) => modes::text(&mut s, o),
         View::Static(p, o) => statics::text(&mut s, p, o),
         View::Dynamic(p, o) => dynamic::text(ctx, &mut s, p, o),
-        View::AeroStatic(_, o) => aero_static::text(&mut s, o),
+        View::AeroStatic(p, o) => aero_static::text(&mut s, p, o),
         View::Flutter(p, o) => flutter::text(&mut s, ctx, p, o),
         View::AeroDynamic(p, o) => aero_dynamic::text(ctx, &mut s, p, o),
         View::Linearize(p, o) => linearize::text(&mut s, p, o),

@@ -18,3 +18,4 @@ mod linearize_cmd;
 mod reproduce_cmd;
 mod section_example;
 mod static_cmd;
+mod surfaces_cmd;

@@ -68,6 +68,9 @@ class AeroStaticRun(_Run):
             diverges (Pa), a list of ``p`` values, ``None`` where no real mode diverges.
         x, y: node positions (m), ``(p, n + 1)``; twist: nodal twist (rad), ``(p, n + 1)``.
         q: joint rotations of the full model (rad), ``(p, dofs of the full model)``.
+        hinge_moments: hinge moment of each control surface (N m, positive trailing edge down),
+            ``(p, surfaces)`` in the order of ``aerodynamics["surfaces"]`` (``(p, 0)`` without
+            surfaces).
         tip_difference: distance of the tip from the full model's at each speed (m), ``(p,)``;
             reduced models run with the full model only, else ``None``.
         stats: the static solver's counters per point, each ``(p,)`` (as ``StaticRun.stats``).
@@ -79,7 +82,7 @@ class AeroStaticRun(_Run):
         "speed", "dynamic_pressure", "tip_x", "tip_y", "tip_twist", "lift", "root_bending_moment",
         "divergence_pressure", "tip_difference",
     )
-    _grids = {"x": "node", "y": "node", "twist": "node", "q": "dof"}
+    _grids = {"x": "node", "y": "node", "twist": "node", "q": "dof", "hinge_moments": "surface"}
 
     label: str
     kind: str
@@ -105,6 +108,7 @@ class AeroStaticRun(_Run):
     y: np.ndarray
     twist: np.ndarray
     q: np.ndarray
+    hinge_moments: np.ndarray
     tip_difference: Optional[np.ndarray]
     stats: Dict[str, np.ndarray]
     extra: Dict[str, Any] = field(default_factory=dict)

@@ -52,6 +52,7 @@ UNITS: Dict[str, str] = {
     "dy": "m",
     "lift": "N",
     "root_bending_moment": "N m",
+    "hinge_moments": "N m",
     "dynamic_pressure": "Pa",
     "divergence_pressure": "Pa",
     # Energies.

@@ -29,6 +29,22 @@ pub fn aerodynamics<'py>(py: Python<'py>, aero: &Aero) -> PyResult<Bound<'py, Py
     d.set_item("model", model)?;
     d.set_item("states", states)?;
     d.set_item("density", aero.density)?;
+    let surfaces = aero
+        .section
+        .surfaces
+        .iter()
+        .map(|sf| {
+            let s = PyDict::new(py);
+            s.set_item("name", &sf.name)?;
+            s.set_item("from", sf.from)?;
+            s.set_item("to", sf.to)?;
+            s.set_item("deflection", sf.deflection)?;
+            Ok(s)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    if !surfaces.is_empty() {
+        d.set_item("surfaces", surfaces)?;
+    }
     Ok(d)
 }
 
@@ -129,6 +145,8 @@ pub fn equilibria<'py>(
     d.set_item("y", rows(|p| &p.shape.y, nodes))?;
     d.set_item("twist", rows(|p| &p.shape.twist, nodes))?;
     d.set_item("q", rows(|p| &p.q, model.n_dofs()))?;
+    let surfaces = points.first().map_or(0, |p| p.hinge_moments.len());
+    d.set_item("hinge_moments", rows(|p| &p.hinge_moments, surfaces))?;
     let differences: Option<Vec<f64>> = points.iter().map(|p| p.tip_difference).collect();
     d.set_item(
         "tip_difference",

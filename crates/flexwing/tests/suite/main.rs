@@ -15,6 +15,7 @@ mod aero_linearize;
 mod aero_reduced;
 mod aero_response;
 mod aero_statics;
+mod aero_surfaces;
 mod aero_typical_section;
 mod architecture;
 mod bad_input;

@@ -143,6 +143,9 @@ pub struct AeroPoint {
     pub lift: f64,
     /// Root bending moment, the clamp spring's moment `K_θ,1 q_1` (N·m).
     pub root_bending_moment: f64,
+    /// Hinge moment of each control surface (N·m, positive trailing edge down), in the order of
+    /// the surfaces of [`Aero::section`].
+    pub hinge_moments: Vec<f64>,
     /// Divergence pressure of the frozen state (Pa), `None` if no real mode diverges.
     pub divergence_pressure: Option<f64>,
     /// Solver counters of this point.
@@ -273,6 +276,7 @@ pub(crate) fn sweep_model<M: PlanarStructure>(
             q: p.q,
             lift: p.lift,
             root_bending_moment: p.root_bending_moment,
+            hinge_moments: p.hinge_moments,
             divergence_pressure: p.divergence_pressure,
             stats: p.stats,
             tip_difference: None,

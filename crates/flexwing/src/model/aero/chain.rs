@@ -200,17 +200,18 @@ impl<M: AeroStructure> Aeroelastic<M> {
         sc: &mut AeroScratch<D>,
     ) {
         let steady = !self.aerodynamics().is_unsteady();
+        // A flap adds its equivalent upwash (independent of the state) to the circulatory one.
         if let Some(sp) = sc.spatial.as_deref() {
             for (i, s) in self.strips.iter().enumerate() {
                 let (w, wt) = spatial::flow(s, sp, i, &air[i], steady);
-                sc.w[i] = w;
+                sc.w[i] = w + D::from(air[i].flap.upwash);
                 sc.wt[i] = wt;
             }
             return;
         }
         for (i, s) in self.strips.iter().enumerate() {
             let (w, wt) = flow(s, &sc.motion[i], &air[i], steady);
-            sc.w[i] = w;
+            sc.w[i] = w + D::from(air[i].flap.upwash);
             sc.wt[i] = wt;
         }
     }

@@ -10,6 +10,7 @@
 //! `strip.rs`'s tests.
 
 mod chain;
+mod flap;
 mod fluid;
 mod lag;
 // Generated table (peters_poles.py): its element type is the data layout, not worth an alias.
@@ -20,6 +21,8 @@ mod strip;
 mod theodorsen;
 
 pub(crate) use chain::AeroScratch;
+pub use flap::FlapCoefficients;
+pub(crate) use flap::{FlapAir, StripFlap};
 pub(crate) use fluid::FluidInertia;
 pub(crate) use lag::Lag;
 pub(crate) use strip::{loads as strip_loads, Air, Motion, StripData};
@@ -49,6 +52,41 @@ pub struct AeroSection {
     pub cm0: Profile,
     /// Drag coefficient `c_d0`, non-negative (its force is chordwise, reacted by the clamp).
     pub cd0: Profile,
+    /// Trailing-edge control surfaces (none by default).
+    pub surfaces: Vec<ControlSurface>,
+}
+
+/// A trailing-edge control surface (flap, aileron) over a span range, with Theodorsen's
+/// thin-airfoil flap aerodynamics (`model/aero/flap.rs`, docs/aeroelastic-model.md §3b). The
+/// deflection `δ` is positive **trailing edge down** (it raises the lift), the hinge moment is
+/// positive in the sense of `δ`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ControlSurface {
+    /// Its name (unique among the surfaces): the inputs and outputs are named after it.
+    pub name: String,
+    /// Inboard end, span station (m) from the root, in `[0, to)`.
+    pub from: f64,
+    /// Outboard end, span station (m), in `(from, L]`.
+    pub to: f64,
+    /// Hinge line as a fraction of the chord from the leading edge, in `(0, 1)` (Theodorsen's
+    /// `c = 2 x_h − 1`): `0.75` is a flap of a quarter of the chord.
+    pub hinge: Profile,
+    /// Deflection `δ` (rad, trailing edge down positive) of the equilibrium (static runs, the
+    /// equilibria of flutter and of the linear model, the start of a response).
+    pub deflection: f64,
+}
+
+impl ControlSurface {
+    /// The surface `name` over `[from, to]` with hinge at chord fraction `hinge`, undeflected.
+    pub fn new(name: &str, from: f64, to: f64, hinge: f64) -> Self {
+        Self {
+            name: name.to_string(),
+            from,
+            to,
+            hinge: Profile::Uniform(hinge),
+            deflection: 0.0,
+        }
+    }
 }
 
 impl AeroSection {
@@ -62,6 +100,7 @@ impl AeroSection {
             zero_lift_angle: Profile::Uniform(0.0),
             cm0: Profile::Uniform(0.0),
             cd0: Profile::Uniform(0.0),
+            surfaces: Vec::new(),
         }
     }
 }
@@ -342,6 +381,7 @@ pub struct Aeroelastic<M: AeroStructure = FullModel> {
     density: f64,
     aerodynamics: Aerodynamics,
     pub(crate) lag: Option<Lag>,
+    surfaces: Vec<ControlSurface>,
 }
 
 impl Aeroelastic<FullModel> {
@@ -371,6 +411,7 @@ impl Aeroelastic<FullModel> {
             density,
             aerodynamics,
             lag: aerodynamics.lag(),
+            surfaces: section.surfaces.clone(),
         })
     }
 
@@ -389,6 +430,7 @@ impl Aeroelastic<FullModel> {
             density: self.density,
             aerodynamics: self.aerodynamics,
             lag: self.lag.clone(),
+            surfaces: self.surfaces.clone(),
         })
     }
 }
@@ -463,9 +505,12 @@ fn strips_and_fluid(
                 cd0: section.cd0.at(x),
                 width: w[1] - w[0],
                 station: x,
+                flap: None,
             }
         })
         .collect();
+    let mut strips = strips;
+    surfaces_on_strips(nodes, &section.surfaces, &mut strips, field)?;
     let pi = std::f64::consts::PI;
     let fluid = FluidInertia {
         mass: strips
@@ -479,6 +524,100 @@ fn strips_and_fluid(
             .collect(),
     };
     Ok((strips, fluid))
+}
+
+/// Check the control surfaces and put them on the strips they cover (`strip.flap`); errors name
+/// `{field}.surfaces[k].…`.
+fn surfaces_on_strips(
+    nodes: &[f64],
+    surfaces: &[ControlSurface],
+    strips: &mut [StripData],
+    field: &str,
+) -> Result<(), InputError> {
+    let length = nodes[nodes.len() - 1];
+    let short = crate::text::short;
+    for (k, sf) in surfaces.iter().enumerate() {
+        let f = |name: &str| format!("{field}.surfaces[{k}].{name}");
+        if sf.name.trim().is_empty() {
+            return Err(InputError::new(f("name"), "must not be empty"));
+        }
+        if let Some(j) = surfaces[..k].iter().position(|o| o.name == sf.name) {
+            return Err(InputError::new(
+                f("name"),
+                format!("\"{}\" is also the name of {field}.surfaces[{j}]", sf.name),
+            ));
+        }
+        if !(sf.from.is_finite() && (0.0..length).contains(&sf.from)) {
+            return Err(InputError::new(
+                f("from"),
+                format!(
+                    "must lie on the span [0, {}) m, got {}",
+                    short(length),
+                    short(sf.from)
+                ),
+            ));
+        }
+        if !(sf.to.is_finite() && sf.to > sf.from && sf.to <= length * (1.0 + 1e-12)) {
+            return Err(InputError::new(
+                f("to"),
+                format!(
+                    "must lie on the span, after from = {} m and at most {} m, got {}",
+                    short(sf.from),
+                    short(length),
+                    short(sf.to)
+                ),
+            ));
+        }
+        sf.hinge.validate(&f("hinge"), length, Sign::Any)?;
+        let values: Vec<f64> = match &sf.hinge {
+            Profile::Uniform(v) => vec![*v],
+            Profile::Table { value, .. } => value.clone(),
+        };
+        if let Some(v) = values.iter().find(|v| !(**v > 0.0 && **v < 1.0)) {
+            return Err(InputError::new(
+                f("hinge"),
+                format!(
+                    "must lie inside the chord, a fraction in (0, 1) from the leading edge, got {}",
+                    short(*v)
+                ),
+            ));
+        }
+        if !(sf.deflection.is_finite() && sf.deflection.abs() < 0.5 * std::f64::consts::PI) {
+            return Err(InputError::new(
+                f("deflection"),
+                format!(
+                    "must be finite and below π/2 in magnitude (rad), got {}",
+                    short(sf.deflection)
+                ),
+            ));
+        }
+        for (i, (s, w)) in strips.iter_mut().zip(nodes.windows(2)).enumerate() {
+            let covered = sf.to.min(w[1]) - sf.from.max(w[0]);
+            if covered <= 1e-12 * (w[1] - w[0]) {
+                continue;
+            }
+            if let Some(other) = s.flap {
+                return Err(InputError::new(
+                    f("from"),
+                    format!(
+                        "overlaps {field}.surfaces[{}] on the same strip (element {}, {}–{} m): \
+                         one surface per strip",
+                        other.surface,
+                        i + 1,
+                        short(w[0]),
+                        short(w[1])
+                    ),
+                ));
+            }
+            let x = s.station.clamp(sf.from, sf.to);
+            s.flap = Some(StripFlap {
+                surface: k,
+                coverage: (covered / (w[1] - w[0])).min(1.0),
+                coefficients: FlapCoefficients::new(2.0 * sf.hinge.at(x) - 1.0, s.a),
+            });
+        }
+    }
+    Ok(())
 }
 
 impl Aeroelastic<Chain3d> {
@@ -509,6 +648,7 @@ impl Aeroelastic<Chain3d> {
             density,
             aerodynamics,
             lag: aerodynamics.lag(),
+            surfaces: section.surfaces.clone(),
         })
     }
 }
@@ -567,6 +707,7 @@ impl<M: AeroStructure> Aeroelastic<M> {
             density: self.density,
             aerodynamics,
             lag: aerodynamics.lag(),
+            surfaces: self.surfaces.clone(),
         })
     }
     /// Number of strips (one per element).
@@ -580,6 +721,74 @@ impl<M: AeroStructure> Aeroelastic<M> {
     /// Span stations of the strips' midpoints (m).
     pub fn strip_stations(&self) -> Vec<f64> {
         self.strips.iter().map(|s| s.station).collect()
+    }
+
+    /// The control surfaces.
+    pub fn surfaces(&self) -> &[ControlSurface] {
+        &self.surfaces
+    }
+
+    /// The surfaces' equilibrium deflections `(δ, 0, 0)` (rad), one per surface.
+    pub(crate) fn rest_deflections(&self) -> Vec<[f64; 3]> {
+        self.surfaces
+            .iter()
+            .map(|s| [s.deflection, 0.0, 0.0])
+            .collect()
+    }
+
+    /// The flaps' part of the air of every strip (`out[i].flap`) for the deflections, rates and
+    /// accelerations `deflections[k] = (δ, δ̇, δ̈)` of each surface; the speeds of `out` must be
+    /// set ([`Self::air_into`]).
+    pub(crate) fn flaps_into(&self, deflections: &[[f64; 3]], out: &mut [Air]) {
+        let unsteady = self.aerodynamics.is_unsteady();
+        for (o, s) in out.iter_mut().zip(&self.strips) {
+            o.flap = match &s.flap {
+                None => FlapAir::default(),
+                Some(f) => flap::flap_air(
+                    f,
+                    s.b,
+                    self.density,
+                    o.speed,
+                    deflections[f.surface],
+                    unsteady,
+                ),
+            };
+        }
+    }
+
+    /// Hinge moment of every surface (N·m, positive trailing edge down) into `out`, from the
+    /// evaluation in `sc` (flow and lagged upwash) with the air `air` and the deflections
+    /// `deflections`: the steady, circulatory and flap-rate terms of Theodorsen's hinge moment,
+    /// summed over the covered width of the strips. The terms of the structure's own rates and
+    /// accelerations (`α̇`, `α̈`, `ḧ`) are not included (zero at an equilibrium).
+    pub(crate) fn hinge_moments_into(
+        &self,
+        sc: &AeroScratch<f64>,
+        air: &[Air],
+        deflections: &[[f64; 3]],
+        out: &mut [f64],
+    ) {
+        out.fill(0.0);
+        let unsteady = self.aerodynamics.is_unsteady();
+        for (i, s) in self.strips.iter().enumerate() {
+            let Some(f) = &s.flap else { continue };
+            let a = &air[i];
+            // The circulatory lift of the covered part: its upwash carries the whole flap
+            // (the strip's carries the covered fraction of it).
+            let w = sc.weff[i] + (1.0 - f.coverage) * a.flap.covered_upwash;
+            let cl = s.lift_slope * (w.atan2(sc.wt[i]) - s.alpha0);
+            let lift = a.pressure * 2.0 * s.b * cl;
+            let h = flap::hinge_moment(
+                f,
+                s.b,
+                self.density,
+                a.speed,
+                deflections[f.surface],
+                unsteady,
+                lift,
+            );
+            out[f.surface] += h * f.coverage * s.width;
+        }
     }
 
     /// The air at every strip for free-stream speed `speed`, root angle `root_angle` and gust

@@ -277,6 +277,7 @@ mod tests {
             zero_lift_angle: Profile::Uniform(-0.03),
             cm0: Profile::Uniform(-0.02),
             cd0: Profile::Uniform(0.01),
+            surfaces: Vec::new(),
         };
         let am = Aerodynamics::Wagner;
         let planar = Aeroelastic::new(&full, &aero, 1.1, am, "a").unwrap();

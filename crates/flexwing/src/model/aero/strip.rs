@@ -6,6 +6,8 @@
 
 use num_dual::DualNum;
 
+use super::flap::{FlapAir, StripFlap};
+
 /// Aerodynamic data of one strip (the element's midpoint, over its width).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct StripData {
@@ -25,6 +27,8 @@ pub(crate) struct StripData {
     pub(crate) width: f64,
     /// Span station of the strip's midpoint (m).
     pub(crate) station: f64,
+    /// The control surface on the strip, if any.
+    pub(crate) flap: Option<StripFlap>,
 }
 
 impl StripData {
@@ -49,6 +53,8 @@ pub(crate) struct Air {
     pub(crate) pressure: f64,
     pub(crate) gust_rate: [f64; 3],
     pub(crate) gust_lagged: [f64; 3],
+    /// What the strip's flap adds (zero without one).
+    pub(crate) flap: FlapAir,
 }
 
 /// The motion of a strip's section: the trigonometry of its element, the velocity of its
@@ -162,6 +168,14 @@ pub(crate) fn section_loads<D: DualNum<Primitive = f64> + Copy>(
         }
         moment += fa * (s.a * s.b);
     }
+    if s.flap.is_some() {
+        // The flap's non-circulatory normal force and its moment not carried by the lift at the
+        // quarter chord (Theodorsen; `flap.rs`).
+        for k in 0..3 {
+            force[k] += nu[k] * air.flap.normal;
+        }
+        moment += D::from(air.flap.moment);
+    }
     (force, moment)
 }
 
@@ -186,6 +200,7 @@ mod tests {
             cd0: 0.01,
             width: 1.0,
             station: 0.5,
+            flap: None,
         };
         let (rho, u) = (1.2, 10.0);
         let air = Air {

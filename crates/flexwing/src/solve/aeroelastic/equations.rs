@@ -871,6 +871,7 @@ pub(crate) mod tests {
             zero_lift_angle: Profile::Uniform(-0.03),
             cm0: Profile::Uniform(-0.02),
             cd0: Profile::Uniform(0.01),
+            surfaces: Vec::new(),
         };
         Aeroelastic::new(&full, &aero, 1.1, aerodynamics, "aero").unwrap()
     }
@@ -930,6 +931,7 @@ pub(crate) mod tests {
             zero_lift_angle: Profile::Uniform(-0.03),
             cm0: Profile::Uniform(-0.02),
             cd0: Profile::Uniform(0.01),
+            surfaces: Vec::new(),
         };
         Aeroelastic::spatial(&chain, &aero, 1.1, aerodynamics, "aero").unwrap()
     }

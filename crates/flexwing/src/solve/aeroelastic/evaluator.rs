@@ -56,6 +56,9 @@ pub(crate) struct AeroEvaluator<'a, M: AeroStructure> {
     column: Vec<f64>,
     /// Nondimensional lag per strip (`None`: `w_eff = w`).
     lag: Option<Lag>,
+    /// Each control surface's deflection, rate and acceleration `(δ, δ̇, δ̈)` (rad, rad/s,
+    /// rad/s²); the equilibrium deflections until [`Self::set_deflections`].
+    deflections: Vec<[f64; 3]>,
 }
 
 impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
@@ -74,7 +77,17 @@ impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
             unit: vec![0.0; nf],
             column: vec![0.0; nf],
             lag: aero.lag.clone(),
+            deflections: aero.rest_deflections(),
         }
+    }
+
+    /// Hinge moment of every surface (N·m) at the last [`Self::evaluate`]
+    /// ([`Aeroelastic::hinge_moments_into`]).
+    pub(crate) fn hinge_moments(&self) -> Vec<f64> {
+        let mut out = vec![0.0; self.deflections.len()];
+        self.aero
+            .hinge_moments_into(&self.sc, &self.air, &self.deflections, &mut out);
+        out
     }
 
     /// Number of model coordinates.
@@ -107,12 +120,18 @@ impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
             *g = gust(s.station);
         }
         self.aero.air_into(u, alpha, &self.gust, &mut self.air);
+        if !self.deflections.is_empty() {
+            self.aero.flaps_into(&self.deflections, &mut self.air);
+        }
     }
 
     /// Set the air of every strip for speed `u`, root angle `alpha` and, per strip, the gust
     /// velocity, its rate and its Küssner-lagged velocity ([`Aeroelastic::air_with_gust_into`]).
     pub(crate) fn set_air_with_gust(&mut self, u: f64, alpha: f64, gust: (&[f64], &[f64], &[f64])) {
         self.aero.air_with_gust_into(u, alpha, gust, &mut self.air);
+        if !self.deflections.is_empty() {
+            self.aero.flaps_into(&self.deflections, &mut self.air);
+        }
     }
 
     /// Full-model coordinates `v_full = Φ v` into `out`.

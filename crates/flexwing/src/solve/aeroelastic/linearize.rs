@@ -432,10 +432,12 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
         let dbar = self.eval.feedthrough();
         let lagged = if self.eval.lag().is_some() { dbar } else { 1.0 };
         let mut out = WindDerivative::default();
+        // A flap's equivalent upwash `φ V T10 δ/π` grows with the strip's speed `V = |W|`.
+        let flap_per_speed = air.flap.upwash / air.speed;
         for k in 0..3 {
-            let (dwk, dwtk) = (nu[k], -t[k]);
             let dq = rho * air.wind[k];
             let dv = air.wind[k] / air.speed;
+            let (dwk, dwtk) = (nu[k] + flap_per_speed * dv, -t[k]);
             for r in 0..4 {
                 out.loads[k][r] = dw[r] * dwk
                     + dwt[r] * dwtk

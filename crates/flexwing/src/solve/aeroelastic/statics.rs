@@ -98,6 +98,9 @@ pub struct AeroEquilibrium {
     pub lift: f64,
     /// Root bending moment, the clamp spring's moment `K_θ,1 q_1` (N·m).
     pub root_bending_moment: f64,
+    /// Hinge moment of each control surface (N·m, positive trailing edge down), in the order of
+    /// [`Aeroelastic::surfaces`].
+    pub hinge_moments: Vec<f64>,
     /// Divergence pressure of the frozen state `μ(x*)` (Pa), `None` if no real mode diverges.
     pub divergence_pressure: Option<f64>,
     /// Solver counters.
@@ -427,6 +430,12 @@ fn equilibrium_point<'a, M: AeroStructure>(
         .map(|(f, s)| s.width * (ca * f[1] + sa * f[2]))
         .sum::<f64>()
         * pressure;
+    let hinge_moments = ws
+        .eval
+        .hinge_moments()
+        .iter()
+        .map(|h| h * pressure)
+        .collect();
     let divergence_pressure = frozen_divergence_pressure(model, loads, ws, x);
     AeroEquilibrium {
         speed,
@@ -436,6 +445,7 @@ fn equilibrium_point<'a, M: AeroStructure>(
         tip_twist,
         lift,
         root_bending_moment: chain.root_bending_moment(&q),
+        hinge_moments,
         q,
         divergence_pressure,
         stats,
