@@ -1,4 +1,4 @@
-"""Trailing-edge control surfaces from Python (docs/aeroelastic-model.md §3a): the effectiveness
+"""Trailing-edge control surfaces from Python (docs/aeroelastic-model.md §3b): the effectiveness
 of a full-span aileron on a uniform clamped wing against the closed form of the torsion ODE,
 computed here, at second order in the element count; the hinge moments as arrays; bad surfaces
 named by their case-file key.
