@@ -1,4 +1,4 @@
-//! Trailing-edge control surfaces (docs/aeroelastic-model.md §3a): Theodorsen's steady flap
+//! Trailing-edge control surfaces (docs/aeroelastic-model.md §3b): Theodorsen's steady flap
 //! coefficients against a thin-airfoil solution computed here independently (the lumped-vortex
 //! discretization of the thin-airfoil integral equation), and the static aeroelastic equilibria
 //! with a deflected surface against the closed forms of aileron reversal and effectiveness: the
