@@ -13,13 +13,15 @@ use flexwing::analysis::aero::{Aero, Fields, SpeedSweep};
 use flexwing::beam::Profile;
 use flexwing::model::aero::{AeroSection, Aerodynamics, FlightCondition};
 use flexwing::model::{FullModel, Load};
-use flexwing::solve::aeroelastic::{FlightHistory, Gust, GustShape};
+use flexwing::solve::aeroelastic::{FlightHistory, Gust, GustPenetration, GustShape};
 use flexwing::solve::{StaticOptions, TimeFunction};
 use flexwing::InputError;
 
 use super::dynamic::time_function;
 use super::spec::{Case, InitialKindSpec, LoadKindSpec, TimeSpec};
-use super::spec_aero::{AeroModelSpec, AeroSpec, FlightSpec, GustShapeSpec, SpeedSweepSpec};
+use super::spec_aero::{
+    AeroModelSpec, AeroSpec, FlightSpec, GustPenetrationSpec, GustShapeSpec, SpeedSweepSpec,
+};
 use super::statics::evenly_spaced;
 use crate::CaseError;
 
@@ -348,6 +350,10 @@ fn gust(g: &crate::GustSpec) -> Result<Gust, InputError> {
             .spanwise
             .as_ref()
             .map_or(Profile::Uniform(1.0), |p| p.0.clone()),
+        penetration: match g.penetration {
+            None | Some(GustPenetrationSpec::Uniform) => GustPenetration::Uniform,
+            Some(GustPenetrationSpec::Kussner) => GustPenetration::Kussner,
+        },
     })
 }
 

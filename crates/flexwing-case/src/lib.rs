@@ -63,8 +63,8 @@ pub use spec::{
     TimeKindSpec, TimeSpec,
 };
 pub use spec_aero::{
-    AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustShapeSpec, GustSpec,
-    LinearizeSpec, SpeedSweepSpec, StatesSpec,
+    AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustPenetrationSpec,
+    GustShapeSpec, GustSpec, LinearizeSpec, SpeedSweepSpec, StatesSpec,
 };
 pub use spec_output::{thinned_indices, NodeTimesSpec, OutputFormatSpec, OutputSpec};
 pub use words::{in_user_terms, keys, JARGON};

@@ -119,7 +119,23 @@ pub struct GustSpec {
     /// Spanwise factor (dimensionless, number or table); default 1.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spanwise: Option<Property>,
+    /// How the gust front meets each section: `"uniform"` (default: the whole chord at once,
+    /// with the gust's apparent mass) or `"kussner"` (Küssner's penetration).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub penetration: Option<GustPenetrationSpec>,
 }
+
+/// `aero.flight.gust.penetration`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum GustPenetrationSpec {
+    /// The whole chord at once, every strip at the same time, with the apparent mass.
+    Uniform,
+    /// Küssner's function, the front convected over the chord and along a swept span.
+    Kussner,
+}
+
+word_enum!(GustPenetrationSpec { Uniform = "uniform", Kussner = "kussner" });
 
 /// `aero.flight.gust.shape`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

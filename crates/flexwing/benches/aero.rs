@@ -19,7 +19,7 @@ use flexwing::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCond
 use flexwing::model::{AppliedLoads, ReducedModel, StructuralModel};
 use flexwing::solve::aeroelastic::{
     flutter, response, AeroelasticEquations, FlightHistory, FlutterMethod, FlutterOptions,
-    FlutterSolution, Gust, GustShape, ResponseOptions, ResponseSolution,
+    FlutterSolution, Gust, GustPenetration, GustShape, ResponseOptions, ResponseSolution,
 };
 use flexwing::solve::integrate::{IntegratorStats, Radau, RadauOptions, Tolerances};
 use flexwing::solve::{AuditLimits, Damping};
@@ -49,6 +49,7 @@ fn gust_plan(rtol: f64) -> ResponseOptions {
             amplitude: 1.0,
             start: 0.05,
             spanwise: Profile::Uniform(1.0),
+            penetration: GustPenetration::Uniform,
         }),
     };
     let mut plan = ResponseOptions::new(flight, 2.0, 0.02);

@@ -21,7 +21,8 @@ use flexwing::beam::Profile;
 use flexwing::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCondition};
 use flexwing::model::{AppliedLoads, FullModel, ReducedModel, StructuralModel};
 use flexwing::solve::aeroelastic::{
-    response, AeroelasticEquations, FlightHistory, Gust, GustShape, ResponseOptions,
+    response, AeroelasticEquations, FlightHistory, Gust, GustPenetration, GustShape,
+    ResponseOptions,
 };
 use flexwing::solve::integrate::{
     integrate, Bdf, BdfOptions, Dopri5, Dopri5Options, GeneralizedAlpha, GeneralizedAlphaOptions,
@@ -179,6 +180,7 @@ fn flight() -> FlightHistory {
             amplitude: 1.0,
             start: 0.05,
             spanwise: Profile::Uniform(1.0),
+            penetration: GustPenetration::Uniform,
         }),
     }
 }

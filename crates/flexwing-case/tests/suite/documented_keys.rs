@@ -496,6 +496,11 @@ fn aero_defaults(put: &mut impl FnMut(&'static str, &'static str, String)) {
     let gust = dynamic.flight.gust.expect("a gust");
     put("aero.flight.gust", "start", gust.start.to_string());
     put("aero.flight.gust", "spanwise", uniform(&gust.spanwise));
+    put(
+        "aero.flight.gust",
+        "penetration",
+        format!("\"{}\"", gust.penetration.name()),
+    );
 }
 
 /// A documented default that is a literal: `1e-6`, `true`, `[]`, `"auto"`, `0` (with a note

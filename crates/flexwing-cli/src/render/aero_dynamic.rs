@@ -210,6 +210,9 @@ pub struct Json {
     model: String,
     aerodynamics: String,
     node_output: NodeOutput,
+    /// The gust's penetration (`uniform`, `kussner`), absent without a gust.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    penetration: Option<&'static str>,
     models: Vec<JsonModel>,
 }
 
@@ -225,6 +228,7 @@ pub fn json(ctx: &Context, plan: &AeroDynamicPlan, outcome: &AeroDynamicOutcome)
         model: super::model_line(&plan.structure.model),
         aerodynamics: super::aero_line(plan.aero.aerodynamics, plan.aero.density),
         node_output: NodeOutput::of(&ctx.case.output, plan.structure.output_times.len()),
+        penetration: plan.flight.gust.as_ref().map(|g| g.penetration.name()),
         models: outcome
             .runs
             .iter()

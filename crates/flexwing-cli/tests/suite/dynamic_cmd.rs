@@ -1146,7 +1146,9 @@ fn ctrl_c_and_kill_keep_what_was_computed_marked_interrupted() {
     // in a second run SIGTERM, after 2 s: each stops after its current step, writes the samples
     // it has, and `status.txt` says `interrupted`, exit status 1. Output every 1 ms, so that
     // samples past t = 0 exist within milliseconds even on a loaded machine (with 20 ms it
-    // failed under a parallel workspace test: no sample after 2 s).
+    // failed under a parallel workspace test: no sample after 2 s). atol 5e-9 is what Radau
+    // applied for the former atol 1e-10 before it stopped scaling atol by 0.1 rtol^(-1/3)
+    // (= 46 at rtol 1e-8; issue 24 item 4): the same run as before that change.
     let dir = TempDir::new("interrupt");
     let case = dir.write(
         "case.toml",
@@ -1156,7 +1158,7 @@ fn ctrl_c_and_kill_keep_what_was_computed_marked_interrupted() {
             .replace("end_time = 0.2", "end_time = 50.0")
             .replace(
                 "output_step = 0.01",
-                "output_step = 0.001\nrtol = 1e-8\natol = 1e-10",
+                "output_step = 0.001\nrtol = 1e-8\natol = 5e-9",
             ),
     );
     assert!(case.exists());
@@ -1217,7 +1219,13 @@ fn newton_failures_are_counted_and_a_long_chain_gets_a_note() {
     let full = model(&doc, "full");
     let failed = full["stats"]["newton_failures"].as_u64().unwrap();
     let steps = full["stats"]["steps"].as_u64().unwrap();
-    // Measured: 79 of 84 rejections failed Newton against 107 accepted steps (n = 4000).
+    // Measured: 79 of 81 rejections failed Newton against 100 accepted steps (n = 4000), energy
+    // balance error 9e-4 (limit 0.1). atol = 5e-5 rad is applied as given since issue 24 (Radau
+    // applied 0.464 × 5e-5 = 2.3e-5 before); the case keeps 5e-5 because it is the tolerance a
+    // user of a chain this long would pick (20 rtol / n, examples/long_chain.toml's rule, is
+    // 5e-5 at rtol 1e-2) and it fails Newton as the test needs. The count is very sensitive to
+    // atol on this chain (measured 88 failures / 108 steps at 2e-5, 222 / 145 at 2.3e-5, and
+    // over 7000 / 4500 steps in 300 s at 3e-5): the pathology the note is about.
     assert!(failed >= 20 && 2 * failed >= steps, "{failed} of {steps}");
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(

@@ -370,6 +370,8 @@ class AeroDynamicResult(_NodeFiles, _Runs):
         aerodynamics: as ``AeroStaticResult.aerodynamics``.
         start: ``"equilibrium"`` (the static aeroelastic equilibrium of the initial flight) or
             ``"rest"`` (undeformed).
+        penetration: how the gust front meets each section, ``"uniform"`` or ``"kussner"``
+            (``[aero.flight.gust] penetration``); None without a gust.
         rust_time_s: wall time of the analysis on the Rust side (s).
     """
 
@@ -382,4 +384,5 @@ class AeroDynamicResult(_NodeFiles, _Runs):
     aerodynamics: Dict[str, Any]
     start: str
     rust_time_s: float
+    penetration: Optional[str] = None
     extra: Dict[str, Any] = field(default_factory=dict)

@@ -31,6 +31,10 @@ pub fn raw<'py>(
     d.set_item("end_time", plan.structure.end_time)?;
     d.set_item("aerodynamics", aerodynamics(py, &plan.aero)?)?;
     d.set_item(
+        "penetration",
+        plan.flight.gust.as_ref().map(|g| g.penetration.name()),
+    )?;
+    d.set_item(
         "start",
         match plan.start {
             AeroStart::Equilibrium => "equilibrium",

@@ -6,7 +6,8 @@ use crate::common;
 use flexwing::beam::Profile;
 use flexwing::model::aero::{Aerodynamics, FlightCondition};
 use flexwing::solve::aeroelastic::{
-    flutter, response, FlightHistory, FlutterOptions, Gust, GustShape, ResponseOptions,
+    flutter, response, FlightHistory, FlutterOptions, Gust, GustPenetration, GustShape,
+    ResponseOptions,
 };
 
 fn plan() -> FlutterOptions {
@@ -80,6 +81,7 @@ fn gust_response_of_reduced_models() {
             amplitude: 1.0,
             start: 0.05,
             spanwise: Profile::Uniform(1.0),
+            penetration: GustPenetration::Uniform,
         }),
     };
     let mut plan = ResponseOptions::new(flight, 2.0, 0.02);
@@ -141,6 +143,7 @@ fn regression_reduced_gust_radau_audit_balance_at_rtol_1e_3() {
             amplitude: 1.0,
             start: 0.05,
             spanwise: Profile::Uniform(1.0),
+            penetration: GustPenetration::Uniform,
         }),
     };
     let wing = common::patil_wing(32, Aerodynamics::Peters { states: 6 });

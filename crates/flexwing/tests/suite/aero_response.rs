@@ -8,8 +8,8 @@ use flexwing::beam::{
 use flexwing::model::aero::{AeroSection, Aerodynamics, Aeroelastic, FlightCondition};
 use flexwing::model::FullModel;
 use flexwing::solve::aeroelastic::{
-    response, static_sweep, AeroNewtonSystems, AeroStaticOptions, FlightHistory, Gust, GustShape,
-    ResponseOptions,
+    response, static_sweep, AeroNewtonSystems, AeroStaticOptions, FlightHistory, Gust,
+    GustPenetration, GustShape, ResponseOptions,
 };
 use flexwing::solve::{StaticOptions, TimeFunction};
 
@@ -58,6 +58,7 @@ fn lift_after_a_sharp_edged_gust_follows_wagner() {
             amplitude: vg,
             start: t0,
             spanwise: Profile::Uniform(1.0),
+            penetration: GustPenetration::Uniform,
         }),
     };
     let mut plan = ResponseOptions::new(flight, 1.0, 0.01);
@@ -150,6 +151,7 @@ fn regression_gust_response_with_eliminated_lag_states_matches_dense_newton() {
             amplitude: 1.0,
             start: 0.05,
             spanwise: Profile::Uniform(1.0),
+            penetration: GustPenetration::Uniform,
         }),
     };
     let mut plan = ResponseOptions::new(flight, 1.0, 0.02);
@@ -201,6 +203,7 @@ fn gust_response_errors_follow_the_tolerance_against_a_tight_reference() {
                 amplitude: 1.0,
                 start: 0.05,
                 spanwise: Profile::Uniform(1.0),
+                penetration: GustPenetration::Uniform,
             }),
         };
         let mut p = ResponseOptions::new(flight, 2.0, 0.02);

@@ -497,7 +497,7 @@ mod tests {
     use crate::analysis::NoProgress;
     use crate::beam::Profile;
     use crate::model::aero::FlightCondition;
-    use crate::solve::aeroelastic::{response, Gust, GustShape, ResponseOptions};
+    use crate::solve::aeroelastic::{response, Gust, GustPenetration, GustShape, ResponseOptions};
 
     fn gust() -> FlightHistory {
         FlightHistory {
@@ -513,6 +513,7 @@ mod tests {
                 amplitude: 1.0,
                 start: 0.05,
                 spanwise: Profile::Uniform(1.0),
+                penetration: GustPenetration::Uniform,
             }),
         }
     }
@@ -614,6 +615,7 @@ mod tests {
                         amplitude: 1.0,
                         start: 0.0,
                         spanwise: Profile::Uniform(1.0),
+                        penetration: GustPenetration::Uniform,
                     })
                 }),
                 "aero.flight.gust.length:",

@@ -117,7 +117,8 @@ pub const STEPPER_INPUT_NAMES: &str = "root_angle, speed, gust, force[k] and tor
 pub const STEPPER_OUTPUT_NAMES: &str = "tip_x, tip_y, tip_twist, x[k], y[k], twist[k] (node k), \
                                         root_bending_moment, root_torque, lift";
 
-/// Whether a stepper takes `input` (a linear model's input): the per-strip gusts are not yet.
+/// Whether a stepper takes `input` (a linear model's input): the per-strip gusts are not yet,
+/// and the gust's rate is its hold's (the gust's apparent mass follows the `gust` input).
 ///
 /// # Errors
 /// The reason, naming the inputs it takes.
@@ -129,6 +130,11 @@ pub fn check_input(input: &Input) -> Result<(), String> {
         Input::StripGust(_) => Err(format!(
             "{} is an input of the linear model only; a stepper takes {STEPPER_INPUT_NAMES}",
             input.name()
+        )),
+        Input::GustRate => Err(format!(
+            "gust_rate is an input of the linear model only: a stepper takes the gust's rate \
+             from its hold of gust (the slope over the interval, zero when held); it takes \
+             {STEPPER_INPUT_NAMES}"
         )),
     }
 }
@@ -230,6 +236,9 @@ pub struct AeroStepper {
     values: Vec<f64>,
     /// Each input's value set for the next interval.
     pending: Vec<f64>,
+    /// The flight offsets of the last interval stepped (zero before the first): with the
+    /// first-order hold, the outputs at its end see the gust's rate over it (its apparent mass).
+    last_offsets: FlightOffsets,
     t: f64,
     y: Vec<f64>,
     stats: IntegratorStats,
@@ -393,6 +402,7 @@ impl AeroStepper {
             load_inputs,
             values: start.clone(),
             pending: start.clone(),
+            last_offsets: FlightOffsets::default(),
             start,
             t: 0.0,
             y,
@@ -528,7 +538,7 @@ impl AeroStepper {
                 Input::RootAngle => offsets.root_angle = segment(i),
                 Input::Speed => offsets.speed = segment(i),
                 Input::Gust => offsets.gust = segment(i),
-                Input::Force(_) | Input::Torque(_) | Input::StripGust(_) => {}
+                Input::Force(_) | Input::Torque(_) | Input::StripGust(_) | Input::GustRate => {}
             }
         }
         let mut functions = self.case_functions.clone();
@@ -613,6 +623,7 @@ impl AeroStepper {
                 self.y = y;
                 self.t = t1;
                 self.values.clone_from(&self.pending);
+                self.last_offsets = offsets;
                 self.stop = None;
                 Ok(t1)
             }
@@ -638,7 +649,13 @@ impl AeroStepper {
     pub fn outputs_into(&mut self, out: &mut [f64]) {
         let t = self.t;
         let in_force = self.in_force().to_vec();
-        let (offsets, _) = self.forcing(&in_force, &in_force, t, t);
+        // With the first-order hold the values in force are the last interval's end values:
+        // its segments also carry the rates over it (the gust's apparent mass), as the
+        // integration ended with them.
+        let offsets = match self.hold {
+            Hold::Linear => self.last_offsets,
+            Hold::Zero => self.forcing(&in_force, &in_force, t, t).0,
+        };
         let y = &self.y;
         let outputs = &self.outputs;
         with_eqs!(self.cell, |e| {

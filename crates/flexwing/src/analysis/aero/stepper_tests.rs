@@ -5,7 +5,7 @@ use crate::analysis::dynamics::DynamicPlan;
 use crate::analysis::NoProgress;
 use crate::beam::Profile;
 use crate::model::aero::{Aerodynamics, FlightCondition};
-use crate::solve::aeroelastic::{FlightHistory, Gust, GustShape};
+use crate::solve::aeroelastic::{FlightHistory, Gust, GustPenetration, GustShape};
 
 const DT: f64 = 0.05;
 const STEPS: usize = 16;
@@ -61,6 +61,7 @@ fn reference() -> AeroDynamicOutcome {
         amplitude: 1.0,
         start: 0.0,
         spanwise: Profile::Uniform(1.0),
+        penetration: GustPenetration::Uniform,
     });
     flight.root_angle_change = Some((1.0, table(angle)));
     let length = 16.0;
@@ -151,6 +152,7 @@ fn zero_hold_and_direct_feedthrough() {
         // stepper's (whose gust is set for the first interval).
         start: 1e-9,
         spanwise: Profile::Uniform(1.0),
+        penetration: GustPenetration::Uniform,
     });
     let p = plan(flight, vec![], vec![]);
     let out = run(&p, &mut NoProgress).unwrap();

@@ -593,7 +593,51 @@ impl<M: AeroStructure> Aeroelastic<M> {
                 wind,
                 speed: v2.sqrt(),
                 pressure: 0.5 * self.density * v2,
+                ..Air::default()
             };
+        }
+    }
+
+    /// [`Self::air_into`] with the gust's rate `rate[i]` (m/s², uniform penetration: its
+    /// apparent mass) and the gust through Küssner's function `lagged[i]` (m/s, not in the
+    /// wind), both vertical in the ground frame (docs/aeroelastic-model.md §3a).
+    pub(crate) fn air_with_gust_into(
+        &self,
+        speed: f64,
+        root_angle: f64,
+        (gust, rate, lagged): (&[f64], &[f64], &[f64]),
+        out: &mut [Air],
+    ) {
+        self.air_into(speed, root_angle, gust, out);
+        let (sa, ca) = root_angle.sin_cos();
+        for ((o, &r), &l) in out.iter_mut().zip(rate).zip(lagged) {
+            o.gust_rate = [0.0, r * ca, r * sa];
+            o.gust_lagged = [0.0, l * ca, l * sa];
+        }
+    }
+
+    /// The point of each strip's leading edge in the undeformed wing (wing frame, m): the strip's
+    /// elastic-axis point plus `b(1 + a)` along its chord toward the leading edge.
+    pub(crate) fn leading_edges(&self) -> Vec<[f64; 3]> {
+        match self.chain() {
+            AeroChain::Planar(_) => self
+                .strips
+                .iter()
+                .map(|s| [s.station, 0.0, s.b * (1.0 + s.a)])
+                .collect(),
+            AeroChain::Spatial(chain) => {
+                let p = chain.beam().reference_positions();
+                let frames = chain.beam().reference_frames();
+                self.strips
+                    .iter()
+                    .enumerate()
+                    .map(|(i, s)| {
+                        let r = &frames[i];
+                        let le = s.b * (1.0 + s.a);
+                        std::array::from_fn(|k| 0.5 * (p[i][k] + p[i + 1][k]) + le * r[k][2])
+                    })
+                    .collect()
+            }
         }
     }
 }

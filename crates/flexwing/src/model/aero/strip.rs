@@ -39,12 +39,16 @@ impl StripData {
 }
 
 /// The air at a strip at one instant: free stream plus gust `V∞ + V_g` (wing frame, m/s), its
-/// speed `V = |V∞ + V_g|` and dynamic pressure `q = ½ρV²`.
+/// speed `V = |V∞ + V_g|` and dynamic pressure `q = ½ρV²`; the gust's rate `∂V_g/∂t` (m/s², its
+/// apparent mass: uniform penetration) and the gust velocity through Küssner's function (m/s,
+/// Küssner's penetration, whose gust is then not in `wind`), docs/aeroelastic-model.md §3a.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct Air {
     pub(crate) wind: [f64; 3],
     pub(crate) speed: f64,
     pub(crate) pressure: f64,
+    pub(crate) gust_rate: [f64; 3],
+    pub(crate) gust_lagged: [f64; 3],
 }
 
 /// The motion of a strip's section: the trigonometry of its element, the velocity of its
@@ -127,6 +131,9 @@ pub(crate) fn section_loads<D: DualNum<Primitive = f64> + Copy>(
         } else {
             (nu, [-t[0], -t[1], -t[2]])
         };
+        // Küssner's gust: its lagged upwash adds to the circulation's.
+        let g = &air.gust_lagged;
+        let w_eff = w_eff + (nu[0] * g[0] + nu[1] * g[1] + nu[2] * g[2]);
         let alpha = w_eff.atan2(wt);
         let cl = (alpha - s.alpha0) * s.lift_slope;
         let qc = air.pressure * chord;
@@ -143,6 +150,17 @@ pub(crate) fn section_loads<D: DualNum<Primitive = f64> + Copy>(
             force[k] += fv * nu[k];
         }
         moment += fv * s.zeta_34();
+    }
+    if unsteady && air.gust_rate != [0.0; 3] {
+        // The gust's apparent mass: πρb² (∂V_g/∂t·ν) along ν at mid-chord (ζ_m = a b), the
+        // section's own ḧ term for a section moving with −V_g.
+        let g = &air.gust_rate;
+        let fa = (nu[0] * g[0] + nu[1] * g[1] + nu[2] * g[2])
+            * (std::f64::consts::PI * density * s.b * s.b);
+        for k in 0..3 {
+            force[k] += fa * nu[k];
+        }
+        moment += fa * (s.a * s.b);
     }
     (force, moment)
 }
@@ -174,6 +192,7 @@ mod tests {
             wind: [0.0, 0.0, -u],
             speed: u,
             pressure: 0.5 * rho * u * u,
+            ..Air::default()
         };
         let (th, ps): (f64, f64) = (0.2, 0.05);
         let n = [-th.sin(), th.cos()];

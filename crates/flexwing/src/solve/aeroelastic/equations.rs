@@ -25,11 +25,11 @@ use nalgebra::{Complex, DMatrix, DVector};
 
 use super::audit::{dot, AeroAudit};
 use super::evaluator::{AeroDerivatives, AeroEvaluator};
-use super::flight::{FlightHistory, FlightOffsets};
+use super::flight::{FlightHistory, FlightOffsets, GustPenetration};
 use super::linear::Linearization;
 use super::schur::{AeroNewtonSystems, LagSchur, StructuredJacobian};
 use crate::error::InputError;
-use crate::model::aero::{AeroChain, AeroStructure, Aeroelastic};
+use crate::model::aero::{AeroChain, AeroStructure, Aerodynamics, Aeroelastic};
 use crate::model::{AppliedLoads, Load};
 use crate::solve::integrate::{NewtonSolver, OdeSystem};
 use crate::solve::{Damping, EquationsOfMotion, Gyroscopic, TimeFunction};
@@ -93,6 +93,11 @@ pub struct AeroelasticEquations<'a, M: AeroStructure> {
     pub(super) audit: Option<AeroAudit>,
     /// A flag that, once set, stops the integration after the next accepted step.
     pub(super) halt: Option<Arc<AtomicBool>>,
+    /// Per strip: the time the gust front takes from the wing's most upstream leading-edge point
+    /// to the strip's leading edge (s; zero unless Küssner's penetration).
+    gust_delays: Vec<f64>,
+    /// Per strip: the gust velocity, its rate and its Küssner-lagged velocity of the instant.
+    gust_now: [Vec<f64>; 3],
     /// Right-hand-side evaluations.
     pub rhs_evaluations: usize,
     /// Jacobian evaluations.
@@ -115,6 +120,25 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         field: &str,
     ) -> Result<Self, InputError> {
         flight.initial.validate(field)?;
+        if let Some(g) = &flight.gust {
+            if g.penetration == GustPenetration::Kussner
+                && !matches!(
+                    aero.aerodynamics(),
+                    Aerodynamics::Wagner | Aerodynamics::Peters { .. }
+                )
+            {
+                return Err(InputError::new(
+                    format!("{field}.gust.penetration"),
+                    format!(
+                        "\"kussner\" is the gust's circulation lag: it needs the wagner or \
+                         peters model, not {}",
+                        aero.aerodynamics().name()
+                    ),
+                ));
+            }
+        }
+        let gust_delays = gust_delays(aero, &flight);
+        let strips = aero.n_strips();
         let model = aero.structure();
         let structural = EquationsOfMotion::new(
             model,
@@ -154,6 +178,8 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
             schur: None,
             audit: None,
             halt: None,
+            gust_delays,
+            gust_now: [vec![0.0; strips], vec![0.0; strips], vec![0.0; strips]],
             rhs_evaluations: 0,
             jacobian_evaluations: 0,
         })
@@ -300,6 +326,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     /// Replace the flight history (same gravity loads: the gravitational acceleration of the
     /// history given at construction is kept, its root-angle factor follows the new history).
     pub(crate) fn set_flight(&mut self, flight: FlightHistory) {
+        self.gust_delays = gust_delays(self.aero, &flight);
         self.flight = flight;
     }
 
@@ -576,13 +603,57 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         let u = self.speed(t);
         let alpha = self.root_angle(t);
         let flight = &self.flight;
-        let uniform = self.offsets.gust.at(t);
-        self.eval.set_air(u, alpha, |s| flight.gust(s, t) + uniform);
+        // The stepper's uniform gust (its offset) with its rate, then the case's gust.
+        let (offset, offset_rate) = (self.offsets.gust.at(t), self.offsets.gust.rate(t));
+        let u0 = flight.initial.speed;
+        let [v, rate, lagged] = &mut self.gust_now;
+        v.fill(offset);
+        rate.fill(offset_rate);
+        lagged.fill(0.0);
+        if let Some(g) = &flight.gust {
+            for (i, s) in self.aero.strips.iter().enumerate() {
+                let amplitude = g.amplitude * g.spanwise.at(s.station);
+                match g.penetration {
+                    GustPenetration::Uniform => {
+                        v[i] += amplitude * g.factor(t, u0);
+                        rate[i] += amplitude * g.rate(t, u0);
+                    }
+                    GustPenetration::Kussner => {
+                        lagged[i] = amplitude * g.kussner_factor(t, u0, s.b, self.gust_delays[i]);
+                    }
+                }
+            }
+        }
+        self.eval.set_air_with_gust(u, alpha, (v, rate, lagged));
     }
 
     fn gravity_scale(&self, t: f64) -> [f64; 1] {
         [self.root_angle(t).cos()]
     }
+}
+
+/// Per strip, the time the gust front takes from the wing's most upstream leading-edge point to
+/// the strip's leading edge, convected along the initial free stream at `U₀` (undeformed
+/// geometry); zeros unless Küssner's penetration (a uniform gust meets every strip at once).
+fn gust_delays<M: AeroStructure>(aero: &Aeroelastic<M>, flight: &FlightHistory) -> Vec<f64> {
+    let n = aero.n_strips();
+    let kussner = flight
+        .gust
+        .as_ref()
+        .is_some_and(|g| g.penetration == GustPenetration::Kussner);
+    let u0 = flight.initial.speed;
+    if !kussner || !(u0 > 0.0) {
+        return vec![0.0; n];
+    }
+    // Distance along the free stream's direction (sin α ŷ − cos α ẑ).
+    let (sa, ca) = flight.initial.root_angle.sin_cos();
+    let along: Vec<f64> = aero
+        .leading_edges()
+        .iter()
+        .map(|p| sa * p[1] - ca * p[2])
+        .collect();
+    let first = along.iter().copied().fold(f64::INFINITY, f64::min);
+    along.iter().map(|d| (d - first) / u0).collect()
 }
 
 impl<M: AeroStructure> OdeSystem for AeroelasticEquations<'_, M> {
@@ -913,6 +984,7 @@ pub(crate) mod tests {
                     x: vec![0.0, 3.0],
                     value: vec![1.0, 0.5],
                 },
+                penetration: GustPenetration::Uniform,
             }),
         };
         let damping = Damping::Rayleigh {

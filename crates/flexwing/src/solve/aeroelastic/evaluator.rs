@@ -109,6 +109,12 @@ impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
         self.aero.air_into(u, alpha, &self.gust, &mut self.air);
     }
 
+    /// Set the air of every strip for speed `u`, root angle `alpha` and, per strip, the gust
+    /// velocity, its rate and its Küssner-lagged velocity ([`Aeroelastic::air_with_gust_into`]).
+    pub(crate) fn set_air_with_gust(&mut self, u: f64, alpha: f64, gust: (&[f64], &[f64], &[f64])) {
+        self.aero.air_with_gust_into(u, alpha, gust, &mut self.air);
+    }
+
     /// Full-model coordinates `v_full = Φ v` into `out`.
     fn expand(&self, v: &[f64], out: &mut [f64]) {
         match self.aero.structure().basis() {

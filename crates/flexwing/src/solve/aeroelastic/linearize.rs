@@ -8,6 +8,8 @@
 //!   equilibrium `(x*, p = 0, a*)`, `a*` the steady lag states: so its eigenvalues are those of
 //!   the flutter analysis ([`super::stability_eigenvalues`]). In the velocity basis
 //!   `(x, ẋ, a)` it is `T⁻¹ A T`, `T = diag(I, M(x*), I)` (`δp = M δẋ` at `ẋ = 0`).
+//! * The gust's rate `gust_rate` adds the gust's apparent mass `πρb² v̇_g` at mid-chord (the
+//!   non-linear strips' uniform penetration): a load per unit rate, no wind, no lag input.
 //! * The inputs of the air (root angle, speed, gusts) change the wind `W` of every strip; the
 //!   strip's loads depend on it through the upwash `w = W·ν + …`, the chordwise speed
 //!   `W_T = −W·t + …`, the dynamic pressure `½ρ|W|²` (the circulatory loads are proportional to
@@ -457,12 +459,16 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
             Input::Speed => Some([0.0, sa, -ca]),
             Input::Gust => Some([0.0, ca, sa]),
             Input::StripGust(k) => Some(if *k == i + 1 { [0.0, ca, sa] } else { [0.0; 3] }),
-            Input::Force(_) | Input::Torque(_) => None,
+            Input::GustRate | Input::Force(_) | Input::Torque(_) => None,
         }
     }
 
-    /// The strips' load changes `(δF, δM)` per unit `input` (zeros for a non-wind input).
+    /// The strips' load changes `(δF, δM)` per unit `input` (zeros for a non-wind input but the
+    /// gust's rate).
     fn strip_changes(&self, input: &Input) -> Vec<[f64; 4]> {
+        if *input == Input::GustRate {
+            return self.apparent_mass_of_gust_rate();
+        }
         (0..self.aero.n_strips())
             .map(|i| match self.wind_of(input, i) {
                 None => [0.0; 4],
@@ -470,6 +476,29 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
                     let d = &self.wind[i];
                     std::array::from_fn(|r| (0..3).map(|k| d.loads[k][r] * dw[k]).sum())
                 }
+            })
+            .collect()
+    }
+
+    /// The strips' loads per unit rate of the uniform gust: its apparent mass `πρb² (ġ·ν) ν` at
+    /// mid-chord (moment `πρb² (ġ·ν) a b`), `ġ = (0, cos α, sin α)` per unit rate, as the
+    /// non-linear strips apply it (`model::aero::strip::section_loads`); none with steady
+    /// aerodynamics.
+    fn apparent_mass_of_gust_rate(&self) -> Vec<[f64; 4]> {
+        let (sa, ca) = self.flight.root_angle.sin_cos();
+        let unsteady = self.aero.aerodynamics().is_unsteady();
+        let rho = self.aero.density();
+        (0..self.aero.n_strips())
+            .map(|i| {
+                if !unsteady {
+                    return [0.0; 4];
+                }
+                let s = &self.aero.strips[i];
+                let m = self.eval.sc.motion[i];
+                let (c, si, cp, sp) = (m.cos_theta, m.sin_theta, m.cos_psi, m.sin_psi);
+                let nu = [-(cp * si), cp * c, -sp];
+                let fa = (nu[1] * ca + nu[2] * sa) * std::f64::consts::PI * rho * s.b * s.b;
+                [fa * nu[0], fa * nu[1], fa * nu[2], fa * s.a * s.b]
             })
             .collect()
     }

@@ -8,7 +8,7 @@ use nalgebra::{Complex, DMatrix, DVector};
 
 use super::super::equations::tests::test_wing;
 use super::super::evaluator::AeroEvaluator;
-use super::super::flight::{FlightHistory, Gust, GustShape};
+use super::super::flight::{FlightHistory, Gust, GustPenetration, GustShape};
 use super::*;
 use crate::beam::Profile;
 use crate::model::ReducedModel;
@@ -19,6 +19,7 @@ fn inputs() -> Vec<Input> {
         Input::Speed,
         Input::Gust,
         Input::StripGust(2),
+        Input::GustRate,
         Input::Force(3),
         Input::Torque(2),
     ]
@@ -84,6 +85,7 @@ fn perturbed<M: PlanarStructure>(
         amplitude: h,
         start: 0.0,
         spanwise,
+        penetration: GustPenetration::Uniform,
     };
     match o.inputs[j] {
         Input::RootAngle => flight.initial.root_angle += h,
@@ -98,6 +100,16 @@ fn perturbed<M: PlanarStructure>(
                 x: stations.clone(),
                 value,
             }));
+        }
+        // A gust h sin t: zero at t = 0, its rate h there (the gust's apparent mass only).
+        Input::GustRate => {
+            flight.gust = Some(Gust {
+                shape: GustShape::History(TimeFunction::Sine {
+                    omega: 1.0,
+                    phase: 0.0,
+                }),
+                ..gust(Profile::Uniform(1.0))
+            })
         }
         Input::Force(k) => loads.push(Load::PointForce {
             span: nodes[k],
@@ -155,9 +167,27 @@ fn nonlinear<M: PlanarStructure>(
     let lift_of = |wy: f64, wz: f64| {
         let mut ev = AeroEvaluator::new(aero);
         let flight = &p.flight;
-        ev.set_air(flight.speed(0.0), flight.root_angle(0.0), |s| {
-            flight.gust(s, 0.0)
-        });
+        // The gust and its rate (its apparent mass, uniform penetration) at every strip.
+        let gust: Vec<f64> = aero
+            .strips
+            .iter()
+            .map(|s| flight.gust(s.station, 0.0))
+            .collect();
+        let rate: Vec<f64> = aero
+            .strips
+            .iter()
+            .map(|s| {
+                flight.gust.as_ref().map_or(0.0, |g| {
+                    g.amplitude * g.spanwise.at(s.station) * g.rate(0.0, flight.initial.speed)
+                })
+            })
+            .collect();
+        let lagged = vec![0.0; aero.n_strips()];
+        ev.set_air_with_gust(
+            flight.speed(0.0),
+            flight.root_angle(0.0),
+            (&gust, &rate, &lagged),
+        );
         let mut f = vec![0.0; n];
         let mut adot = vec![0.0; aero.n_aero_states()];
         ev.evaluate(x, xdot.as_slice(), &y[2 * n..], &mut f, false, &mut adot);

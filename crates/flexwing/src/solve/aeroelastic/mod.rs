@@ -13,7 +13,9 @@ mod linear;
 mod schur;
 
 pub use equations::{AeroelasticEquations, LinearSystem};
-pub use flight::{FlightHistory, Gust, GustShape};
+pub use flight::{
+    kussner_fit, FlightHistory, Gust, GustPenetration, GustShape, KUSSNER_A, KUSSNER_BETA,
+};
 pub use schur::AeroNewtonSystems;
 mod statics;
 

@@ -485,7 +485,9 @@ mod tests {
     use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCondition};
     use crate::model::AppliedLoads;
     use crate::solve::aeroelastic::equations::tests::test_wing;
-    use crate::solve::aeroelastic::{AeroelasticEquations, FlightHistory, Gust, GustShape};
+    use crate::solve::aeroelastic::{
+        AeroelasticEquations, FlightHistory, Gust, GustPenetration, GustShape,
+    };
     use crate::solve::integrate::OdeSystem;
     use crate::solve::Damping;
 
@@ -506,6 +508,7 @@ mod tests {
                 amplitude: 1.5,
                 start: 0.0,
                 spanwise: Profile::Uniform(1.0),
+                penetration: GustPenetration::Uniform,
             }),
         };
         let damping = Damping::Rayleigh {

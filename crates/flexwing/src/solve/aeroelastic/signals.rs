@@ -18,6 +18,10 @@ pub enum Input {
     Gust,
     /// `gust[k]` (m/s): the vertical gust velocity at the strip of element `k` (1-based) only.
     StripGust(usize),
+    /// `gust_rate` (m/s²): the rate `d(gust)/dt` of the uniform gust, for its apparent mass
+    /// `πρb² v̇_g` at mid-chord (the non-linear strips' uniform penetration; none with steady
+    /// aerodynamics). Feed it with `gust`; zero gives the quasi-static gust.
+    GustRate,
     /// `force[k]` (N): a dead vertical force (along the wing frame's `y`, up) at node `k`
     /// (`1 … n`).
     Force(usize),
@@ -119,7 +123,8 @@ fn index_in(inner: &str, what: &str, lo: usize, hi: usize) -> Result<usize, Stri
 
 /// Every name an input takes, for messages.
 pub const INPUT_NAMES: &str =
-    "root_angle, speed, gust, gust[k] (strip of element k), force[k] and torque[k] (node k)";
+    "root_angle, speed, gust, gust[k] (strip of element k), gust_rate, force[k] and torque[k] \
+     (node k)";
 
 /// Every name an output takes, for messages.
 pub const OUTPUT_NAMES: &str = "tip_x, tip_y, tip_twist, x[k], y[k], twist[k] (node k), \
@@ -138,6 +143,7 @@ impl Input {
             ("root_angle", _) => Input::RootAngle,
             ("speed", _) => Input::Speed,
             ("gust", _) => Input::Gust,
+            ("gust_rate", _) => Input::GustRate,
             (_, Some(("gust", i))) => {
                 Input::StripGust(index_in(i, "element", 1, n).map_err(error)?)
             }
@@ -164,6 +170,7 @@ impl Input {
             Input::Speed => "speed".into(),
             Input::Gust => "gust".into(),
             Input::StripGust(k) => format!("gust[{k}]"),
+            Input::GustRate => "gust_rate".into(),
             Input::Force(k) => format!("force[{k}]"),
             Input::Torque(k) => format!("torque[{k}]"),
         }
@@ -174,6 +181,7 @@ impl Input {
         match self {
             Input::RootAngle => "rad",
             Input::Speed | Input::Gust | Input::StripGust(_) => "m/s",
+            Input::GustRate => "m/s²",
             Input::Force(_) => "N",
             Input::Torque(_) => "N·m",
         }
@@ -275,6 +283,7 @@ mod tests {
             "speed",
             "gust",
             "gust[3]",
+            "gust_rate",
             "force[4]",
             "torque[1]",
         ] {

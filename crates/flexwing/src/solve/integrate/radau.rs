@@ -13,9 +13,15 @@
 //! step in `radau_step.rs` (iteration matrices, starting values, Newton iteration, error
 //! estimate, step-size proposal, collocation polynomial and dense output).
 //!
-//! Tolerances are transformed as in `RADAU5`: the error estimate is of order 3 while the method is
-//! of order 5, and `rtol' = 0.1 rtol^(2/3)`, `atol' = atol rtol'/rtol` make the global error
-//! roughly proportional to `rtol`.
+//! Tolerances: the error estimate is of order 3 while the method is of order 5, so the relative
+//! tolerance is transformed as in `RADAU5`, `rtol' = 0.1 rtol^(2/3)`, which makes the global
+//! error roughly proportional to `rtol`. The absolute tolerance is applied **as given**
+//! (`atol' = atol`). `RADAU5` scales it too, `atol' = atol rtol'/rtol = 0.1 rtol^(−1/3) atol`,
+//! which loosens it as `rtol` is tightened (×46 at rtol 1e-8): a tighter `rtol` at a fixed `atol`
+//! could then take fewer steps and give a worse answer (issue 24: a gust at rtol 1e-8 and atol
+//! 1e-5 took 32 steps against 56 at the defaults, its twist 16× worse). With `atol' = atol` the
+//! error test `|err_i| ≤ atol_i + rtol'|y_i|` only tightens with `rtol`
+//! (`tests/suite/tolerances.rs` checks every integrator).
 //!
 //! # References
 //! E. Hairer, G. Wanner, *Solving Ordinary Differential Equations II*, 2nd ed., Springer (1996),
@@ -328,18 +334,14 @@ impl Radau {
         }
     }
 
-    /// The settings of a run of dimension `n` on `[t0, t_end]`: tolerances transformed as
-    /// `RADAU5` (module documentation) and the Newton and step-size constants.
+    /// The settings of a run of dimension `n` on `[t0, t_end]`: `rtol` transformed as `RADAU5`,
+    /// `atol` as given (module documentation), and the Newton and step-size constants.
     fn settings(&self, n: usize, t0: f64, t_end: f64, mats: &IterationMatrices) -> Settings {
         let opts = &self.options;
         let rtol_user = opts.tolerances.rtol;
         let rtol = 0.1 * rtol_user.powf(2.0 / 3.0);
-        let atol: Vec<f64> = opts
-            .tolerances
-            .atol(n)
-            .iter()
-            .map(|a| a * rtol / rtol_user)
-            .collect();
+        let _ = rtol_user;
+        let atol: Vec<f64> = opts.tolerances.atol(n).to_vec();
         let nit = opts.max_newton_iterations;
         let (quot1, quot2) = opts.unchanged_step_ratio;
         Settings {
