@@ -70,8 +70,8 @@ enum Command {
         reduced models of [dynamic] under [[loads]] and their time histories; with [aero] the \
         aeroelastic response to the gust and changes of [aero.flight]. Prints each model's \
         integrator work, wall time and tip against the first model's; writes dynamic_tip.csv \
-        (dynamic_aero.csv with [aero]), dynamic_nodes.csv, dynamic_summary.csv and \
-        status.txt; with --plot dynamic_tip.svg/.png and dynamic_snapshots.svg/.png. A \
+        (dynamic_aero.csv with [aero]), dynamic_nodes.csv (.npz with --format npz), \
+        dynamic_summary.csv and status.txt; with --vtk VTK files for ParaView; with --plot dynamic_tip.svg/.png and dynamic_snapshots.svg/.png. A \
         progress bar appears on a terminal's stderr after a second. An integration that stops \
         keeps the output times reached; the exit status is then 1. See docs/cli.md."
     )]

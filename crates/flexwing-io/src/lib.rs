@@ -1,9 +1,11 @@
-//! flexwing's output formats, shared by the CLI and the Python package: MATLAB's MAT-file
+//! flexwing's output formats, shared by the CLI and the Python package: CSV without non-finite
+//! cells (`csv.rs`), MATLAB's MAT-file
 //! (level 5, `matfile.rs`) and NumPy's `.npz` (`npz.rs`) from one list of named values, VTK's
 //! XML files for ParaView (`vtk.rs`), and the atomic write every result file goes through
 //! (`atomic.rs`), so that an interrupted run never leaves a file that looks complete.
 
 pub mod atomic;
+pub mod csv;
 pub mod matfile;
 pub mod nodes;
 pub mod npz;

@@ -28,8 +28,21 @@ pub fn write_node_npz(
     fields: Vec<(String, String)>,
     histories: Vec<History<'_>>,
 ) -> PyResult<()> {
+    let vars = crate::errors::guard(py, || node_variables(py, &fields, &histories))?;
+    crate::errors::detached(py, || {
+        flexwing_io::atomic::write_with(&path, |f| flexwing_io::npz::write(f, &vars))
+    })?
+    .map_err(|e| PyOSError::new_err(e.to_string()))
+}
+
+/// The named arrays of `histories`, checked.
+fn node_variables(
+    py: Python<'_>,
+    fields: &[(String, String)],
+    histories: &[History<'_>],
+) -> PyResult<Vec<(String, flexwing_io::Value)>> {
     let mut list = Vec::with_capacity(histories.len());
-    for (label, t, index, values) in &histories {
+    for (label, t, index, values) in histories {
         let (t, index, values) = (t.as_array(), index.as_array(), values.as_array());
         let shape = values.shape();
         if shape[0] != t.len() || shape[0] != index.len() || shape[2] != fields.len() {
@@ -53,9 +66,7 @@ pub fn write_node_npz(
             values: values.iter().copied().collect(),
         });
     }
-    let vars = nodes::variables(&fields, &list);
-    py.detach(|| flexwing_io::atomic::write_with(&path, |f| flexwing_io::npz::write(f, &vars)))
-        .map_err(|e| PyOSError::new_err(e.to_string()))
+    Ok(nodes::variables(fields, &list))
 }
 
 /// Write a planar chain's frames to `folder` as `STEM_0000.vtu`, … and `STEM.pvd`
@@ -77,6 +88,24 @@ pub fn write_planar_vtk(
     stations: PyReadonlyArray1<'_, f64>,
     modes: bool,
 ) -> PyResult<String> {
+    let frames = crate::errors::guard(py, || {
+        planar_frames(py, &times, &x, &y, &twist, &stations, modes)
+    })?;
+    crate::errors::detached(py, || vtk::write_series(&folder, &stem, &frames))?
+        .map(|p| p.to_string_lossy().into_owned())
+        .map_err(|e| PyOSError::new_err(e.to_string()))
+}
+
+/// The frames of `write_planar_vtk`, checked.
+fn planar_frames(
+    py: Python<'_>,
+    times: &PyReadonlyArray1<'_, f64>,
+    x: &PyReadonlyArray2<'_, f64>,
+    y: &PyReadonlyArray2<'_, f64>,
+    twist: &PyReadonlyArray2<'_, f64>,
+    stations: &PyReadonlyArray1<'_, f64>,
+    modes: bool,
+) -> PyResult<Vec<vtk::Frame>> {
     let (times, x, y, twist) = (
         times.as_array(),
         x.as_array(),
@@ -108,7 +137,5 @@ pub fn write_planar_vtk(
             }
         })
         .collect();
-    py.detach(|| vtk::write_series(&folder, &stem, &frames))
-        .map(|p| p.to_string_lossy().into_owned())
-        .map_err(|e| PyOSError::new_err(e.to_string()))
+    Ok(frames)
 }

@@ -209,10 +209,10 @@ pub fn text(ctx: &Context, s: &mut String, plan: &AeroDynamicPlan, outcome: &Aer
 pub struct Json {
     model: String,
     aerodynamics: String,
+    node_output: NodeOutput,
     /// The gust's penetration (`uniform`, `kussner`), absent without a gust.
     #[serde(skip_serializing_if = "Option::is_none")]
     penetration: Option<&'static str>,
-    node_output: NodeOutput,
     models: Vec<JsonModel>,
 }
 
@@ -227,8 +227,8 @@ pub fn json(ctx: &Context, plan: &AeroDynamicPlan, outcome: &AeroDynamicOutcome)
     Json {
         model: super::model_line(&plan.structure.model),
         aerodynamics: super::aero_line(plan.aero.aerodynamics, plan.aero.density),
-        penetration: plan.flight.gust.as_ref().map(|g| g.penetration.name()),
         node_output: NodeOutput::of(&ctx.case.output, plan.structure.output_times.len()),
+        penetration: plan.flight.gust.as_ref().map(|g| g.penetration.name()),
         models: outcome
             .runs
             .iter()
