@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use flexwing::analysis::aero::stepper::Hold;
 use flexwing_case::Case;
-use flexwing_fmu::description::find_library;
+use flexwing_fmu::description::{find_library, fmu_bytes};
 use flexwing_fmu::{write_fmu, FmuError, FmuOptions};
 
 use crate::driver::Failure;
@@ -58,17 +58,27 @@ pub fn run(args: &FmuArgs) -> Result<(), Failure> {
     let beside = std::env::current_exe()
         .ok()
         .and_then(|p| p.parent().map(std::path::Path::to_path_buf));
-    let library = find_library(args.library.as_deref(), beside.as_deref()).map_err(Failure::run)?;
-    let out = args.out.clone().unwrap_or_else(|| {
-        let stem = args.case.file_stem().unwrap_or_default().to_string_lossy();
-        PathBuf::from(format!("{stem}.fmu"))
-    });
     let options = FmuOptions {
         inputs: args.inputs.clone(),
         outputs: args.outputs.clone(),
         model: args.model,
         hold,
     };
+    let library = match find_library(args.library.as_deref(), beside.as_deref()) {
+        Ok(library) => library,
+        Err(missing) => {
+            // A case the FMU cannot carry is the user's first error (exit 2), whether or not the
+            // library is built: check it with an empty binary before reporting the library.
+            if let Err(FmuError::Input(m)) = fmu_bytes(&case, &options, &[]) {
+                return Err(Failure::input(m));
+            }
+            return Err(Failure::run(missing));
+        }
+    };
+    let out = args.out.clone().unwrap_or_else(|| {
+        let stem = args.case.file_stem().unwrap_or_default().to_string_lossy();
+        PathBuf::from(format!("{stem}.fmu"))
+    });
     let summary = write_fmu(&case, &options, &library, &out).map_err(|e| match e {
         FmuError::Input(m) => Failure::input(m),
         FmuError::Io(m) => Failure::run(m),
