@@ -73,7 +73,12 @@ enum Command {
         (dynamic_aero.csv with [aero]), dynamic_nodes.csv (.npz with --format npz), \
         dynamic_summary.csv and status.txt; with --vtk VTK files for ParaView; with --plot dynamic_tip.svg/.png and dynamic_snapshots.svg/.png. A \
         progress bar appears on a terminal's stderr after a second. An integration that stops \
-        keeps the output times reached; the exit status is then 1. See docs/cli.md."
+        keeps the output times reached; the exit status is then 1. Tolerances: a step is \
+        accepted when the RMS of err_i / (atol_i + rtol |y_i|) is at most 1, atol_i being \
+        [dynamic] atol (rad of joint rotation) converted per coordinate, momentum and lag state, \
+        as given by every integrator; rtol is as given too, except by Radau, which uses \
+        0.1 rtol^(2/3); with a fixed step they set only Newton's test (docs/model-choices.md, \
+        \"Error weights in physical units\"). See docs/cli.md."
     )]
     Dynamic(DynamicArgs),
     /// Divergence and flutter speeds along a sweep in free-stream speed, full and reduced models.

@@ -10,6 +10,7 @@ mod aero_chain_reference;
 mod aero_convergence;
 mod aero_flutter;
 mod aero_gust;
+mod aero_gust_family;
 mod aero_linear_matrices;
 mod aero_linearize;
 mod aero_reduced;

@@ -115,14 +115,19 @@ fn a_tighter_rtol_never_loosens_any_integrator() {
 }
 
 /// The issue's case: Patil's wing (n = 16, Peters' 6 states) in the patil_gust flight, 1 s,
-/// Radau, `atol` = 1e-5 fixed. The tip twist against a run at rtol = atol = 1e-11: the error at
-/// rtol 1e-8 must not exceed that at 1e-6 (issue 24 measured 3.3e-2 of the twist peak at 1e-8
-/// against 2.1e-3 at the defaults with `RADAU5`'s scaling of `atol`). Measured with `atol`
-/// applied as given: 5.1e-5 at rtol 1e-6, 1.3e-5 at 1e-8; bound: no larger, ×1.25 for the
-/// controller's noise (as above).
+/// `atol` = 1e-5 fixed, for every integrator with an adaptive step: the tip twist's error at a
+/// tighter `rtol` must not exceed that at the looser one (issue 24 measured 3.3e-2 of the twist
+/// peak at 1e-8 against 2.1e-3 at the defaults with `RADAU5`'s scaling of `atol`). The reference
+/// is a run of another integrator: BDF at rtol = atol = 1e-11 for Radau, Radau at 1e-11 for the
+/// others (the two references agree to the figure printed, far below the errors measured). The
+/// `rtol` pairs: 1e-6 → 1e-8 for the higher-order methods, 1e-4 → 1e-5 for the second-order
+/// ones (their steps grow like rtol^(−1/2)). Measured errors of the peak (loose → tight): Radau
+/// 5.1e-5 → 1.3e-5, BDF 2.6e-3 → 2.4e-3, Dormand–Prince 5.2e-4 → 5.1e-4 (both held by atol
+/// there), midpoint 5.6e-3 → 2.7e-3, generalized-α 6.9e-3 → 3.1e-3; the references 4.1e-7
+/// apart. Bound: no larger, ×1.25 for the controllers' noise (as above).
 #[test]
 fn the_gust_at_a_tighter_rtol_is_not_worse() {
-    let twist = |rtol: f64, atol: f64| -> Vec<f64> {
+    let twist = |method: Method, rtol: f64, atol: f64| -> Vec<f64> {
         let model = flexwing::wings::patil_wing(16, Aerodynamics::Steady)
             .unwrap()
             .full()
@@ -134,9 +139,10 @@ fn the_gust_at_a_tighter_rtol_is_not_worse() {
         };
         let times: Vec<f64> = (0..=100).map(|k| 0.01 * k as f64).collect();
         let mut s = DynamicPlan::new(model, vec![], 1.0, times);
-        s.integrator = Method::Radau;
+        s.integrator = method;
         s.settings.rtol = rtol;
         s.settings.atol = atol;
+        s.settings.max_steps = 2_000_000;
         let flight = FlightHistory {
             initial: FlightCondition {
                 speed: 25.0,
@@ -155,20 +161,52 @@ fn the_gust_at_a_tighter_rtol_is_not_worse() {
         };
         let out = aero_run(&AeroDynamicPlan::new(s, aero, flight), &mut NoProgress).unwrap();
         let r = &out.runs[0];
-        assert!(r.status.is_complete(), "{rtol:e}: {:?}", r.status);
+        // Every output time reached; a run may be `suspect`: the energy audit's default limit,
+        // 1000 rtol but at least 1e-5, is below what atol = 1e-5 lets the balance drift (BDF at
+        // rtol 1e-8: 1.3e-5), which is the audit doing its job, not this test's concern.
+        assert!(
+            matches!(r.status.word(), "complete" | "suspect"),
+            "{method:?} {rtol:e}: {:?}",
+            r.status
+        );
         r.samples.iter().map(|s| s.tip_twist).collect()
     };
-    let reference = twist(1e-11, 1e-11);
-    let peak = reference.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let error = |v: &[f64]| {
+    let radau_reference = twist(Method::Radau, 1e-11, 1e-11);
+    let bdf_reference = twist(Method::Bdf, 1e-11, 1e-11);
+    let peak = radau_reference.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let error = |v: &[f64], reference: &[f64]| {
         v.iter()
-            .zip(&reference)
+            .zip(reference)
             .map(|(a, b)| (a - b).abs())
             .fold(0.0, f64::max)
             / peak
     };
-    let default = error(&twist(1e-6, 1e-5));
-    let tight = error(&twist(1e-8, 1e-5));
-    println!("twist error / peak: rtol 1e-6 {default:.2e}, rtol 1e-8 {tight:.2e} (atol 1e-5)");
-    assert!(tight <= 1.25 * default, "{tight:.2e} > {default:.2e}");
+    println!(
+        "references: Radau − BDF at 1e-11: {:.2e} of the peak",
+        error(&radau_reference, &bdf_reference)
+    );
+    let cases = [
+        (Method::Radau, 1e-6, 1e-8),
+        (Method::Bdf, 1e-6, 1e-8),
+        (Method::Dopri5, 1e-6, 1e-8),
+        (Method::Midpoint, 1e-4, 1e-5),
+        (Method::GeneralizedAlpha, 1e-4, 1e-5),
+    ];
+    for (method, loose, tight) in cases {
+        let reference = if method == Method::Radau {
+            &bdf_reference
+        } else {
+            &radau_reference
+        };
+        let e_loose = error(&twist(method, loose, 1e-5), reference);
+        let e_tight = error(&twist(method, tight, 1e-5), reference);
+        println!(
+            "{method:?}: twist error / peak: rtol {loose:e} {e_loose:.2e}, rtol {tight:e} \
+             {e_tight:.2e} (atol 1e-5)"
+        );
+        assert!(
+            e_tight <= 1.25 * e_loose,
+            "{method:?}: {e_tight:.2e} > {e_loose:.2e}"
+        );
+    }
 }

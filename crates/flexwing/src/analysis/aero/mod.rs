@@ -20,6 +20,7 @@
 #[cfg(test)]
 mod audit_tests;
 pub mod flutter;
+pub mod gust_family;
 pub mod linearize;
 pub mod response;
 pub mod statics;
