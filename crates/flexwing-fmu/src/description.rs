@@ -435,8 +435,9 @@ pub fn write_fmu(
         ))
     })?;
     let (bytes, summary) = fmu_bytes(case, options, &lib)?;
-    std::fs::write(out, bytes)
-        .map_err(|e| FmuError::Io(format!("cannot write {}: {e}", out.display())))?;
+    // Atomically (a temporary beside `out`, synced, renamed): an interrupted write leaves no
+    // archive that looks complete.
+    flexwing_io::write_bytes(out, &bytes).map_err(|e| FmuError::Io(e.to_string()))?;
     Ok(summary)
 }
 
