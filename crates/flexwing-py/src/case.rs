@@ -469,18 +469,7 @@ impl PyCase {
                 });
             }
             case.linearize = Some(spec);
-            let progress = crate::progress::callback(
-                py,
-                kw.get("progress")?,
-                "callback(done: float, label: str)",
-            )?;
-            let check = match kw.get("check")? {
-                None => true,
-                Some(v) => v
-                    .extract::<bool>()
-                    .map_err(|_| errors::argument_type(py, "check", "must be True or False"))?,
-            };
-            run_case(py, &case, Analysis::Linearize, progress, check)
+            run_with(py, &kw, &case, Analysis::Linearize)
         })
     }
 
@@ -529,6 +518,25 @@ impl PyCase {
     }
 }
 
+/// Run `analysis` on `case` with the keyword arguments every analysis takes: `progress` (a
+/// callable) and `check` (a bool, default true).
+fn run_with<'py>(
+    py: Python<'py>,
+    kw: &Kwargs<'py>,
+    case: &Case,
+    analysis: Analysis,
+) -> PyResult<Bound<'py, PyAny>> {
+    let progress =
+        crate::progress::callback(py, kw.get("progress")?, "callback(done: float, label: str)")?;
+    let check = match kw.get("check")? {
+        None => true,
+        Some(v) => v
+            .extract::<bool>()
+            .map_err(|_| errors::argument_type(py, "check", "must be True or False"))?,
+    };
+    run_case(py, case, analysis, progress, check)
+}
+
 impl PyCase {
     fn analysis<'py>(
         &self,
@@ -540,18 +548,7 @@ impl PyCase {
         errors::guard(py, || {
             // `check` for every analysis, as the stubs declare (modes either complete or fail).
             let kw = Kwargs::new(py, kwargs, &["progress", "check"], function)?;
-            let progress = crate::progress::callback(
-                py,
-                kw.get("progress")?,
-                "callback(done: float, label: str)",
-            )?;
-            let check = match kw.get("check")? {
-                None => true,
-                Some(v) => v
-                    .extract::<bool>()
-                    .map_err(|_| errors::argument_type(py, "check", "must be True or False"))?,
-            };
-            run_case(py, &self.case, analysis, progress, check)
+            run_with(py, &kw, &self.case, analysis)
         })
     }
 }
