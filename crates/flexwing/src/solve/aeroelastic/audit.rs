@@ -187,7 +187,6 @@ mod tests {
     use crate::model::{Force, Load};
     use crate::solve::integrate::{OdeSystem, Radau, RadauOptions, Tolerances};
     use crate::solve::{Damping, TimeFunction};
-    use nalgebra::Complex;
 
     /// The audit through Radau's Newton systems solved by eliminating the lag states
     /// (`schur.rs`, the library response's path) and by dense LU: a small tapered wing with
@@ -329,7 +328,7 @@ mod tests {
     /// dense and the lag-eliminating Newton systems, full and reduced models, Wagner and Peters.
     #[test]
     fn quadrature_steps_are_the_bordered_newton_steps() {
-        use crate::solve::integrate::IterationMatrices;
+        use crate::solve::integrate::assert_quadrature_rows;
         for am in [Aerodynamics::Wagner, Aerodynamics::Peters { states: 3 }] {
             let full = test_wing(5, am);
             let rom = full.reduced(&[0, 1, 2, 3]).unwrap();
@@ -397,50 +396,8 @@ mod tests {
             let xd: Vec<f64> = (0..n).map(|i| 0.5 * (2.0 * i as f64).cos()).collect();
             let a: Vec<f64> = (0..na).map(|i| 0.3 * (0.7 * i as f64).cos()).collect();
             let y = eqs.state(&x, &xd, &a);
-            let (dim, m, t) = (eqs.dim(), 2 * n + na, 0.3);
-            let h = 1e-6;
-            let (mut fp, mut fm) = (vec![0.0; dim], vec![0.0; dim]);
-            let mut g = [vec![0.0; m], vec![0.0; m]];
-            for c in 0..m {
-                let (mut yp, mut ym) = (y.clone(), y.clone());
-                yp[c] += h;
-                ym[c] -= h;
-                eqs.rhs(t, &yp, &mut fp);
-                eqs.rhs(t, &ym, &mut fm);
-                for k in 0..2 {
-                    g[k][c] = (fp[m + k] - fm[m + k]) / (2.0 * h);
-                }
-            }
-            let mut mats = IterationMatrices::new(&mut eqs);
-            assert!(mats.linearize(&mut eqs, t, &y));
-            eqs.rhs(t, &y, &mut fp);
-            let (c, cc) = (40.0, Complex::new(35.0, 20.0));
-            assert!(mats.factor_real(&mut eqs, 0, c) && mats.factor_complex(&mut eqs, 0, cc));
-            let b: Vec<f64> = (0..dim).map(|i| (1.7 * i as f64 + 0.3).sin()).collect();
-            let bi: Vec<f64> = (0..dim).map(|i| (0.9 * i as f64 + 1.1).cos()).collect();
-            let mut xr = b.clone();
-            mats.solve_real(&mut eqs, 0, &mut xr);
-            let (mut zr, mut zi) = (b.clone(), bi.clone());
-            mats.solve_complex(&mut eqs, 0, &mut zr, &mut zi);
-            for k in 0..2 {
-                let dot = |v: &[f64]| (0..m).map(|j| g[k][j] * v[j]).sum::<f64>();
-                let size = |v: &[f64]| (0..m).map(|j| (g[k][j] * v[j]).abs()).sum::<f64>();
-                let want = (b[m + k] + dot(&xr)) / c;
-                let bound = 1e-6 * size(&xr) / c + 1e-12;
-                assert!(
-                    (xr[m + k] - want).abs() <= bound,
-                    "{systems:?} real, quadrature {k}: {} vs {want}",
-                    xr[m + k]
-                );
-                let want =
-                    (Complex::new(b[m + k], bi[m + k]) + Complex::new(dot(&zr), dot(&zi))) / cc;
-                let got = Complex::new(zr[m + k], zi[m + k]);
-                let bound = 1e-6 * (size(&zr) + size(&zi)) / cc.norm() + 1e-12;
-                assert!(
-                    (got - want).norm() <= bound,
-                    "{systems:?} complex, quadrature {k}: {got} vs {want}"
-                );
-            }
+            let label = format!("{systems:?}");
+            assert_quadrature_rows(&mut eqs, 0.3, &y, 2 * n + na, &label);
         }
     }
 }

@@ -225,8 +225,6 @@ fn check_quadrature_step<M: StructuralModel>(
     damping: &Damping,
     systems: NewtonSystems,
 ) {
-    use crate::solve::integrate::IterationMatrices;
-    use nalgebra::Complex;
     let tf = vec![TimeFunction::Constant; loads.n_loads()];
     let mut eom = EquationsOfMotion::new(model, loads, tf, Gyroscopic::Exact, damping)
         .unwrap()
@@ -236,48 +234,6 @@ fn check_quadrature_step<M: StructuralModel>(
     let x: Vec<f64> = (0..nd).map(|i| 0.3 * (1.0 + i as f64).sin()).collect();
     let xd: Vec<f64> = (0..nd).map(|i| 0.8 * (2.0 * i as f64).cos()).collect();
     let y = eom.state(&x, &xd);
-    let (dim, m) = (eom.dim(), 2 * nd);
-    // The rates' gradients by central differences.
-    let h = 1e-6;
-    let (mut fp, mut fm) = (vec![0.0; dim], vec![0.0; dim]);
-    let mut g = [vec![0.0; m], vec![0.0; m]];
-    for c in 0..m {
-        let (mut yp, mut ym) = (y.clone(), y.clone());
-        yp[c] += h;
-        ym[c] -= h;
-        eom.rhs(0.0, &yp, &mut fp);
-        eom.rhs(0.0, &ym, &mut fm);
-        for k in 0..2 {
-            g[k][c] = (fp[m + k] - fm[m + k]) / (2.0 * h);
-        }
-    }
-    let mut mats = IterationMatrices::new(&mut eom);
-    assert!(mats.linearize(&mut eom, 0.0, &y));
-    eom.rhs(0.0, &y, &mut fp);
-    let (c, cc) = (40.0, Complex::new(35.0, 20.0));
-    assert!(mats.factor_real(&mut eom, 0, c) && mats.factor_complex(&mut eom, 0, cc));
-    let b: Vec<f64> = (0..dim).map(|i| (1.7 * i as f64 + 0.3).sin()).collect();
-    let bi: Vec<f64> = (0..dim).map(|i| (0.9 * i as f64 + 1.1).cos()).collect();
-    let mut xr = b.clone();
-    mats.solve_real(&mut eom, 0, &mut xr);
-    let (mut zr, mut zi) = (b.clone(), bi.clone());
-    mats.solve_complex(&mut eom, 0, &mut zr, &mut zi);
-    for k in 0..2 {
-        let dot = |v: &[f64]| (0..m).map(|j| g[k][j] * v[j]).sum::<f64>();
-        let size = |v: &[f64]| (0..m).map(|j| (g[k][j] * v[j]).abs()).sum::<f64>();
-        let want = (b[m + k] + dot(&xr)) / c;
-        let bound = 1e-6 * size(&xr) / c + 1e-12;
-        assert!(
-            (xr[m + k] - want).abs() <= bound,
-            "{systems:?} real, quadrature {k}: {} vs {want}",
-            xr[m + k]
-        );
-        let want = (Complex::new(b[m + k], bi[m + k]) + Complex::new(dot(&zr), dot(&zi))) / cc;
-        let got = Complex::new(zr[m + k], zi[m + k]);
-        let bound = 1e-6 * (size(&zr) + size(&zi)) / cc.norm() + 1e-12;
-        assert!(
-            (got - want).norm() <= bound,
-            "{systems:?} complex, quadrature {k}: {got} vs {want}"
-        );
-    }
+    let label = format!("{systems:?}");
+    crate::solve::integrate::assert_quadrature_rows(&mut eom, 0.0, &y, 2 * nd, &label);
 }

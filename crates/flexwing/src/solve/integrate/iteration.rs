@@ -211,3 +211,61 @@ fn solver<S: OdeSystem + ?Sized>(system: &mut S) -> &mut dyn super::NewtonSolver
         .newton_solver()
         .expect("the system's newton_solver() changed during the integration")
 }
+
+/// Test support: the two quadrature rows `m`, `m + 1` of `system` (the energy audit's `W`, `D`
+/// after its `m` dynamic states) are stepped consistently by the iteration matrices' real and
+/// complex solves. Their gradients by central differences (h = 1e-6) give the expected rows:
+/// `x_q = (b_q + g·x) / c` for the shift `c` (and its complex twin); the bound `1e-6` is the
+/// differences' relative error on the sum of the terms, `label` names the case in messages.
+#[cfg(test)]
+pub(crate) fn assert_quadrature_rows<S: OdeSystem>(
+    system: &mut S,
+    t: f64,
+    y: &[f64],
+    m: usize,
+    label: &str,
+) {
+    let dim = system.dim();
+    let h = 1e-6;
+    let (mut fp, mut fm) = (vec![0.0; dim], vec![0.0; dim]);
+    let mut g = [vec![0.0; m], vec![0.0; m]];
+    for c in 0..m {
+        let (mut yp, mut ym) = (y.to_vec(), y.to_vec());
+        yp[c] += h;
+        ym[c] -= h;
+        system.rhs(t, &yp, &mut fp);
+        system.rhs(t, &ym, &mut fm);
+        for k in 0..2 {
+            g[k][c] = (fp[m + k] - fm[m + k]) / (2.0 * h);
+        }
+    }
+    let mut mats = IterationMatrices::new(system);
+    assert!(mats.linearize(system, t, y));
+    system.rhs(t, y, &mut fp);
+    let (c, cc) = (40.0, Complex::new(35.0, 20.0));
+    assert!(mats.factor_real(system, 0, c) && mats.factor_complex(system, 0, cc));
+    let b: Vec<f64> = (0..dim).map(|i| (1.7 * i as f64 + 0.3).sin()).collect();
+    let bi: Vec<f64> = (0..dim).map(|i| (0.9 * i as f64 + 1.1).cos()).collect();
+    let mut xr = b.clone();
+    mats.solve_real(system, 0, &mut xr);
+    let (mut zr, mut zi) = (b.clone(), bi.clone());
+    mats.solve_complex(system, 0, &mut zr, &mut zi);
+    for k in 0..2 {
+        let dot = |v: &[f64]| (0..m).map(|j| g[k][j] * v[j]).sum::<f64>();
+        let size = |v: &[f64]| (0..m).map(|j| (g[k][j] * v[j]).abs()).sum::<f64>();
+        let want = (b[m + k] + dot(&xr)) / c;
+        let bound = 1e-6 * size(&xr) / c + 1e-12;
+        assert!(
+            (xr[m + k] - want).abs() <= bound,
+            "{label} real, quadrature {k}: {} vs {want}",
+            xr[m + k]
+        );
+        let want = (Complex::new(b[m + k], bi[m + k]) + Complex::new(dot(&zr), dot(&zi))) / cc;
+        let got = Complex::new(zr[m + k], zi[m + k]);
+        let bound = 1e-6 * (size(&zr) + size(&zi)) / cc.norm() + 1e-12;
+        assert!(
+            (got - want).norm() <= bound,
+            "{label} complex, quadrature {k}: {got} vs {want}"
+        );
+    }
+}

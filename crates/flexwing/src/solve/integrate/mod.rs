@@ -33,6 +33,8 @@ pub use method::{integrate, IntegratorSettings, Method, MIN_RTOL};
 pub use midpoint::{ImplicitMidpoint, MidpointOptions};
 pub use radau::{Radau, RadauOptions};
 
+#[cfg(test)]
+pub(crate) use iteration::assert_quadrature_rows;
 pub(crate) use iteration::IterationMatrices;
 pub(crate) use lu::{ComplexLu, DenseLu};
 
