@@ -15,6 +15,7 @@
 
 use std::time::Instant;
 
+use super::aero::flutter::{check_solver, check_sweep};
 use super::aero::{Aero, Fields, SpeedSweep};
 use super::statics::Sweep;
 use super::{Note, Progress, Status, Stop};
@@ -195,36 +196,15 @@ impl Flutter3d {
         fields: &Fields,
     ) -> Result<Aeroelastic<Chain3d>, InputError> {
         let wing = self.wing(model, fields.aero)?;
-        let speeds = format!("{}.sweep", fields.aero);
-        let Some(sweep) = &self.sweep else {
-            return Err(InputError::new(
-                speeds,
-                "missing: a flutter analysis sweeps the free-stream speed; give the speeds of \
-                 its V-g data",
-            ));
-        };
-        sweep.validate(&format!("{speeds}.speeds"), true)?;
-        FlightCondition {
-            speed: sweep.speeds[0],
-            ..self.flight
-        }
-        .validate(&fields.flight())?;
+        check_sweep(self.sweep.as_ref(), &self.flight, fields)?;
         model.apply_planar(&self.loads, fields.loads)?;
-        self.static_options.validate(fields.statics)?;
-        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return Err(InputError::new(
-                fields.analysis("tolerance"),
-                format!("must be in (0, 1), got {}", short(self.tolerance)),
-            ));
-        }
-        if self.pk && !self.aero.aerodynamics.is_unsteady() {
-            return Err(InputError::new(
-                fields.analysis("pk"),
-                "the p-k method replaces an unsteady model's lag by Theodorsen's function and \
-                 needs its apparent mass and rate terms: choose quasi-steady, wagner or peters \
-                 aerodynamics",
-            ));
-        }
+        check_solver(
+            &self.static_options,
+            self.tolerance,
+            self.pk,
+            &self.aero,
+            fields,
+        )?;
         let n = model.n_dofs();
         if let Some(count) = self.modes {
             if !(1..=n).contains(&count) {

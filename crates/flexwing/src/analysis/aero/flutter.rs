@@ -88,39 +88,15 @@ impl FlutterPlan {
     /// does not have; nothing to run.
     pub fn validate(&self, fields: &Fields) -> Result<(), InputError> {
         let wing = self.aero.wing(&self.model, fields.aero)?;
-        let speeds = format!("{}.sweep", fields.aero);
-        let Some(sweep) = &self.sweep else {
-            return Err(InputError::new(
-                speeds,
-                "missing: a flutter analysis sweeps the free-stream speed; give the speeds of \
-                 its V-g data",
-            ));
-        };
-        sweep.validate(&format!("{speeds}.speeds"), true)?;
-        FlightCondition {
-            speed: sweep.speeds[0],
-            ..self.flight
-        }
-        .validate(&fields.flight())?;
+        check_sweep(self.sweep.as_ref(), &self.flight, fields)?;
         self.model.apply(&self.loads, fields.loads)?;
-        self.static_options.validate(fields.statics)?;
-        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return Err(InputError::new(
-                fields.analysis("tolerance"),
-                format!(
-                    "must be in (0, 1), got {}",
-                    crate::text::short(self.tolerance)
-                ),
-            ));
-        }
-        if self.pk && !self.aero.aerodynamics.is_unsteady() {
-            return Err(InputError::new(
-                fields.analysis("pk"),
-                "the p-k method replaces an unsteady model's lag by Theodorsen's function and \
-                 needs its apparent mass and rate terms: choose quasi-steady, wagner or peters \
-                 aerodynamics",
-            ));
-        }
+        check_solver(
+            &self.static_options,
+            self.tolerance,
+            self.pk,
+            &self.aero,
+            fields,
+        )?;
         let n = wing.structure().n_dofs();
         let kinds = models(
             self.full,
@@ -167,6 +143,57 @@ impl FlutterPlan {
     pub fn branches_for(&self, dofs: usize) -> usize {
         self.modes.unwrap_or(DEFAULT_MODES.min(dofs))
     }
+}
+
+/// The checks of a flutter plan of either structure before its loads: the speed sweep (given,
+/// positive and increasing) and the flight at its first speed; errors name `{aero}.sweep…` and
+/// the flight's fields.
+pub(crate) fn check_sweep(
+    sweep: Option<&SpeedSweep>,
+    flight: &FlightCondition,
+    fields: &Fields,
+) -> Result<(), InputError> {
+    let speeds = format!("{}.sweep", fields.aero);
+    let Some(sweep) = sweep else {
+        return Err(InputError::new(
+            speeds,
+            "missing: a flutter analysis sweeps the free-stream speed; give the speeds of \
+             its V-g data",
+        ));
+    };
+    sweep.validate(&format!("{speeds}.speeds"), true)?;
+    FlightCondition {
+        speed: sweep.speeds[0],
+        ..*flight
+    }
+    .validate(&fields.flight())
+}
+
+/// The checks of a flutter plan of either structure after its loads: the static options, the
+/// crossing tolerance in (0, 1) and the p-k check only with unsteady aerodynamics.
+pub(crate) fn check_solver(
+    static_options: &StaticOptions,
+    tolerance: f64,
+    pk: bool,
+    aero: &Aero,
+    fields: &Fields,
+) -> Result<(), InputError> {
+    static_options.validate(fields.statics)?;
+    if !(tolerance > 0.0 && tolerance < 1.0) {
+        return Err(InputError::new(
+            fields.analysis("tolerance"),
+            format!("must be in (0, 1), got {}", crate::text::short(tolerance)),
+        ));
+    }
+    if pk && !aero.aerodynamics.is_unsteady() {
+        return Err(InputError::new(
+            fields.analysis("pk"),
+            "the p-k method replaces an unsteady model's lag by Theodorsen's function and \
+             needs its apparent mass and rate terms: choose quasi-steady, wagner or peters \
+             aerodynamics",
+        ));
+    }
+    Ok(())
 }
 
 fn dofs_of(kind: &ModelKind, n: usize) -> usize {
