@@ -247,9 +247,9 @@ impl Case {
         Ok((spec, aero))
     }
 
-    /// The loads of an aeroelastic run: gravity belongs to the flight (it follows the root
-    /// angle), not to `[[loads]]`.
-    pub(crate) fn aero_loads(&self, model: &FullModel) -> Result<Vec<Load>, InputError> {
+    /// With `[aero]`, gravity belongs to the flight (it follows the root angle), not to
+    /// `[[loads]]`: the first gravity load is an error naming its `type`.
+    pub(crate) fn refuse_gravity_loads(&self) -> Result<(), InputError> {
         if let Some(i) = self
             .loads
             .iter()
@@ -261,6 +261,13 @@ impl Case {
                  ground's vertical, which the root angle tilts in the wing's frame",
             ));
         }
+        Ok(())
+    }
+
+    /// The loads of an aeroelastic run: gravity belongs to the flight (it follows the root
+    /// angle), not to `[[loads]]`.
+    pub(crate) fn aero_loads(&self, model: &FullModel) -> Result<Vec<Load>, InputError> {
+        self.refuse_gravity_loads()?;
         self.to_loads(model.beam())
     }
 

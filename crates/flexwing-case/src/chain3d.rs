@@ -16,7 +16,7 @@ use flexwing::InputError;
 
 use crate::aero::{condition, fields, speed_sweep};
 use crate::plan::Analysis;
-use crate::spec::{BeamSpec, CalibrationSpec, ElementInertiaSpec, InertiaAxisSpec, LoadKindSpec};
+use crate::spec::{BeamSpec, CalibrationSpec, ElementInertiaSpec, InertiaAxisSpec};
 use crate::spec_chain3d::{StructureSpec, StudyParameterSpec};
 use crate::{Case, CaseError};
 
@@ -314,17 +314,7 @@ impl Case {
                      with speeds = [...] or from, to and steps",
                 )),
             };
-        if let Some(i) = self
-            .loads
-            .iter()
-            .position(|l| l.kind == LoadKindSpec::Gravity)
-        {
-            return Err(InputError::new(
-                format!("loads[{i}].type"),
-                "with [aero], give gravity as aero.flight.gravity (m/s²): it acts along the \
-                 ground's vertical, which the root angle tilts in the wing's frame",
-            ));
-        }
+        self.refuse_gravity_loads()?;
         if let Some(i) = self.loads.iter().position(|l| l.fz.is_some()) {
             return Err(InputError::new(
                 format!("loads[{i}].fz"),
