@@ -246,6 +246,7 @@ impl Case {
             }
             Analysis::Dynamic => return not_yet("dynamic run"),
             Analysis::Linearize => return not_yet("linearization"),
+            Analysis::GustFamily => return not_yet("gust family"),
         };
         let plan = Chain3dPlan {
             model,

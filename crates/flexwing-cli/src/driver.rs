@@ -1,5 +1,5 @@
-//! The one driver of `flexwing modes`, `static`, `dynamic`, `flutter` and `linearize`: read the case, build
-//! its plan (`Case::plan`: aeroelastic with `[aero]`), prepare the output folder, catch
+//! The one driver of `flexwing modes`, `static`, `dynamic`, `flutter`, `linearize`, `study` and
+//! `gust`: read the case, build its plan (`Case::plan`: aeroelastic with `[aero]`), prepare the output folder, catch
 //! interrupts, run the library's one dispatcher (`flexwing::analysis::run`), render the outcome
 //! (`render`: files, then the table or the JSON document), write `status.txt`, print the notes,
 //! and turn what did not complete into the exit status.
@@ -272,7 +272,10 @@ pub fn run(analysis: Analysis, args: &CaseArgs, overrides: &Overrides) -> Result
 
     // A bar of the simulated time for dynamic runs (and Ctrl-C polled by every analysis but
     // the modal one).
-    let dynamic = matches!(plan, Plan::Dynamic(_) | Plan::AeroDynamic(_));
+    let dynamic = matches!(
+        plan,
+        Plan::Dynamic(_) | Plan::AeroDynamic(_) | Plan::GustFamily(_)
+    );
     let shown = dynamic && !args.json && std::io::stderr().is_terminal();
     let mut bar = crate::progress::Progress::new(shown);
     let progress: &mut dyn Progress = if modes { &mut NoProgress } else { &mut bar };

@@ -87,7 +87,11 @@ pub fn files(ctx: &super::Context, view: &View, dir: &Path) -> Result<Vec<PathBu
                 written.push(vtk::write_series(&out, &stem, &frames)?);
             }
         }
-        View::AeroStatic(..) | View::Flutter(..) | View::Linearize(..) | View::Chain3d(..) => {}
+        View::AeroStatic(..)
+        | View::Flutter(..)
+        | View::GustFamily(..)
+        | View::Linearize(..)
+        | View::Chain3d(..) => {}
     }
     Ok(written)
 }

@@ -13,6 +13,7 @@ mod examples;
 mod flutter_cmd;
 mod fmu_cmd;
 mod fuzz_runs;
+mod gust_cmd;
 mod interrupt_cmd;
 mod linearize_cmd;
 mod reproduce_cmd;
