@@ -359,6 +359,22 @@ impl PyCase {
         })
     }
 
+    /// A discrete gust family as in CS 25.341(a) (``[gust_family]`` on the aeroelastic response
+    /// of ``[aero]`` and ``[dynamic]``): one 1−cos gust per gust gradient distance H at its
+    /// design velocity, on the full and reduced models, with each output's peaks per H and the
+    /// critical H, as a ``GustFamilyResult`` (as ``flexwing gust``). Keyword arguments as
+    /// ``dynamics``.
+    #[pyo3(signature = (**kwargs))]
+    fn gust_family<'py>(
+        &self,
+        py: Python<'py>,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        errors::guard(py, || {
+            self.analysis(py, Analysis::GustFamily, kwargs, "gust_family")
+        })
+    }
+
     /// Flutter and divergence against a load level on the 3-D chain (``beam.model =
     /// "chain3d"``, ``[flutter.study]``): at every level of a tip force, gravity factor or root
     /// angle, the tip deflection at rest, the flutter speed and frequency and the divergence
@@ -473,8 +489,9 @@ impl PyCase {
         })
     }
 
-    /// Run the analysis ``"modes"``, ``"static"``, ``"dynamic"`` or ``"flutter"`` or ``"linearize"`` (as the
-    /// methods of the same names).
+    /// Run the analysis ``"modes"``, ``"static"``, ``"dynamic"``, ``"flutter"``, ``"linearize"``,
+    /// ``"study"`` or ``"gust"`` (as the methods of the same names; ``"gust"`` is
+    /// ``gust_family``).
     #[pyo3(signature = (analysis, **kwargs))]
     fn run<'py>(
         &self,

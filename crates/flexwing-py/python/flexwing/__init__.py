@@ -64,6 +64,8 @@ from ._aero_results import (
     AeroStaticRun,
     FlutterResult,
     FlutterRun,
+    GustFamilyResult,
+    GustFamilyRun,
     Stability,
 )
 from ._chain3d_results import (
@@ -104,6 +106,8 @@ __all__ = [
     "AeroStaticResult",
     "FlutterRun",
     "FlutterResult",
+    "GustFamilyRun",
+    "GustFamilyResult",
     "Stability",
     "AeroDynamicRun",
     "AeroDynamicResult",

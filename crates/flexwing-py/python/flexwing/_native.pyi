@@ -15,7 +15,7 @@ from typing import Any, Callable, Dict, Iterable, List, Literal, Mapping, Option
 import numpy as np
 import numpy.typing as npt
 
-from ._aero_results import AeroDynamicResult, AeroStaticResult, FlutterResult
+from ._aero_results import AeroDynamicResult, AeroStaticResult, FlutterResult, GustFamilyResult
 from ._chain3d_results import (
     Chain3dFlutterResult,
     Chain3dModesResult,
@@ -36,7 +36,7 @@ Load = Mapping[str, Any]
 #: ``callback(done, label)``: ``done`` the fraction of the analysis (0 to 1), ``label`` the model
 #: running (``"full"``, ``"reduced-r2"``, …).
 ProgressCallback = Callable[[float, str], Any]
-AnalysisName = Literal["modes", "static", "dynamic", "flutter", "linearize", "study"]
+AnalysisName = Literal["modes", "static", "dynamic", "flutter", "linearize", "study", "gust"]
 
 class Case:
     """A flexwing case: the beam, the loads and the settings of its analyses, with the keys of
@@ -130,6 +130,14 @@ class Case:
         data (1/s, rad/s), flutter speeds (m/s) and frequencies (rad/s), divergence speeds,
         equilibria and the p-k check, per model. ``check`` raises if an eigen-analysis stopped
         before the last speed."""
+    def gust_family(
+        self, *, progress: Optional[ProgressCallback] = None, check: bool = True
+    ) -> GustFamilyResult:
+        """A discrete gust family as in CS 25.341(a) (``[gust_family]`` on ``[aero]`` and
+        ``[dynamic]``): per model and gust gradient distance H (m), the design velocity (m/s)
+        and the largest and smallest change of the tip deflection (m) and twist (rad), the root
+        bending moment and torque (N m) and the lift (N) with their times (s), and each
+        output's critical H. ``check`` as ``dynamics``."""
     def study(
         self, *, progress: Optional[ProgressCallback] = None, check: bool = True
     ) -> Chain3dStudyResult:
@@ -164,6 +172,7 @@ class Case:
         AeroStaticResult,
         AeroDynamicResult,
         FlutterResult,
+        GustFamilyResult,
         LinearizeResult,
         Chain3dModesResult,
         Chain3dStaticResult,

@@ -6,7 +6,9 @@
 * statics: the deformed shapes at the last point, and the tip against the sweep's scale;
 * dynamics (structural or aeroelastic): the tip deflection (and the lift, aeroelastic) in time;
 * static aeroelastic sweeps: the tip twist and deflection against the speed;
-* flutter: the V-g and V-ω diagrams of one model's branches, the flutter speed marked.
+* flutter: the V-g and V-ω diagrams of one model's branches, the flutter speed marked;
+* gust families: each output's largest (solid) and smallest (dashed) change against the gust
+  gradient distance H, one panel per output (the twist and torque only with torsion).
 
 Each returns the matplotlib ``Figure`` (its axes in ``figure.axes``); ``ax=`` draws a
 one-panel plot into the caller's axes instead. Nothing is shown or saved: call
@@ -132,6 +134,19 @@ def _runs(plt, result, ax, model: Optional[str] = None, **_):
         axes[1].set_ylabel(_label("tip_y"))
         axes[-1].set_xlabel(_label("speed"))
         axes[0].set_title("static aeroelastic equilibria")
+    elif axis == "gust":
+        names = [o for o in ("tip_y", "tip_twist", "root_bending_moment", "root_torque", "lift")
+                 if any(np.any(getattr(r, f"{o}_max")) or np.any(getattr(r, f"{o}_min")) for r in runs)]
+        fig, axes = _axes(plt, ax, len(names))
+        for k, r in enumerate(runs):
+            colour = f"C{k}"
+            for a, o in zip(axes, names):
+                a.plot(r.gradient, getattr(r, f"{o}_max"), color=colour, marker=".", label=f"{r.label} max")
+                a.plot(r.gradient, getattr(r, f"{o}_min"), color=colour, linestyle="--", label=f"{r.label} min")
+        for a, o in zip(axes, names):
+            a.set_ylabel(f"peak change of {_label(o)}")
+        axes[-1].set_xlabel("gust gradient distance H (m)")
+        axes[0].set_title("discrete gusts (CS 25.341(a))")
     else:
         raise TypeError(f"{type(first).__name__} has no plot")
     for a in set(axes):
