@@ -10,6 +10,7 @@
 mod aero_dynamic;
 mod aero_static;
 mod chain3d;
+mod chain3d_dynamic;
 mod dynamic;
 mod flutter;
 mod linearize;
@@ -165,7 +166,7 @@ pub fn previous_files(plan: &Plan) -> &'static [&'static str] {
         Plan::Flutter(_) => flutter::FILES,
         Plan::AeroDynamic(_) => aero_dynamic::FILES,
         Plan::Linearize(_) => linearize::FILES,
-        Plan::Chain3d(_) => chain3d::FILES,
+        Plan::Chain3d(p) => chain3d::previous_files(p),
         _ => &[],
     }
 }
@@ -207,7 +208,7 @@ pub fn text(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
         View::Flutter(p, o) => flutter::text(&mut s, ctx, p, o),
         View::AeroDynamic(p, o) => aero_dynamic::text(ctx, &mut s, p, o),
         View::Linearize(p, o) => linearize::text(&mut s, p, o),
-        View::Chain3d(_, o) => chain3d::text(&mut s, o),
+        View::Chain3d(p, o) => chain3d::text(ctx, &mut s, p, o),
     }
     let _ = writeln!(s);
     let modes3d = matches!(
