@@ -395,3 +395,54 @@ fn bad_3d_dynamic_input_names_the_key() {
         assert!(err.contains(expected), "{err:?} lacks {expected:?}");
     }
 }
+
+/// Ctrl-C during a long 3-D dynamic run (the swept release for 90 s at output steps of 1 ms:
+/// minutes of computing): the run stops after its current step, writes the output times it
+/// reached, `status.txt` says `interrupted`, exit status 1 — the planar run's behaviour
+/// (`dynamic_cmd`), a regression test against docs/cli.md. A run that kept no sample past
+/// t = 0 by the signal (a loaded machine) is repeated with a longer delay.
+#[test]
+fn ctrl_c_keeps_the_3d_output_reached() {
+    let dir = TempDir::new("dyn3d-int");
+    let text = std::fs::read_to_string(example("swept_3d_wing.toml"))
+        .unwrap()
+        .replace("end_time = 0.25 ", "end_time = 90.0 ")
+        .replace("output_step = 0.005", "output_step = 0.001");
+    let case = dir.write("case.toml", &text);
+    let mut kept = 0;
+    for delay_ms in [1500, 5000, 12000] {
+        let out = dir.path().join("out");
+        let child = std::process::Command::new(env!("CARGO_BIN_EXE_flexwing"))
+            .args([
+                "dynamic",
+                case.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ])
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("the flexwing binary runs");
+        std::thread::sleep(std::time::Duration::from_millis(delay_ms));
+        let killed = std::process::Command::new("kill")
+            .args(["-INT", &child.id().to_string()])
+            .status()
+            .expect("kill runs");
+        assert!(killed.success());
+        let o = child.wait_with_output().unwrap();
+        assert_eq!(o.status.code(), Some(1), "{}", crate::common::stderr(&o));
+        let status = std::fs::read_to_string(out.join("status.txt")).unwrap();
+        assert!(status.starts_with("interrupted: full: "), "{status}");
+        let rows = std::fs::read_to_string(out.join("dynamic_tip.csv"))
+            .unwrap()
+            .lines()
+            .count()
+            - 1;
+        assert!(rows < 90_001, "the run was not stopped");
+        kept = rows;
+        if kept > 1 {
+            break;
+        }
+    }
+    assert!(kept > 1, "no samples kept after 12 s");
+}
