@@ -310,19 +310,8 @@ impl Case {
 
     fn dynamic3d(&self, model: &Chain3d) -> Result<Dynamic3d, InputError> {
         let p = self.dynamic_parts(model.n_dofs())?;
-        let mut plan = Dynamic3d::new(self.spatial_loads(model)?, p.end_time, p.output_times);
-        plan.time = p.time;
-        plan.full = p.full;
-        plan.simplified = p.simplified;
-        plan.reduced = p.reduced;
-        plan.reduced_modes = p.reduced_modes;
-        plan.gyroscopic = p.gyroscopic;
-        (plan.integrator, plan.settings) = (p.integrator, p.settings);
-        plan.audit = p.audit;
-        plan.damping = p.damping;
-        plan.initial = p.initial;
-        plan.load_names = p.load_names;
-        plan.snapshots = p.snapshots;
+        let mut plan = Dynamic3d::new(self.spatial_loads(model)?, p.end_time, Vec::new());
+        crate::dynamic::set_dynamic_parts!(plan, p);
         Ok(plan)
     }
 

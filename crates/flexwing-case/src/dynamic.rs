@@ -32,19 +32,8 @@ impl Case {
         let model = FullModel::new(self.to_beam()?);
         let loads = self.to_loads(model.beam())?;
         let p = self.dynamic_parts(model.n_dofs())?;
-        let mut plan = DynamicPlan::new(model, loads, p.end_time, p.output_times);
-        plan.time = p.time;
-        plan.full = p.full;
-        plan.simplified = p.simplified;
-        plan.reduced = p.reduced;
-        plan.reduced_modes = p.reduced_modes;
-        plan.gyroscopic = p.gyroscopic;
-        (plan.integrator, plan.settings) = (p.integrator, p.settings);
-        plan.audit = p.audit;
-        plan.damping = p.damping;
-        plan.initial = p.initial;
-        plan.load_names = p.load_names;
-        plan.snapshots = p.snapshots;
+        let mut plan = DynamicPlan::new(model, loads, p.end_time, Vec::new());
+        set_dynamic_parts!(plan, p);
         plan.validate("loads", "dynamic")?;
         Ok(plan)
     }
@@ -196,6 +185,27 @@ impl Case {
         format!("no load named {name:?} ({known})")
     }
 }
+
+/// Set the fields of a dynamic plan (the planar `DynamicPlan`, the 3-D chain's `Dynamic3d`: the
+/// same names) from [`DynamicParts`].
+macro_rules! set_dynamic_parts {
+    ($plan:ident, $p:ident) => {
+        $plan.output_times = $p.output_times;
+        $plan.time = $p.time;
+        $plan.full = $p.full;
+        $plan.simplified = $p.simplified;
+        $plan.reduced = $p.reduced;
+        $plan.reduced_modes = $p.reduced_modes;
+        $plan.gyroscopic = $p.gyroscopic;
+        ($plan.integrator, $plan.settings) = ($p.integrator, $p.settings);
+        $plan.audit = $p.audit;
+        $plan.damping = $p.damping;
+        $plan.initial = $p.initial;
+        $plan.load_names = $p.load_names;
+        $plan.snapshots = $p.snapshots;
+    };
+}
+pub(crate) use set_dynamic_parts;
 
 /// The values of `[dynamic]` and of the loads' time histories, as the library's dynamic plans
 /// take them (the fields of [`DynamicPlan`] but the model and the loads).

@@ -412,24 +412,14 @@ fn ctrl_c_keeps_the_3d_output_reached() {
     let mut kept = 0;
     for delay_ms in [1500, 5000, 12000] {
         let out = dir.path().join("out");
-        let child = std::process::Command::new(env!("CARGO_BIN_EXE_flexwing"))
-            .args([
-                "dynamic",
-                case.to_str().unwrap(),
-                "--out",
-                out.to_str().unwrap(),
-            ])
-            .stdout(std::process::Stdio::piped())
-            .stderr(std::process::Stdio::piped())
-            .spawn()
-            .expect("the flexwing binary runs");
-        std::thread::sleep(std::time::Duration::from_millis(delay_ms));
-        let killed = std::process::Command::new("kill")
-            .args(["-INT", &child.id().to_string()])
-            .status()
-            .expect("kill runs");
-        assert!(killed.success());
-        let o = child.wait_with_output().unwrap();
+        let args = [
+            "dynamic",
+            case.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        let after = std::time::Duration::from_millis(delay_ms);
+        let (o, _) = crate::interrupt_cmd::interrupted_run(&args, "-INT", after);
         assert_eq!(o.status.code(), Some(1), "{}", crate::common::stderr(&o));
         let status = std::fs::read_to_string(out.join("status.txt")).unwrap();
         assert!(status.starts_with("interrupted: full: "), "{status}");

@@ -347,34 +347,31 @@ fn simulate<M: StructuralModel>(
     run.wall_time_s = sim.wall_time_s;
     run.stats = sim.audited.stats;
     run.status = sim.audited.status.clone();
-    let n = model.n_dofs();
-    let balance = &sim.audited.balance;
-    let trajectory = &sim.audited.trajectory;
     let mut next_snapshot = snapshots.iter().peekable();
-    for (index, (&t, y)) in trajectory.t.iter().zip(&trajectory.y).enumerate() {
-        let q = model.full_coordinates(&y[..n]);
-        let (kinetic, strain) = sim.eom.energies(y);
-        let (work, dissipated) = (y[2 * n], y[2 * n + 1]);
-        let shape = Shape3dData::of(chain, &q);
+    for (index, p) in sim.points(model).into_iter().enumerate() {
+        let shape = Shape3dData::of(chain, &p.q);
         let tip = shape.tip();
-        run.t.push(t);
+        run.t.push(p.t);
         run.tip_x.push(tip[0]);
         run.tip_y.push(tip[1]);
         run.tip_z.push(tip[2]);
         run.tip_rotation
             .push(shape.rotation.last().copied().unwrap_or([0.0; 3]));
-        run.kinetic.push(kinetic);
-        run.strain.push(strain);
-        run.total.push(kinetic + strain);
-        run.work.push(work);
-        run.dissipated.push(dissipated);
-        run.balance_error
-            .push(balance.relative(kinetic + strain, work, dissipated));
+        run.kinetic.push(p.kinetic);
+        run.strain.push(p.strain);
+        run.total.push(p.kinetic + p.strain);
+        run.work.push(p.work);
+        run.dissipated.push(p.dissipated);
+        run.balance_error.push(p.balance_error);
         if next_snapshot.peek() == Some(&&index) {
             next_snapshot.next();
-            run.snapshots.push(Snapshot3d { index, t, shape });
+            run.snapshots.push(Snapshot3d {
+                index,
+                t: p.t,
+                shape,
+            });
         }
     }
-    run.energy_audit = Some(EnergyAudit::of(balance));
+    run.energy_audit = Some(EnergyAudit::of(&sim.audited.balance));
     run
 }

@@ -165,33 +165,31 @@ impl Simulator<'_> {
         run.wall_time_s = sim.wall_time_s;
         run.stats = sim.audited.stats;
         run.status = sim.audited.status.clone();
-        let n = model.n_dofs();
-        let balance = &sim.audited.balance;
         let mut next_snapshot = self.snapshots.iter().peekable();
-        let trajectory = &sim.audited.trajectory;
-        for (index, (&t, y)) in trajectory.t.iter().zip(&trajectory.y).enumerate() {
-            let q = model.full_coordinates(&y[..n]);
-            let (kinetic, strain) = sim.eom.energies(y);
-            let (work, dissipated) = (y[2 * n], y[2 * n + 1]);
-            let shape = self.full.shape(&q);
+        for (index, p) in sim.points(model).into_iter().enumerate() {
+            let shape = self.full.shape(&p.q);
             let (tip_x, tip_y, tip_twist) = shape.tip();
             run.samples.push(Sample {
-                t,
+                t: p.t,
                 tip_x,
                 tip_y,
                 tip_twist,
-                kinetic,
-                strain,
-                work,
-                dissipated,
-                balance_error: balance.relative(kinetic + strain, work, dissipated),
+                kinetic: p.kinetic,
+                strain: p.strain,
+                work: p.work,
+                dissipated: p.dissipated,
+                balance_error: p.balance_error,
             });
             if next_snapshot.peek() == Some(&&index) {
                 next_snapshot.next();
-                run.snapshots.push(Snapshot { index, t, shape });
+                run.snapshots.push(Snapshot {
+                    index,
+                    t: p.t,
+                    shape,
+                });
             }
         }
-        run.energy_audit = Some(EnergyAudit::of(balance));
+        run.energy_audit = Some(EnergyAudit::of(&sim.audited.balance));
         run.notes
             .extend(Note::newton(kind, plan.integrator, self.full, &run.stats));
         run
@@ -224,6 +222,45 @@ pub(crate) struct Simulated<'a, M: StructuralModel> {
     pub eom: EquationsOfMotion<'a, M>,
     pub audited: AuditedRun,
     pub wall_time_s: f64,
+}
+
+/// A run's state at one output time: the full model's coordinates and the energies.
+pub(crate) struct Point {
+    pub t: f64,
+    /// The full model's coordinates (a reduced model's expanded).
+    pub q: Vec<f64>,
+    pub kinetic: f64,
+    pub strain: f64,
+    pub work: f64,
+    pub dissipated: f64,
+    /// The energy balance relative to the energy held or given so far.
+    pub balance_error: f64,
+}
+
+impl<M: StructuralModel> Simulated<'_, M> {
+    /// The run at every output time reached.
+    pub fn points(&mut self, model: &M) -> Vec<Point> {
+        let n = model.n_dofs();
+        let (trajectory, balance) = (&self.audited.trajectory, &self.audited.balance);
+        trajectory
+            .t
+            .iter()
+            .zip(&trajectory.y)
+            .map(|(&t, y)| {
+                let (kinetic, strain) = self.eom.energies(y);
+                let (work, dissipated) = (y[2 * n], y[2 * n + 1]);
+                Point {
+                    t,
+                    q: model.full_coordinates(&y[..n]),
+                    kinetic,
+                    strain,
+                    work,
+                    dissipated,
+                    balance_error: balance.relative(kinetic + strain, work, dissipated),
+                }
+            })
+            .collect()
+    }
 }
 
 impl<'a> Motion<'a> {
