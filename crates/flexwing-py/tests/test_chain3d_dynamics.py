@@ -118,6 +118,21 @@ def test_modes_vtk(tmp_path):
     np.testing.assert_array_equal(mesh.point_data["displacement"], modes.displacement[1])
 
 
+def test_static_vtk(cli, tmp_path):
+    """Python's static frames are the CLI's: the same collection, the same numbers."""
+    subprocess.run([str(cli), "static", str(CASE), "--out", str(tmp_path / "cli"), "--vtk"],
+                   check=True, capture_output=True)
+    statics = flexwing.Case.load(CASE).statics()
+    path = statics.write_vtk(tmp_path / "py")
+    entries = pvd(path)
+    assert entries == pvd(tmp_path / "cli" / "vtk" / "static_full.pvd")
+    np.testing.assert_array_equal([e[0] for e in entries], statics.scale)
+    for name in (entries[0][1], entries[-1][1]):
+        assert (tmp_path / "py" / name).read_text() == (tmp_path / "cli" / "vtk" / name).read_text()
+    mesh = meshio.read(tmp_path / "py" / entries[-1][1])
+    np.testing.assert_array_equal(mesh.points, statics.position[-1])
+
+
 def test_bad_3d_dynamic_input_names_the_key():
     text = CASE.read_text()
     with pytest.raises(flexwing.InputError, match=r"dynamic\.rtol"):

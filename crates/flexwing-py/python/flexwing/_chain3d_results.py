@@ -101,6 +101,7 @@ class Chain3dStaticResult(_Result):
         loaded_modes: the modes about the last equilibrium (as ``Chain3dModesResult.modes``), or
             ``None``; loaded_modes_status: how their computation ended.
         dofs: coordinates of the chain; wall_time_s: wall time of the solve (s).
+        reference: the undeformed node positions (m), ``(n + 1, 3)``.
         n_elements, n_dofs: size of the chain.
         rust_time_s: wall time of the analysis on the Rust side (s).
 
@@ -116,10 +117,22 @@ class Chain3dStaticResult(_Result):
     loaded_modes_status: Dict[str, Any]
     dofs: int
     wall_time_s: float
+    reference: List[List[float]]
     n_elements: int
     n_dofs: int
     rust_time_s: float
     extra: Dict[str, Any] = field(default_factory=dict)
+
+    def write_vtk(self, folder) -> str:
+        """Write the equilibria to ``folder`` for ParaView, as ``flexwing static --vtk`` does on
+        the 3-D chain: ``static_full_0000.vtu``, … one per load step (points, lines,
+        ``displacement``, ``rotation``, ``t``, ``n``, ``c`` as ``Chain3dDynamicResult.write_vtk``)
+        and ``static_full.pvd`` whose times are the load scales (or 1, 2, … when they do not
+        increase). Returns the ``.pvd`` path."""
+        from ._files import _spatial_vtk, _step_times
+
+        return _spatial_vtk(folder, "static_full", _step_times(self.scale), self.position, self.rotation,
+                            self.reference)
 
     @property
     def scale(self) -> np.ndarray:

@@ -23,6 +23,12 @@ pub fn raw<'py>(
     d.set_item("n_dofs", plan.model.n_dofs())?;
     if let Chain3dOutcome::Dynamic(o) = outcome {
         dynamic_runs(py, &d, o)?;
+    }
+    if matches!(
+        outcome,
+        Chain3dOutcome::Dynamic(_) | Chain3dOutcome::Static(_)
+    ) {
+        // The undeformed nodes: the VTK files' displacements are from them.
         let zero = vec![0.0; plan.model.n_dofs()];
         d.set_item("reference", plan.model.node_positions(&zero))?;
     }
