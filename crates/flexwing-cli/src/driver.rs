@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::Args;
+use flexwing::analysis::chain3d::Analysis3d;
 use flexwing::analysis::modes::ModesPlan;
 use flexwing::analysis::{self, Entry, NoProgress, Plan, Progress};
 use flexwing::Error;
@@ -245,7 +246,6 @@ pub fn run(analysis: Analysis, args: &CaseArgs, overrides: &Overrides) -> Result
             .snapshots
             .extend(render::plot_indices(p.output_times.len())),
         Plan::Chain3d(p) => {
-            use flexwing::analysis::chain3d::Analysis3d;
             if let (Analysis3d::Modes { count: c }, Some(count)) = (&mut p.analysis, count) {
                 *c = count;
                 let fields = flexwing::analysis::aero::Fields {
@@ -275,7 +275,7 @@ pub fn run(analysis: Analysis, args: &CaseArgs, overrides: &Overrides) -> Result
     let dynamic = matches!(
         plan,
         Plan::Dynamic(_) | Plan::AeroDynamic(_) | Plan::GustFamily(_)
-    );
+    ) || matches!(&plan, Plan::Chain3d(p) if matches!(p.analysis, Analysis3d::Dynamic(_)));
     let shown = dynamic && !args.json && std::io::stderr().is_terminal();
     let mut bar = crate::progress::Progress::new(shown);
     let progress: &mut dyn Progress = if modes { &mut NoProgress } else { &mut bar };

@@ -327,9 +327,9 @@ impl PyCase {
     }
 
     /// The non-linear dynamics of ``[[loads]]`` and ``[dynamic]`` (full, simplified and
-    /// reduced models), as a ``DynamicResult``; with ``[aero]``, the aeroelastic response to
-    /// the gust and the changes of ``[aero.flight]``, as an ``AeroDynamicResult`` (as
-    /// ``flexwing dynamic``). Keyword arguments as ``statics``; ``check`` also raises for a
+    /// reduced models), as a ``DynamicResult`` (on the 3-D chain a ``Chain3dDynamicResult``);
+    /// with ``[aero]``, the aeroelastic response to the gust and the changes of
+    /// ``[aero.flight]``, as an ``AeroDynamicResult`` (as ``flexwing dynamic``). Keyword arguments as ``statics``; ``check`` also raises for a
     /// run whose energy balance is suspect.
     #[pyo3(signature = (**kwargs))]
     fn dynamics<'py>(

@@ -10,6 +10,7 @@
 mod aero_dynamic;
 mod aero_static;
 mod chain3d;
+mod chain3d_dynamic;
 mod dynamic;
 mod flutter;
 mod gust_family;
@@ -173,7 +174,7 @@ pub fn previous_files(plan: &Plan) -> &'static [&'static str] {
         Plan::AeroDynamic(_) => aero_dynamic::FILES,
         Plan::GustFamily(_) => gust_family::FILES,
         Plan::Linearize(_) => linearize::FILES,
-        Plan::Chain3d(_) => chain3d::FILES,
+        Plan::Chain3d(p) => chain3d::previous_files(p),
         _ => &[],
     }
 }
@@ -217,7 +218,7 @@ pub fn text(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
         View::AeroDynamic(p, o) => aero_dynamic::text(ctx, &mut s, p, o),
         View::GustFamily(p, o) => gust_family::text(ctx, &mut s, p, o),
         View::Linearize(p, o) => linearize::text(&mut s, p, o),
-        View::Chain3d(_, o) => chain3d::text(&mut s, o),
+        View::Chain3d(p, o) => chain3d::text(ctx, &mut s, p, o),
     }
     let _ = writeln!(s);
     let modes3d = matches!(

@@ -117,6 +117,7 @@ const NULL_KEYS: &[&str] = &[
     ".error",
     ".tip_difference_m",
     ".max_tip_difference_m",
+    ".max_tip_difference",
     ".max_relative_error",
     ".modes",
     ".loaded_modes",

@@ -7,6 +7,7 @@
 mod aero_cmd;
 mod bad_input;
 mod chain3d_cmd;
+mod chain3d_dynamic_cmd;
 mod common;
 mod dynamic_cmd;
 mod examples;

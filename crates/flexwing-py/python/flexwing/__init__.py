@@ -69,6 +69,8 @@ from ._aero_results import (
     Stability,
 )
 from ._chain3d_results import (
+    Chain3dDynamicResult,
+    Chain3dDynamicRun,
     Chain3dFlutterResult,
     Chain3dModesResult,
     Chain3dStaticResult,
@@ -117,6 +119,8 @@ __all__ = [
     "Chain3dStaticResult",
     "Chain3dFlutterResult",
     "Chain3dStudyResult",
+    "Chain3dDynamicResult",
+    "Chain3dDynamicRun",
     "BatchItem",
     "Batch",
     "tqdm_progress",

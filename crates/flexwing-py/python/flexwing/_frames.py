@@ -43,6 +43,8 @@ UNITS: Dict[str, str] = {
     "tip_x": "m",
     "tip_y": "m",
     "tip_twist": "rad",
+    "tip_z": "m",
+    "tip_rotation": "rad",
     "tip_difference": "m",
     "max_tip_difference": "m",
     "y": "m",

@@ -17,6 +17,7 @@ import numpy.typing as npt
 
 from ._aero_results import AeroDynamicResult, AeroStaticResult, FlutterResult, GustFamilyResult
 from ._chain3d_results import (
+    Chain3dDynamicResult,
     Chain3dFlutterResult,
     Chain3dModesResult,
     Chain3dStaticResult,
@@ -91,9 +92,10 @@ class Case:
         ``SolverError`` carrying the partial result; else each run's ``status`` says so."""
     def dynamics(
         self, *, progress: Optional[ProgressCallback] = None, check: bool = True
-    ) -> Union[DynamicResult, AeroDynamicResult]:
+    ) -> Union[DynamicResult, AeroDynamicResult, Chain3dDynamicResult]:
         """The non-linear dynamics of ``[[loads]]`` and ``[dynamic]`` (full, simplified and
-        reduced models); with ``[aero]``, the aeroelastic response (``AeroDynamicResult``);
+        reduced models); with ``[aero]``, the aeroelastic response (``AeroDynamicResult``); on
+        the 3-D chain (``beam.model = "chain3d"``), a ``Chain3dDynamicResult``;
         ``check`` as ``statics`` (a suspect energy balance raises too)."""
     def stepper(
         self,
@@ -178,6 +180,7 @@ class Case:
         Chain3dStaticResult,
         Chain3dFlutterResult,
         Chain3dStudyResult,
+        Chain3dDynamicResult,
     ]:
         """Run the analysis named ``analysis`` (as the method of the same name)."""
     def __eq__(self, other: object) -> bool: ...
@@ -492,6 +495,22 @@ def write_node_npz(
     dynamic --format npz``: ``fields`` the (name, unit) pairs of the last axis; each history
     (label, ``t`` ``(S,)``, ``index`` ``(S,)``, values ``(S, nodes, fields)``). Used by
     ``DynamicResult.save_npz``."""
+
+def write_spatial_vtk(
+    folder: Union[str, os.PathLike[str]],
+    stem: str,
+    times: npt.NDArray[np.float64],
+    position: npt.NDArray[np.float64],
+    rotation: npt.NDArray[np.float64],
+    reference: npt.NDArray[np.float64],
+    modes: bool = False,
+) -> str:
+    """Write frames of the 3-D chain to ``folder`` as ``STEM_0000.vtu``, … and ``STEM.pvd``
+    (the CLI's writer) and return the ``.pvd``'s path. Per frame ``k``: ``times[k]``, the node
+    positions ``position[k]`` ``(nodes, 3)`` (m; with ``modes``, a mode's nodal displacements
+    drawn on ``reference``), the elements' section rotation vectors ``rotation[k]``
+    ``(nodes − 1, 3)`` (rad); ``reference`` ``(nodes, 3)`` the undeformed nodes. Used by the
+    3-D results' ``write_vtk``."""
 
 def write_planar_vtk(
     folder: Union[str, os.PathLike[str]],

@@ -4,7 +4,8 @@
 
 * modes: the mode shapes ``dy`` (and ``twist`` with torsion) along the span;
 * statics: the deformed shapes at the last point, and the tip against the sweep's scale;
-* dynamics (structural or aeroelastic): the tip deflection (and the lift, aeroelastic) in time;
+* dynamics (structural or aeroelastic): the tip deflection (and the lift, aeroelastic; the
+  tip's z, the 3-D chain) in time;
 * static aeroelastic sweeps: the tip twist and deflection against the speed;
 * flutter: the V-g and V-ω diagrams of one model's branches, the flutter speed marked;
 * gust families: each output's largest (solid) and smallest (dashed) change against the gust
@@ -114,15 +115,16 @@ def _runs(plt, result, ax, model: Optional[str] = None, **_):
             axes[1].set_xlabel("scale of the swept load")
             axes[1].set_ylabel(_label("tip_y"))
     elif axis == "time":
-        aero = hasattr(first, "lift")
-        fig, axes = _axes(plt, ax, 2 if aero else 1)
+        # The second panel: the lift of an aeroelastic run, the tip's z of the 3-D chain's.
+        second = "lift" if hasattr(first, "lift") else "tip_z" if hasattr(first, "tip_z") else None
+        fig, axes = _axes(plt, ax, 2 if second else 1)
         for r in runs:
             axes[0].plot(r.t, r.tip_y, label=r.label)
-            if aero:
-                axes[1].plot(r.t, r.lift, label=r.label)
+            if second:
+                axes[-1].plot(r.t, getattr(r, second), label=r.label)
         axes[0].set_ylabel(_label("tip_y"))
-        if aero:
-            axes[1].set_ylabel(_label("lift"))
+        if second:
+            axes[-1].set_ylabel(_label(second))
         axes[-1].set_xlabel(_label("t"))
         axes[0].set_title("tip deflection")
     elif axis == "speed":

@@ -110,12 +110,8 @@ impl Plan {
     pub fn checks_seldom(&self) -> bool {
         matches!(
             self,
-            Plan::Static(_)
-                | Plan::AeroStatic(_)
-                | Plan::Flutter(_)
-                | Plan::Linearize(_)
-                | Plan::Chain3d(_)
-        )
+            Plan::Static(_) | Plan::AeroStatic(_) | Plan::Flutter(_) | Plan::Linearize(_)
+        ) || matches!(self, Plan::Chain3d(p) if !matches!(p.analysis, chain3d::Analysis3d::Dynamic(_)))
     }
 }
 
