@@ -50,20 +50,31 @@ fn table8_settings(n: usize) -> IntegratorSettings {
     }
 }
 
-/// One audited run of `model` from rest: its counters.
-fn run<M: StructuralModel>(
-    model: &M,
-    (loads, time, t_out): (&AppliedLoads, &[TimeFunction], &[f64]),
-    settings: &IntegratorSettings,
-) -> IntegratorStats {
-    let mut eom = EquationsOfMotion::new(
+/// Case (b)'s loads applied, their time functions and the output times.
+type Case<'a> = (&'a AppliedLoads, &'a [TimeFunction], &'a [f64]);
+
+/// The equations of motion of `model` in case (b): exact γ, no damping.
+fn equations<'a, M: StructuralModel>(
+    model: &'a M,
+    (loads, time, _): Case<'a>,
+) -> EquationsOfMotion<'a, M> {
+    EquationsOfMotion::new(
         model,
         loads,
         time.to_vec(),
         Gyroscopic::Exact,
         &Damping::None,
     )
-    .expect("eom");
+    .expect("eom")
+}
+
+/// One audited run of `model` from rest: its counters.
+fn run<M: StructuralModel>(
+    model: &M,
+    case @ (_, _, t_out): Case,
+    settings: &IntegratorSettings,
+) -> IntegratorStats {
+    let mut eom = equations(model, case);
     let rest = vec![0.0; model.n_dofs()];
     let audit = AuditSettings::default();
     let run = integrate_audited(
@@ -92,19 +103,12 @@ fn best(batches: usize, budget: Duration, mut f: impl FnMut()) -> f64 {
 /// equations, at two bent, moving states in turn under the case's load.
 fn evaluation_costs<M: PlanarModel>(
     model: &M,
-    (loads, time, _): (&AppliedLoads, &[TimeFunction], &[f64]),
+    case: Case,
     with_jacobian: bool,
     batches: usize,
     budget: Duration,
 ) -> (f64, Option<f64>) {
-    let mut eom = EquationsOfMotion::new(
-        model,
-        loads,
-        time.to_vec(),
-        Gyroscopic::Exact,
-        &Damping::None,
-    )
-    .expect("eom");
+    let mut eom = equations(model, case);
     let nd = model.n_dofs();
     let x: Vec<f64> = (0..nd).map(|i| 0.05 / (1.0 + i as f64)).collect();
     // Two states in turn, so that no evaluation finds its configuration cached.
