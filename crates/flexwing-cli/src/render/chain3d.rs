@@ -1,8 +1,8 @@
-//! The 3-D chain's runs (`beam.model = "chain3d"`): `flexwing modes|static|flutter|study` write
-//! the node `x, y, z` and each element's section rotation (a rotation vector, written at the
-//! element's outboard node) in their CSV files, a table, and a JSON document that is the
-//! library's serialized outcome (`flexwing::analysis::chain3d`); `study` also plots the flutter
-//! speed against the tip deflection beside the undeformed wing's.
+//! The 3-D chain's runs (`beam.model = "chain3d"`; `dynamic` in `chain3d_dynamic.rs`): `flexwing
+//! modes|static|flutter|study` write the node `x, y, z` and each element's section rotation (a
+//! rotation vector, written at the element's outboard node) in their CSV files, a table, and a
+//! JSON document that is the library's serialized outcome (`flexwing::analysis::chain3d`);
+//! `study` also plots the flutter speed against the tip deflection beside the undeformed wing's.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

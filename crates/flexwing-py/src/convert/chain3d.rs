@@ -1,7 +1,7 @@
 //! The 3-D chain's outcomes (`flexwing::analysis::chain3d`) into `Chain3dModesResult`,
-//! `Chain3dStaticResult`, `Chain3dFlutterResult` and `Chain3dStudyResult`
+//! `Chain3dStaticResult`, `Chain3dFlutterResult`, `Chain3dStudyResult` and `Chain3dDynamicResult`
 //! (`python/flexwing/_chain3d_results.py`): the library's serialized outcome as a dict (the same
-//! names as the CLI's JSON), the model's size beside it. The result classes give the arrays
+//! names as the CLI's JSON), the model's size beside it; a dynamic run's columns as NumPy arrays. The result classes give the arrays
 //! (node `x, y, z`, section rotations, speeds) as NumPy views of these lists.
 
 use flexwing::analysis::chain3d::{Chain3dOutcome, Chain3dPlan, Dynamic3dOutcome};
