@@ -9,7 +9,9 @@
 //! `U_ds = U_ref F_g (H/350 ft)^(1/6)`, `U_ref` the reference gust velocity (EAS, 56 ft/s at sea
 //! level down to 44 ft/s at 15 000 ft for the design cruise speed) and `F_g` the flight profile
 //! alleviation factor, both given by the user. The velocities here are true air velocities of the
-//! wind frame: a user converts EAS with `√(ρ0/ρ)`.
+//! wind frame: a user converts EAS with `√(ρ0/ρ)`. The reference velocities were checked against
+//! the text of 14 CFR 25.341(a)(5)(i): 56.0 ft/s EAS at sea level, linearly to 44.0 ft/s at
+//! 15 000 ft, then linearly to 20.86 ft/s at 60 000 ft (half these at the dive speed, (a)(5)(ii)).
 //!
 //! The outputs are those a response's samples carry ([`OUTPUTS`]); the root shear, which needs
 //! the wing's accelerations, is an output of the linear model only (`linearize`), as of the
