@@ -20,7 +20,9 @@ use crate::error::{Error, InputError, SolveError};
 use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, PlanarStructure};
 use crate::model::{AppliedLoads, Load};
 use crate::solve::aeroelastic::{AeroelasticEquations, FlightHistory, SteadyAeroModel};
-use crate::solve::integrate::{integrate, IntegratorStats, Method, OdeSystem};
+use crate::solve::integrate::{
+    integrate, IntegratorSettings, IntegratorStats, Method, NewtonSolver, OdeSystem,
+};
 use crate::solve::{
     continue_static, Damping, EnergyBalance, Gyroscopic, StaticOptions, TimeFunction,
 };
@@ -486,6 +488,14 @@ impl<M: AeroStructure> OdeSystem for Scaled<'_, M> {
     ) {
         self.0.quadrature_step_complex(c, lead, dy, q)
     }
+    // The lag states' elimination (`solve/aeroelastic/schur.rs`): without it the implicit
+    // integrators factor the whole `2 n_dofs + lag states` Jacobian densely.
+    fn newton_solver(&mut self) -> Option<&mut dyn NewtonSolver> {
+        self.0.newton_solver()
+    }
+    fn integrating_with(&mut self, method: Method, settings: &IntegratorSettings) {
+        self.0.integrating_with(method, settings)
+    }
 }
 
 /// Each model's largest tip distance from the first model's, over the times both reached.
@@ -577,6 +587,33 @@ mod tests {
         // The gust lifts the wing: the tip rises above its equilibrium.
         let y0 = out.runs[0].samples[0].tip_y;
         assert!(out.runs[0].samples.iter().any(|s| s.tip_y > y0 + 0.01));
+    }
+
+    /// The wrapper that scales the tolerances keeps the equations' own Newton solver (the lag
+    /// states eliminated strip by strip, `schur.rs`): a wrapper without it made the CLI's and
+    /// Python's gust runs factor the whole Jacobian densely (n = 16, Peters 6: 160 × 160 against
+    /// 32 × 32; the gust family of examples/patil_gust_family.toml ran 80 % in dense LUs).
+    /// Without lag states there is nothing to eliminate and the dense path is the one.
+    #[test]
+    fn the_scaled_equations_eliminate_the_lag_states() {
+        for (aerodynamics, eliminated) in [
+            (Aerodynamics::Wagner, true),
+            (Aerodynamics::Peters { states: 4 }, true),
+            (Aerodynamics::QuasiSteady, false),
+        ] {
+            let p = plan(aerodynamics);
+            let wing = p.aero.wing(&p.structure.model, "aero").unwrap();
+            let loads = AppliedLoads::none();
+            let eqs =
+                AeroelasticEquations::new(&wing, &loads, vec![], gust(), &Damping::None, "flight")
+                    .unwrap();
+            let mut scaled = Scaled(eqs);
+            assert_eq!(
+                scaled.newton_solver().is_some(),
+                eliminated,
+                "{aerodynamics:?}"
+            );
+        }
     }
 
     /// Starting at rest (undeformed) in steady flight without gust: the wing rises towards the
