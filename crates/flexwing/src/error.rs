@@ -116,7 +116,8 @@ pub enum SolveError {
     },
     /// Load control reached a critical point of the equilibrium path (buckling or a limit
     /// point): past `load_factor`, every equilibrium found down to the smallest load step is
-    /// unstable.
+    /// unstable (the static aeroelastic sweeps stop at the first unstable step instead, and
+    /// locate the divergence themselves: `solve::statics::continue_static_to_instability`).
     #[error(
         "static load path loses stability at load factor {load_factor:.6}: the equilibria found \
          beyond it (tried up to {attempted:.6}) are unstable (buckling or a limit point); load \

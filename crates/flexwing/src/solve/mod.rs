@@ -23,6 +23,7 @@ pub use eigen::generalized_symmetric_eigen;
 pub use energy_audit::{AuditLimits, EnergyBalance};
 pub use modes::{ModeShape, Modes, ModesMethod, ModesStats, DENSE_MAX_DOFS};
 pub use newton_tangent::CHAIN_TANGENT_MIN_DOFS;
+pub(crate) use statics::continue_static_to_instability;
 pub use statics::{
     continue_static, linear_static, solve_static, sweep_static, sweep_static_until, StaticOptions,
     StaticSolution, StaticStats, SweepError, FOLLOWER_STABILITY_MAX_DOFS,

@@ -219,7 +219,56 @@ pub fn continue_static<M: StructuralModel>(
     scales: &[f64],
     options: &StaticOptions,
 ) -> Result<StaticSolution, SolveError> {
-    follow(model, loads, start, scales, options, None)
+    follow(
+        model,
+        loads,
+        start,
+        scales,
+        options,
+        None,
+        AtInstability::Locate,
+    )
+}
+
+/// What load control does when a step ends on an unstable equilibrium.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum AtInstability {
+    /// Cut the step down to `min_step`: the load factor where stability is lost, to that
+    /// precision ([`continue_static`]).
+    Locate,
+    /// Stop at once with [`SolveError::StaticUnstable`] between the last stable equilibrium and
+    /// the unstable one ([`continue_static_to_instability`]).
+    Stop,
+}
+
+/// [`continue_static`] for a caller that locates the critical point itself: a step that ends on
+/// an unstable equilibrium stops the path at once with [`SolveError::StaticUnstable`] (the last
+/// stable `μ` as `load_factor`, the unstable step's end as `attempted`), instead of cutting the
+/// step down to `options.min_step` to pin the loss of stability. The static aeroelastic sweeps
+/// use it: past the divergence speed their secant on the divergence pressure brackets the
+/// divergence to its own tolerance (`aeroelastic/statics.rs`), and the fine step search (refused
+/// steps cut by four down to `min_step`, each a Newton solve and a factorization) would only
+/// repeat it less accurately.
+///
+/// # Errors
+/// As [`continue_static`]; a `StaticUnstable` error's bracket `[load_factor, attempted]` is
+/// that of one refused step.
+pub(crate) fn continue_static_to_instability<M: StructuralModel>(
+    model: &M,
+    loads: &AppliedLoads,
+    start: (&[f64], &[f64]),
+    scales: &[f64],
+    options: &StaticOptions,
+) -> Result<StaticSolution, SolveError> {
+    follow(
+        model,
+        loads,
+        start,
+        scales,
+        options,
+        None,
+        AtInstability::Stop,
+    )
 }
 
 /// [`continue_static`], with the equilibrium `before = (x, scales)` that preceded the start on
@@ -232,6 +281,7 @@ fn follow<M: StructuralModel>(
     scales: &[f64],
     options: &StaticOptions,
     before: Option<(&[f64], &[f64])>,
+    at_instability: AtInstability,
 ) -> Result<StaticSolution, SolveError> {
     options
         .validate("options")
@@ -313,6 +363,10 @@ fn follow<M: StructuralModel>(
             Refusal::TooFar { rotation, .. } => {
                 ws.stats.limited_steps += 1;
                 dmu * (0.9 * limit / rotation).clamp(0.01, 0.5)
+            }
+            Refusal::Unstable if at_instability == AtInstability::Stop => {
+                ws.stats.unstable_steps += 1;
+                return Err(refusal.error(mu, target, limit));
             }
             Refusal::Unstable => {
                 ws.stats.unstable_steps += 1;
@@ -728,7 +782,15 @@ pub fn sweep_static_until<M: StructuralModel>(
             1 => Some((&rest.0[..], &rest.1[..])),
             k => Some((&done[k - 2].x[..], &done[k - 2].scales[..])),
         };
-        let result = follow(model, loads, (start.0, start.1), scales, options, before);
+        let result = follow(
+            model,
+            loads,
+            (start.0, start.1),
+            scales,
+            options,
+            before,
+            AtInstability::Locate,
+        );
         match result {
             Ok(sol) => done.push(sol),
             Err(error) => {

@@ -18,7 +18,7 @@ use super::evaluator::{AeroDerivatives, AeroEvaluator};
 use crate::error::{InputError, SolveError};
 use crate::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCondition};
 use crate::model::{AppliedLoads, Load, StructuralModel};
-use crate::solve::{continue_static, StaticOptions, StaticStats};
+use crate::solve::{continue_static_to_instability, StaticOptions, StaticStats};
 
 /// A static aeroelastic sweep, validated: speeds in increasing order, the root angle, gravity and
 /// other (dead, follower…) loads.
@@ -361,7 +361,7 @@ pub fn static_sweep_polled<M: AeroStructure>(
             break;
         }
         let target = scales_at(pressure(u));
-        match continue_static(
+        match continue_static_to_instability(
             &model,
             &applied,
             (&state.0, &state.1),
@@ -549,7 +549,9 @@ fn find_divergence<'a, M: AeroStructure>(
                 s.push(qm);
                 let mut s0 = vec![1.0; k];
                 s0.push(a.dynamic_pressure);
-                let Ok(sol) = continue_static(model, loads, (&a.x, &s0), &s, &plan.options) else {
+                let Ok(sol) =
+                    continue_static_to_instability(model, loads, (&a.x, &s0), &s, &plan.options)
+                else {
                     break;
                 };
                 let Some(mu) = frozen_divergence_pressure(model, loads, ws, &sol.x) else {
@@ -648,7 +650,7 @@ fn divergence_at_the_stop<'a, M: AeroStructure>(
         if !(q > q_lo && q < hi) {
             q = 0.5 * (q_lo + hi);
         }
-        let r = continue_static(
+        let r = continue_static_to_instability(
             model,
             loads,
             (&x_lo, &scales(q_lo)),
