@@ -41,6 +41,7 @@ fn flutter_plan(modes: usize, speeds: usize) -> FlutterOptions {
 
 fn gust_plan(rtol: f64) -> ResponseOptions {
     let flight = FlightHistory {
+        deflection_changes: Vec::new(),
         initial: FlightCondition::at_speed(25.0),
         speed_change: None,
         root_angle_change: None,
