@@ -157,7 +157,7 @@ impl Case {
         self.checked_aero_dynamic_plan().map_err(|e| self.error(e))
     }
 
-    fn checked_aero_dynamic_plan(&self) -> Result<AeroDynamicPlan, InputError> {
+    pub(crate) fn checked_aero_dynamic_plan(&self) -> Result<AeroDynamicPlan, InputError> {
         let (spec, model, aero) = self.aero_parts()?;
         let initial = self.dynamic.as_ref().and_then(|d| d.initial.as_ref());
         let start = match initial.map(|i| i.kind) {
@@ -385,21 +385,43 @@ fn gust(g: &crate::GustSpec) -> Result<Gust, InputError> {
 
 /// The speeds of `[aero.sweep]`: listed, or evenly spaced.
 pub(crate) fn speed_sweep(spec: &SpeedSweepSpec, prefix: &str) -> Result<SpeedSweep, InputError> {
-    let speeds = match (&spec.speeds, spec.from, spec.to, spec.steps) {
-        (Some(v), None, None, None) => v.clone(),
-        (None, Some(from), Some(to), Some(steps)) => evenly_spaced(prefix, from, to, steps)?,
-        (Some(_), ..) => {
-            return Err(InputError::new(
-                prefix,
-                "give either speeds or from/to/steps, not both",
-            ))
-        }
-        (None, None, None, None) => {
-            return Err(InputError::new(
-                format!("{prefix}.speeds"),
-                "missing: give speeds = [...] or from, to and steps",
-            ))
-        }
+    let speeds = match listed_or_spaced(
+        prefix,
+        "speeds",
+        &spec.speeds,
+        (spec.from, spec.to, spec.steps),
+    )? {
+        Spaced::Listed(v) => v,
+        Spaced::Range { from, to, steps } => evenly_spaced(prefix, from, to, steps)?,
+    };
+    Ok(SpeedSweep { speeds })
+}
+
+/// Values a table lists (`{key} = [...]`) or spaces evenly (`from`, `to`, `steps`).
+pub(crate) enum Spaced {
+    Listed(Vec<f64>),
+    Range { from: f64, to: f64, steps: usize },
+}
+
+/// How the values of table `prefix` are spelled: `{key} = [...]` or `from`, `to` and `steps`
+/// together, not both; errors name `{prefix}.{key}`, `{prefix}.from`, ….
+pub(crate) fn listed_or_spaced(
+    prefix: &str,
+    key: &str,
+    listed: &Option<Vec<f64>>,
+    (from, to, steps): (Option<f64>, Option<f64>, Option<usize>),
+) -> Result<Spaced, InputError> {
+    match (listed, from, to, steps) {
+        (Some(v), None, None, None) => Ok(Spaced::Listed(v.clone())),
+        (None, Some(from), Some(to), Some(steps)) => Ok(Spaced::Range { from, to, steps }),
+        (Some(_), ..) => Err(InputError::new(
+            prefix,
+            format!("give either {key} or from/to/steps, not both"),
+        )),
+        (None, None, None, None) => Err(InputError::new(
+            format!("{prefix}.{key}"),
+            format!("missing: give {key} = [...] or from, to and steps"),
+        )),
         (None, from, to, _) => {
             let missing = if from.is_none() {
                 "from"
@@ -408,13 +430,12 @@ pub(crate) fn speed_sweep(spec: &SpeedSweepSpec, prefix: &str) -> Result<SpeedSw
             } else {
                 "steps"
             };
-            return Err(InputError::new(
+            Err(InputError::new(
                 format!("{prefix}.{missing}"),
                 "missing: from, to and steps go together",
-            ));
+            ))
         }
-    };
-    Ok(SpeedSweep { speeds })
+    }
 }
 
 #[cfg(test)]

@@ -4,7 +4,9 @@
 //! planar case is a one-line error naming the key ([`BeamSpec::planar_only`]).
 
 use flexwing::analysis::aero::SpeedSweep;
-use flexwing::analysis::chain3d::{Analysis3d, Chain3dPlan, Flutter3d, Static3d, Study3d};
+use flexwing::analysis::chain3d::{
+    Analysis3d, Chain3dPlan, Dynamic3d, Flutter3d, Static3d, Study3d,
+};
 use flexwing::analysis::modes::DEFAULT_COUNT;
 use flexwing::beam::{InertiaAxis, Profile};
 use flexwing::model::chain3d::{
@@ -180,8 +182,8 @@ impl Case {
     /// The plan of `analysis` on the 3-D chain, validated.
     ///
     /// # Errors
-    /// An analysis the 3-D chain cannot run yet (dynamics, linearization, static aeroelastic
-    /// equilibria without flutter), the keys' errors, the plan's checks.
+    /// An analysis the 3-D chain cannot run yet (aeroelastic dynamics, linearization, static
+    /// aeroelastic equilibria without flutter), the keys' errors, the plan's checks.
     pub fn chain3d_plan(&self, analysis: Analysis) -> Result<Chain3dPlan, CaseError> {
         self.checked_chain3d_plan(analysis)
             .map_err(|e| self.error(e))
@@ -194,7 +196,7 @@ impl Case {
                 "beam.model",
                 format!(
                     "the 3-D chain (\"chain3d\") has no {what} through the case file yet: run \
-                     modes, static (without [aero]), flutter or study"
+                     modes, static or dynamic (without [aero]), flutter or study"
                 ),
             ))
         };
@@ -244,8 +246,12 @@ impl Case {
                 };
                 (Analysis3d::Study(study), "flutter")
             }
-            Analysis::Dynamic => return not_yet("dynamic run"),
+            Analysis::Dynamic if self.is_aeroelastic() => {
+                return not_yet("aeroelastic dynamic run (gust or manoeuvre response)")
+            }
+            Analysis::Dynamic => (Analysis3d::Dynamic(self.dynamic3d(&model)?), "dynamic"),
             Analysis::Linearize => return not_yet("linearization"),
+            Analysis::GustFamily => return not_yet("gust family"),
         };
         let plan = Chain3dPlan {
             model,
@@ -301,6 +307,13 @@ impl Case {
             modes: s.modes,
             load_names: self.load_names(),
         })
+    }
+
+    fn dynamic3d(&self, model: &Chain3d) -> Result<Dynamic3d, InputError> {
+        let p = self.dynamic_parts(model.n_dofs())?;
+        let mut plan = Dynamic3d::new(self.spatial_loads(model)?, p.end_time, Vec::new());
+        crate::dynamic::set_dynamic_parts!(plan, p);
+        Ok(plan)
     }
 
     fn flutter3d(&self, model: &Chain3d) -> Result<Flutter3d, InputError> {

@@ -3,7 +3,7 @@
 //! simulated time, the initial state's size); this module checks what it cannot see: which keys
 //! were given together, load names, and how the output times are spelled.
 
-use flexwing::analysis::dynamics::{DynamicPlan, Initial, MAX_OUTPUT_TIMES};
+use flexwing::analysis::dynamics::{AuditSettings, DynamicPlan, Initial, MAX_OUTPUT_TIMES};
 use flexwing::model::FullModel;
 use flexwing::solve::integrate::{IntegratorSettings, Method};
 use flexwing::solve::{Damping, Gyroscopic, TimeFunction};
@@ -29,6 +29,18 @@ impl Case {
     }
 
     pub(crate) fn checked_dynamic_plan(&self) -> Result<DynamicPlan, InputError> {
+        let model = FullModel::new(self.to_beam()?);
+        let loads = self.to_loads(model.beam())?;
+        let p = self.dynamic_parts(model.n_dofs())?;
+        let mut plan = DynamicPlan::new(model, loads, p.end_time, Vec::new());
+        set_dynamic_parts!(plan, p);
+        plan.validate("loads", "dynamic")?;
+        Ok(plan)
+    }
+
+    /// What `[dynamic]` and the loads' time histories say, for a model of `n_dofs`
+    /// coordinates: the planar plan's and the 3-D chain's ([`crate::chain3d`]) alike.
+    pub(crate) fn dynamic_parts(&self, n_dofs: usize) -> Result<DynamicParts, InputError> {
         let d = self.dynamic.as_ref().ok_or_else(|| {
             InputError::new(
                 "dynamic",
@@ -36,30 +48,34 @@ impl Case {
                  output_step or output_times)",
             )
         })?;
-        let model = FullModel::new(self.to_beam()?);
-        let loads = self.to_loads(model.beam())?;
-        let n_dofs = model.n_dofs();
-        let mut plan = DynamicPlan::new(model, loads, d.end_time, output_times(d)?);
-        plan.time = self.time_histories()?;
-        plan.full = d.full;
-        plan.simplified = d.simplified;
-        plan.reduced.clone_from(&d.reduced);
-        plan.reduced_modes.clone_from(&d.reduced_modes);
+        let output_times = output_times(d)?;
         let equations = d.equations();
-        plan.gyroscopic = equations.to_gyroscopic("dynamic")?;
-        (plan.integrator, plan.settings) = d.integration().to_settings("dynamic")?;
-        plan.audit.tolerance = d.energy_tolerance;
+        let (integrator, settings) = d.integration().to_settings("dynamic")?;
+        let mut audit = AuditSettings {
+            tolerance: d.energy_tolerance,
+            ..AuditSettings::default()
+        };
         if let Some(r) = d.energy_runaway {
-            plan.audit.runaway = r;
+            audit.runaway = r;
         }
-        plan.damping = equations.to_damping("dynamic")?;
-        plan.initial = self.initial(d.initial.as_ref(), n_dofs)?;
-        plan.load_names = self.load_names();
-        // The node histories of `[output] node_times` (every front end writes these).
-        plan.snapshots =
-            crate::thinned_indices(plan.output_times.len(), self.output.max_node_times());
-        plan.validate("loads", "dynamic")?;
-        Ok(plan)
+        Ok(DynamicParts {
+            end_time: d.end_time,
+            // The node histories of `[output] node_times` (every front end writes these).
+            snapshots: crate::thinned_indices(output_times.len(), self.output.max_node_times()),
+            output_times,
+            time: self.time_histories()?,
+            full: d.full,
+            simplified: d.simplified,
+            reduced: d.reduced.clone(),
+            reduced_modes: d.reduced_modes.clone(),
+            gyroscopic: equations.to_gyroscopic("dynamic")?,
+            integrator,
+            settings,
+            audit,
+            damping: equations.to_damping("dynamic")?,
+            initial: self.initial(d.initial.as_ref(), n_dofs)?,
+            load_names: self.load_names(),
+        })
     }
 
     /// The time history of each load during the motion (`None` for an inactive load).
@@ -168,6 +184,47 @@ impl Case {
         };
         format!("no load named {name:?} ({known})")
     }
+}
+
+/// Set the fields of a dynamic plan (the planar `DynamicPlan`, the 3-D chain's `Dynamic3d`: the
+/// same names) from [`DynamicParts`].
+macro_rules! set_dynamic_parts {
+    ($plan:ident, $p:ident) => {
+        $plan.output_times = $p.output_times;
+        $plan.time = $p.time;
+        $plan.full = $p.full;
+        $plan.simplified = $p.simplified;
+        $plan.reduced = $p.reduced;
+        $plan.reduced_modes = $p.reduced_modes;
+        $plan.gyroscopic = $p.gyroscopic;
+        ($plan.integrator, $plan.settings) = ($p.integrator, $p.settings);
+        $plan.audit = $p.audit;
+        $plan.damping = $p.damping;
+        $plan.initial = $p.initial;
+        $plan.load_names = $p.load_names;
+        $plan.snapshots = $p.snapshots;
+    };
+}
+pub(crate) use set_dynamic_parts;
+
+/// The values of `[dynamic]` and of the loads' time histories, as the library's dynamic plans
+/// take them (the fields of [`DynamicPlan`] but the model and the loads).
+pub(crate) struct DynamicParts {
+    pub end_time: f64,
+    pub output_times: Vec<f64>,
+    pub time: Vec<Option<TimeFunction>>,
+    pub full: bool,
+    pub simplified: bool,
+    pub reduced: Vec<usize>,
+    pub reduced_modes: Vec<Vec<usize>>,
+    pub gyroscopic: Gyroscopic,
+    pub integrator: Method,
+    pub settings: IntegratorSettings,
+    pub audit: AuditSettings,
+    pub damping: Damping,
+    pub initial: Initial,
+    pub load_names: Vec<String>,
+    pub snapshots: Vec<usize>,
 }
 
 /// `prefix.key`, or `key` alone with an empty prefix.

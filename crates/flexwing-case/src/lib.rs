@@ -39,6 +39,7 @@ mod beam;
 mod chain3d;
 mod dynamic;
 mod error;
+mod gust_family;
 mod linearize;
 mod loads;
 mod plan;
@@ -65,8 +66,9 @@ pub use spec::{
     TimeKindSpec, TimeSpec,
 };
 pub use spec_aero::{
-    AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustPenetrationSpec,
-    GustShapeSpec, GustSpec, LinearizeSpec, SpeedSweepSpec, StatesSpec, SurfaceSpec,
+    AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustFamilySpec,
+    GustPenetrationSpec, GustShapeSpec, GustSpec, LinearizeSpec, SpeedSweepSpec, StatesSpec,
+    SurfaceSpec,
 };
 pub use spec_chain3d::{CouplingSpec, StructureSpec, StudyParameterSpec, StudySpec};
 pub use spec_output::{thinned_indices, NodeTimesSpec, OutputFormatSpec, OutputSpec};

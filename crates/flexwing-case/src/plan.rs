@@ -25,20 +25,25 @@ pub enum Analysis {
     Linearize,
     /// Flutter and divergence against a load level (`[flutter.study]`; the 3-D chain).
     Study,
+    /// A discrete gust family (`[gust_family]` on the aeroelastic response of `[aero]` and
+    /// `[dynamic]`): `flexwing gust`.
+    GustFamily,
 }
 
 impl Analysis {
     /// Every analysis.
-    pub const ALL: [Analysis; 6] = [
+    pub const ALL: [Analysis; 7] = [
         Analysis::Modes,
         Analysis::Static,
         Analysis::Dynamic,
         Analysis::Flutter,
         Analysis::Linearize,
         Analysis::Study,
+        Analysis::GustFamily,
     ];
 
-    /// `modes`, `static`, `dynamic`, `flutter` or `linearize`: the CLI's subcommand.
+    /// `modes`, `static`, `dynamic`, `flutter`, `linearize`, `study` or `gust`: the CLI's
+    /// subcommand.
     pub fn name(self) -> &'static str {
         match self {
             Analysis::Modes => "modes",
@@ -47,6 +52,7 @@ impl Analysis {
             Analysis::Flutter => "flutter",
             Analysis::Linearize => "linearize",
             Analysis::Study => "study",
+            Analysis::GustFamily => "gust",
         }
     }
 
@@ -59,8 +65,8 @@ impl Analysis {
 impl Case {
     /// The plan of `analysis` for this case, validated: [`Case::modes_plan`],
     /// [`Case::static_plan`] or [`Case::aero_static_plan`], [`Case::dynamic_plan`] or
-    /// [`Case::aero_dynamic_plan`], [`Case::flutter_plan`], [`Case::linearize_plan`] — the
-    /// aeroelastic one when the case has `[aero]`.
+    /// [`Case::aero_dynamic_plan`], [`Case::flutter_plan`], [`Case::linearize_plan`],
+    /// [`Case::gust_family_plan`] — the aeroelastic one when the case has `[aero]`.
     ///
     /// # Errors
     /// Those of the plan built.
@@ -91,6 +97,7 @@ impl Case {
             Analysis::Dynamic => Plan::Dynamic(self.dynamic_plan()?),
             Analysis::Flutter => Plan::Flutter(self.flutter_plan()?),
             Analysis::Linearize => Plan::Linearize(self.linearize_plan()?),
+            Analysis::GustFamily => Plan::GustFamily(self.gust_family_plan()?),
             Analysis::Study => {
                 return Err(self.error(flexwing::InputError::new(
                     "beam.model",

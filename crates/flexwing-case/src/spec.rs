@@ -41,6 +41,9 @@ pub struct Case {
     /// `[linearize]`, optional, for `flexwing linearize`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub linearize: Option<LinearizeSpec>,
+    /// `[gust_family]`, required by `flexwing gust` only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gust_family: Option<super::spec_aero::GustFamilySpec>,
     /// `[output]`, optional: how the front ends write the results (`spec_output.rs`).
     #[serde(default, skip_serializing_if = "is_default")]
     pub output: super::spec_output::OutputSpec,

@@ -215,6 +215,38 @@ pub struct FlutterSpec {
     pub study: Option<crate::spec_chain3d::StudySpec>,
 }
 
+/// `[gust_family]`: the discrete 1−cos gusts of `flexwing gust` (CS 25.341(a)): gust gradient
+/// distances `H` listed or evenly spaced, the design velocity `U_ds = U_ref F_g (H/350 ft)^(1/6)`
+/// of each ([`flexwing::analysis::aero::gust_family::GustFamilyPlan`]).
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct GustFamilySpec {
+    /// Gust gradient distances `H` (m); exclusive with `from`/`to`/`steps`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lengths: Option<Vec<f64>>,
+    /// First `H` of evenly spaced distances (m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub from: Option<f64>,
+    /// Last `H` of evenly spaced distances (m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub to: Option<f64>,
+    /// Number of evenly spaced distances, both ends included.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps: Option<usize>,
+    /// `U_ref`, the reference gust velocity (m/s, true air velocity).
+    pub reference_velocity: f64,
+    /// `F_g`, the flight profile alleviation factor; default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub alleviation: Option<f64>,
+    /// Time each gust front reaches the wing (s); default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub start: Option<f64>,
+    /// How each gust front meets the sections, as `aero.flight.gust.penetration`; default
+    /// `"uniform"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub penetration: Option<GustPenetrationSpec>,
+}
+
 /// `[linearize]`: the models, signals and states of `flexwing linearize` (the equilibrium's
 /// flight condition is `[aero.flight]`).
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]

@@ -1,5 +1,5 @@
-//! The one driver of `flexwing modes`, `static`, `dynamic`, `flutter` and `linearize`: read the case, build
-//! its plan (`Case::plan`: aeroelastic with `[aero]`), prepare the output folder, catch
+//! The one driver of `flexwing modes`, `static`, `dynamic`, `flutter`, `linearize`, `study` and
+//! `gust`: read the case, build its plan (`Case::plan`: aeroelastic with `[aero]`), prepare the output folder, catch
 //! interrupts, run the library's one dispatcher (`flexwing::analysis::run`), render the outcome
 //! (`render`: files, then the table or the JSON document), write `status.txt`, print the notes,
 //! and turn what did not complete into the exit status.
@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::Args;
+use flexwing::analysis::chain3d::Analysis3d;
 use flexwing::analysis::modes::ModesPlan;
 use flexwing::analysis::{self, Entry, NoProgress, Plan, Progress};
 use flexwing::Error;
@@ -245,7 +246,6 @@ pub fn run(analysis: Analysis, args: &CaseArgs, overrides: &Overrides) -> Result
             .snapshots
             .extend(render::plot_indices(p.output_times.len())),
         Plan::Chain3d(p) => {
-            use flexwing::analysis::chain3d::Analysis3d;
             if let (Analysis3d::Modes { count: c }, Some(count)) = (&mut p.analysis, count) {
                 *c = count;
                 let fields = flexwing::analysis::aero::Fields {
@@ -272,7 +272,10 @@ pub fn run(analysis: Analysis, args: &CaseArgs, overrides: &Overrides) -> Result
 
     // A bar of the simulated time for dynamic runs (and Ctrl-C polled by every analysis but
     // the modal one).
-    let dynamic = matches!(plan, Plan::Dynamic(_) | Plan::AeroDynamic(_));
+    let dynamic = matches!(
+        plan,
+        Plan::Dynamic(_) | Plan::AeroDynamic(_) | Plan::GustFamily(_)
+    ) || matches!(&plan, Plan::Chain3d(p) if matches!(p.analysis, Analysis3d::Dynamic(_)));
     let shown = dynamic && !args.json && std::io::stderr().is_terminal();
     let mut bar = crate::progress::Progress::new(shown);
     let progress: &mut dyn Progress = if modes { &mut NoProgress } else { &mut bar };

@@ -116,6 +116,19 @@ enum Command {
         equilibrium: the model stops and the exit status is 1."
     )]
     Linearize(LinearizeArgs),
+    /// Discrete 1−cos gusts over a range of gust lengths (CS 25.341(a)): peaks, critical lengths.
+    #[command(
+        long_about = "A discrete gust family as in CS 25.341(a) / FAR 25.341(a): the aeroelastic \
+        response of [dynamic] (full and reduced models, integrator, output times) in the flight \
+        of [aero.flight], once per 1−cos gust of [gust_family], the gust gradient distance H \
+        from 30 to 350 ft at the design velocity U_ds = U_ref F_g (H/350 ft)^(1/6); each \
+        gust replaces [aero.flight.gust]. Reports, per model and output (tip deflection and \
+        twist, root bending moment and torque, lift), the largest and smallest change from \
+        the equilibrium with their times for every H, and the critical H. Writes \
+        gust_family.csv, gust_family_critical.csv and status.txt; with --plot \
+        gust_family.svg/.png (peaks against H). See docs/cli.md."
+    )]
+    Gust(CaseArgs),
     /// Regenerate every table and figure of the paper's results, beside the paper and references.
     #[command(
         long_about = "Regenerate the paper's section 5 (Tables 2, 3, 5–8, Figures 4–6) beside the \
@@ -243,6 +256,10 @@ fn main() -> ExitCode {
             };
             (a.case.json, driver::run(Analysis::Linearize, &a.case, &o))
         }
+        Command::Gust(a) => (
+            a.json,
+            driver::run(Analysis::GustFamily, a, &Overrides::default()),
+        ),
         Command::Reproduce(a) => (false, reproduce::run(a)),
         Command::Fmu(a) => (false, fmu::run(a)),
     };

@@ -3,7 +3,8 @@
 //!
 //! * `models` — the model labels, in the run's order;
 //! * `fields`, `units` — the names and units of the last axis of every `nodes` array
-//!   (the planar chain: `x`, `y` in m, `twist` in rad);
+//!   (the planar chain: `x`, `y` in m, `twist` in rad; the 3-D chain: `x`, `y`, `z` in m and
+//!   the section rotation vector `rx`, `ry`, `rz` in rad);
 //! * `LABEL/t` `(S,)` — the times of the model's node snapshots (s);
 //! * `LABEL/index` `(S,)` — their indices among the run's output times (every `k`-th when the
 //!   history was thinned, docs/cli.md);
@@ -13,6 +14,17 @@ use crate::Value;
 
 /// The fields (name, unit) of the planar chain's node histories.
 pub const PLANAR: [(&str, &str); 3] = [("x", "m"), ("y", "m"), ("twist", "rad")];
+
+/// The fields (name, unit) of the 3-D chain's node histories: the node positions and the
+/// section rotation vector of the element inboard of each node (NaN at the root).
+pub const SPATIAL: [(&str, &str); 6] = [
+    ("x", "m"),
+    ("y", "m"),
+    ("z", "m"),
+    ("rx", "rad"),
+    ("ry", "rad"),
+    ("rz", "rad"),
+];
 
 /// One model's node history.
 #[derive(Debug, Clone, PartialEq)]

@@ -237,6 +237,72 @@ pub fn planar_mode_frame(
     }
 }
 
+/// Per node, the value of the element inboard of it (the root node: the first element's): the
+/// 3-D chain's element data as point data.
+fn per_node<T: Copy>(elements: &[T], nodes: usize) -> Vec<T> {
+    (0..nodes).map(|k| elements[k.saturating_sub(1)]).collect()
+}
+
+/// A frame of the 3-D chain: the deformed nodes `position` as points, with point data
+/// `displacement` (from the undeformed nodes `reference`), the section `rotation` vector (rad)
+/// and the section axes `t` (along the reference axis), `n` (normal) and `c` (chord, toward
+/// the leading edge) as unit vectors: the columns of each `frames` matrix. `rotation` and
+/// `frames` are the elements' (one fewer than the nodes); node `k` carries the element inboard
+/// of it, the root node the first element's.
+pub fn spatial_frame(
+    time: f64,
+    position: &[[f64; 3]],
+    rotation: &[[f64; 3]],
+    frames: &[[[f64; 3]; 3]],
+    reference: &[[f64; 3]],
+) -> Frame {
+    let nodes = position.len();
+    let displacement = position
+        .iter()
+        .zip(reference)
+        .map(|(p, r)| [p[0] - r[0], p[1] - r[1], p[2] - r[2]])
+        .collect();
+    let mut data = vec![
+        ("displacement".to_string(), Data::Vectors(displacement)),
+        (
+            "rotation".to_string(),
+            Data::Vectors(per_node(rotation, nodes)),
+        ),
+    ];
+    let frames = per_node(frames, nodes);
+    for (j, axis) in ["t", "n", "c"].iter().enumerate() {
+        let v = frames.iter().map(|f| [f[0][j], f[1][j], f[2][j]]).collect();
+        data.push(((*axis).to_string(), Data::Vectors(v)));
+    }
+    Frame {
+        time,
+        points: position.to_vec(),
+        data,
+    }
+}
+
+/// A mode shape of the 3-D chain: the undeformed nodes `reference` as points, the nodal
+/// displacements as `displacement` (ParaView: Warp By Vector) and the elements' small section
+/// rotations as `rotation` (per point as in [`spatial_frame`]).
+pub fn spatial_mode_frame(
+    number: f64,
+    displacement: &[[f64; 3]],
+    rotation: &[[f64; 3]],
+    reference: &[[f64; 3]],
+) -> Frame {
+    Frame {
+        time: number,
+        points: reference.to_vec(),
+        data: vec![
+            ("displacement".into(), Data::Vectors(displacement.to_vec())),
+            (
+                "rotation".into(),
+                Data::Vectors(per_node(rotation, reference.len())),
+            ),
+        ],
+    }
+}
+
 /// The undeformed nodes of a straight planar chain at the stations `x` (m).
 pub fn straight(x: &[f64]) -> Vec<[f64; 3]> {
     x.iter().map(|&x| [x, 0.0, 0.0]).collect()

@@ -327,9 +327,9 @@ impl PyCase {
     }
 
     /// The non-linear dynamics of ``[[loads]]`` and ``[dynamic]`` (full, simplified and
-    /// reduced models), as a ``DynamicResult``; with ``[aero]``, the aeroelastic response to
-    /// the gust and the changes of ``[aero.flight]``, as an ``AeroDynamicResult`` (as
-    /// ``flexwing dynamic``). Keyword arguments as ``statics``; ``check`` also raises for a
+    /// reduced models), as a ``DynamicResult`` (on the 3-D chain a ``Chain3dDynamicResult``);
+    /// with ``[aero]``, the aeroelastic response to the gust and the changes of
+    /// ``[aero.flight]``, as an ``AeroDynamicResult`` (as ``flexwing dynamic``). Keyword arguments as ``statics``; ``check`` also raises for a
     /// run whose energy balance is suspect.
     #[pyo3(signature = (**kwargs))]
     fn dynamics<'py>(
@@ -356,6 +356,22 @@ impl PyCase {
     ) -> PyResult<Bound<'py, PyAny>> {
         errors::guard(py, || {
             self.analysis(py, Analysis::Flutter, kwargs, "flutter")
+        })
+    }
+
+    /// A discrete gust family as in CS 25.341(a) (``[gust_family]`` on the aeroelastic response
+    /// of ``[aero]`` and ``[dynamic]``): one 1−cos gust per gust gradient distance H at its
+    /// design velocity, on the full and reduced models, with each output's peaks per H and the
+    /// critical H, as a ``GustFamilyResult`` (as ``flexwing gust``). Keyword arguments as
+    /// ``dynamics``.
+    #[pyo3(signature = (**kwargs))]
+    fn gust_family<'py>(
+        &self,
+        py: Python<'py>,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        errors::guard(py, || {
+            self.analysis(py, Analysis::GustFamily, kwargs, "gust_family")
         })
     }
 
@@ -473,8 +489,9 @@ impl PyCase {
         })
     }
 
-    /// Run the analysis ``"modes"``, ``"static"``, ``"dynamic"`` or ``"flutter"`` or ``"linearize"`` (as the
-    /// methods of the same names).
+    /// Run the analysis ``"modes"``, ``"static"``, ``"dynamic"``, ``"flutter"``, ``"linearize"``,
+    /// ``"study"`` or ``"gust"`` (as the methods of the same names; ``"gust"`` is
+    /// ``gust_family``).
     #[pyo3(signature = (analysis, **kwargs))]
     fn run<'py>(
         &self,

@@ -139,3 +139,83 @@ fn planar_frames(
         .collect();
     Ok(frames)
 }
+
+/// Write frames of the 3-D chain to `folder` as `STEM_0000.vtu`, … and `STEM.pvd`; returns the
+/// `.pvd`'s path. Per frame `k`: `times[k]`, the node positions `position[k]` `(nodes, 3)` and
+/// the elements' section rotation vectors `rotation[k]` `(nodes − 1, 3)` (the section frames
+/// are their rotation matrices); `reference` `(nodes, 3)` the undeformed nodes. With `modes`,
+/// `position[k]` is a mode's nodal displacements drawn on `reference`.
+#[pyfunction]
+#[pyo3(signature = (folder, stem, times, position, rotation, reference, modes = false))]
+#[allow(clippy::too_many_arguments)]
+pub fn write_spatial_vtk(
+    py: Python<'_>,
+    folder: PathBuf,
+    stem: String,
+    times: PyReadonlyArray1<'_, f64>,
+    position: PyReadonlyArray3<'_, f64>,
+    rotation: PyReadonlyArray3<'_, f64>,
+    reference: PyReadonlyArray2<'_, f64>,
+    modes: bool,
+) -> PyResult<String> {
+    let frames = crate::errors::guard(py, || {
+        spatial_frames(py, &times, &position, &rotation, &reference, modes)
+    })?;
+    crate::errors::detached(py, || vtk::write_series(&folder, &stem, &frames))?
+        .map(|p| p.to_string_lossy().into_owned())
+        .map_err(|e| PyOSError::new_err(e.to_string()))
+}
+
+/// The frames of `write_spatial_vtk`, checked.
+fn spatial_frames(
+    py: Python<'_>,
+    times: &PyReadonlyArray1<'_, f64>,
+    position: &PyReadonlyArray3<'_, f64>,
+    rotation: &PyReadonlyArray3<'_, f64>,
+    reference: &PyReadonlyArray2<'_, f64>,
+    modes: bool,
+) -> PyResult<Vec<vtk::Frame>> {
+    let (times, position, rotation, reference) = (
+        times.as_array(),
+        position.as_array(),
+        rotation.as_array(),
+        reference.as_array(),
+    );
+    let nodes = reference.nrows();
+    let expected = [
+        ("position", position.dim(), (times.len(), nodes, 3)),
+        (
+            "rotation",
+            rotation.dim(),
+            (times.len(), nodes.saturating_sub(1), 3),
+        ),
+    ];
+    for (name, got, want) in expected {
+        if got != want || reference.ncols() != 3 || nodes < 2 {
+            return Err(crate::errors::input(
+                py,
+                name,
+                &format!("shape {got:?}, expected {want:?} (times, nodes, 3)"),
+            ));
+        }
+    }
+    let rows = |a: &numpy::ndarray::ArrayView2<f64>| -> Vec<[f64; 3]> {
+        a.rows().into_iter().map(|r| [r[0], r[1], r[2]]).collect()
+    };
+    let reference = rows(&reference);
+    Ok((0..times.len())
+        .map(|k| {
+            let p = rows(&position.index_axis(numpy::ndarray::Axis(0), k));
+            let r = rows(&rotation.index_axis(numpy::ndarray::Axis(0), k));
+            if modes {
+                vtk::spatial_mode_frame(times[k], &p, &r, &reference)
+            } else {
+                let frames: Vec<[[f64; 3]; 3]> = r
+                    .iter()
+                    .map(|&v| flexwing::model::chain3d::rotation_matrix(v))
+                    .collect();
+                vtk::spatial_frame(times[k], &p, &r, &frames, &reference)
+            }
+        })
+        .collect())
+}

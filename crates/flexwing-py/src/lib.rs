@@ -81,6 +81,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::solve_many, m)?)?;
     m.add_function(wrap_pyfunction!(files::write_node_npz, m)?)?;
     m.add_function(wrap_pyfunction!(files::write_planar_vtk, m)?)?;
+    m.add_function(wrap_pyfunction!(files::write_spatial_vtk, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

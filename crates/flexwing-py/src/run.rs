@@ -135,6 +135,7 @@ pub fn to_python<'py>(
         (Plan::AeroStatic(p), Outcome::AeroStatic(o)) => aero_statics::raw(py, p, o)?,
         (Plan::AeroDynamic(p), Outcome::AeroDynamic(o)) => aero_dynamics::raw(py, p, o)?,
         (Plan::Flutter(p), Outcome::Flutter(o)) => flutter::raw(py, p, o)?,
+        (Plan::GustFamily(p), Outcome::GustFamily(o)) => gust_family::raw(py, p, o)?,
         (Plan::Linearize(p), Outcome::Linearize(o)) => linearize::raw(py, p, o)?,
         (Plan::Chain3d(p), Outcome::Chain3d(o)) => chain3d::raw(py, p, o)?,
         (plan, _) => {

@@ -108,4 +108,4 @@ def test_bad_3d_values_name_the_key():
     with pytest.raises(flexwing.InputError, match=r"beam\.section\.EI_lag"):
         flexwing.Case.from_toml(text.replace("EI_lag = 60.0", "EI_lag = -60.0")).modes()
     with pytest.raises(flexwing.InputError, match=r"beam\.model"):
-        flexwing.Case.from_toml(text).dynamics()
+        flexwing.Case.load(example("patil_3d_flutter.toml")).dynamics()

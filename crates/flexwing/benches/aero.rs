@@ -1,18 +1,26 @@
 //! Benchmarks of the aeroelastic analyses on Patil's HALE wing (semi-span 16 m, chord 1 m, elastic
 //! axis and mass centre at mid-chord, m = 0.75 kg/m, I = 0.1 kg·m, GJ = 1e4, EI = 2e4, ρ = 0.0889,
 //! c_lα = 2π) with Peters' inflow (6 states per strip): the flutter speed of the full model against
-//! n, the reduced model (r = 6), a V-g sweep of 100 speeds, and a 1−cos gust response of 2 s.
+//! n, the reduced model (r = 6), a V-g sweep of 100 speeds, a 1−cos gust response of 2 s, and
+//! the discrete gust family of `examples/patil_gust_family.toml` (20 CS 25.341(a) gusts).
 //! Prints Markdown tables for docs/performance.md.
 //!
 //! Run: `cargo bench -p flexwing --bench aero` (add `-- --quick` for a short run; name sections
 //! to run only those: `-- flutter`, `-- sweep`, `-- gust`, `-- audit`: the cost of the energy
-//! audit on the gust response).
+//! audit on the gust response, `-- family`: the gust family).
 
 use std::hint::black_box;
 use std::time::Duration;
 
 mod common;
-use common::{cpu_per_call, fmt_time, measure};
+use common::{cpu_per_call, cpu_time, fmt_time, measure};
+
+use flexwing::analysis::aero::gust_family::{self, GustFamilyPlan, GustLengths, FOOT};
+use flexwing::analysis::aero::response::AeroDynamicPlan;
+use flexwing::analysis::aero::Aero;
+use flexwing::analysis::dynamics::DynamicPlan;
+use flexwing::analysis::NoProgress;
+use flexwing::model::aero::AeroSection;
 
 use flexwing::beam::Profile;
 use flexwing::model::aero::{AeroStructure, Aerodynamics, Aeroelastic, FlightCondition};
@@ -92,6 +100,7 @@ fn main() {
                 "sweep",
                 "gust",
                 "audit",
+                "family",
                 "pk",
                 "pk-once",
                 "eigen-once",
@@ -132,6 +141,81 @@ fn main() {
     }
     if want("pk") {
         pk_table(budget, batches);
+    }
+    if want("family") {
+        family_table();
+    }
+}
+
+/// The gust family of `examples/patil_gust_family.toml` (20 gusts, H = 30 … 350 ft, U_ref =
+/// 1 m/s, 25 m/s at 2°, 10 s, output step 0.01 s) on Patil's wing with `n` elements, the full
+/// model or the reduced one on 6 wet modes, at `rtol` (atol = rtol / 100).
+fn family_plan(n: usize, reduced: bool, rtol: f64) -> GustFamilyPlan {
+    let model = flexwing::wings::patil_wing(n, Aerodynamics::Steady)
+        .expect("valid wing")
+        .full()
+        .clone();
+    let aero = Aero {
+        section: AeroSection::new(Profile::Uniform(1.0), Profile::Uniform(0.5)),
+        density: 0.0889,
+        aerodynamics: Aerodynamics::Peters { states: 6 },
+    };
+    let times: Vec<f64> = (0..=1000).map(|k| 0.01 * k as f64).collect();
+    let mut s = DynamicPlan::new(model, vec![], 10.0, times);
+    s.settings.rtol = rtol;
+    s.settings.atol = rtol * 1e-2;
+    s.full = !reduced;
+    s.reduced = if reduced { vec![6] } else { vec![] };
+    let flight = FlightHistory {
+        initial: FlightCondition {
+            speed: 25.0,
+            root_angle: 0.0349,
+            gravity: None,
+        },
+        speed_change: None,
+        root_angle_change: None,
+        gust: None,
+        deflection_changes: Vec::new(),
+    };
+    GustFamilyPlan {
+        response: AeroDynamicPlan::new(s, aero, flight),
+        lengths: GustLengths::Range {
+            from: 30.0 * FOOT,
+            to: 350.0 * FOOT,
+            steps: 20,
+        },
+        reference_velocity: 1.0,
+        alleviation: 1.0,
+        start: 0.1,
+        penetration: GustPenetration::Uniform,
+    }
+}
+
+/// The family's CPU time (one run each: seconds, not microseconds), steps and the critical
+/// root-bending-moment peak, full and reduced, n = 16 and 32, two tolerances.
+fn family_table() {
+    println!("\nGust family (examples/patil_gust_family.toml: 20 gusts, 10 s each), Patil's wing, Peters 6\n");
+    println!("| n | model | rtol | steps (20 gusts) | CPU | wall | critical H, RBM (m) | RBM peak (N·m) |");
+    println!("|---|---|---|---|---|---|---|---|");
+    for n in [16, 32] {
+        for rtol in [1e-6, 1e-4] {
+            for reduced in [false, true] {
+                let plan = family_plan(n, reduced, rtol);
+                let (cpu0, wall0) = (cpu_time(), std::time::Instant::now());
+                let out = gust_family::run(&plan, &mut NoProgress).expect("plan");
+                let (cpu, wall) = (cpu_time() - cpu0, wall0.elapsed().as_secs_f64());
+                let steps: usize = out.members.iter().map(|m| m.runs[0].steps).sum();
+                let c = out.critical(0, 2).expect("a complete run");
+                println!(
+                    "| {n} | {} | {rtol:.0e} | {steps} | {} | {} | {:.2} | {:.2} |",
+                    if reduced { "reduced r = 6" } else { "full" },
+                    fmt_time(cpu),
+                    fmt_time(wall),
+                    c.gradient,
+                    c.runs[0].peaks[2].extreme().0,
+                );
+            }
+        }
     }
 }
 

@@ -17,7 +17,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/case-file.md");
     let text = std::fs::read_to_string(path).expect("docs/case-file.md");
     // The key tables of each section, in the order they appear.
-    let sections: [(&str, &[&str]); 20] = [
+    let sections: [(&str, &[&str]); 21] = [
         ("### Top level", &[""]),
         ("### `[beam]`", &["beam"]),
         ("### `[beam.section]`", &["beam.section"]),
@@ -37,6 +37,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
         ("### `[flutter]`", &["flutter"]),
         ("### `[flutter.study]`", &["flutter.study"]),
         ("### `[linearize]`", &["linearize"]),
+        ("### `[gust_family]`", &["gust_family"]),
         ("### `[output]`", &["output"]),
     ];
     let mut tables = BTreeMap::new();
@@ -144,6 +145,10 @@ hinge = 0.75
 [flutter]
 
 [linearize]
+
+[gust_family]
+lengths = [10.0]
+reference_velocity = 1.0
 "#
     )
 }
@@ -177,7 +182,7 @@ fn schema_keys(table: &str) -> BTreeSet<String> {
             "[[aero.surfaces]]\n",
             &format!("[[aero.surfaces]]\n{bogus}"),
         ),
-        t if t.starts_with("aero") || t == "flutter" || t == "linearize" => {
+        t if t.starts_with("aero") || ["flutter", "linearize", "gust_family"].contains(&t) => {
             let header = format!("[{t}]\n");
             let base = base_aero();
             assert!(base.contains(&header), "{t}");
@@ -218,6 +223,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
                 "aero",
                 "flutter",
                 "linearize",
+                "gust_family",
                 "output",
             ],
             "beam" => &["section"],
@@ -241,7 +247,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
         let documented: BTreeSet<String> = keys.keys().cloned().collect();
         assert_eq!(documented, schema, "keys of [{table}]");
     }
-    assert_eq!(docs.len(), 22, "{:?}", docs.keys());
+    assert_eq!(docs.len(), 23, "{:?}", docs.keys());
 }
 
 /// The default the code uses for each key whose documented default is a literal.
@@ -579,6 +585,18 @@ fn aero_defaults(put: &mut impl FnMut(&'static str, &'static str, String)) {
         "aero.flight.gust",
         "penetration",
         format!("\"{}\"", gust.penetration.name()),
+    );
+    // The family's one 10 m gust passes the wing at 10 m/s in 2 s.
+    let family = Case::from_toml_str(&text.replace("end_time = 1.0", "end_time = 2.5"))
+        .unwrap()
+        .gust_family_plan()
+        .unwrap();
+    put("gust_family", "alleviation", family.alleviation.to_string());
+    put("gust_family", "start", family.start.to_string());
+    put(
+        "gust_family",
+        "penetration",
+        format!("\"{}\"", family.penetration.name()),
     );
 }
 

@@ -52,6 +52,11 @@ fn mutated_example_case_files_give_plans_or_one_line_errors() {
                             .map(|_| ())
                             .map_err(|e| e.to_string()),
                     );
+                    results.push(
+                        case.gust_family_plan()
+                            .map(|_| ())
+                            .map_err(|e| e.to_string()),
+                    );
                 }
                 results
             }));

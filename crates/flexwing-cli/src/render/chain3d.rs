@@ -1,15 +1,15 @@
-//! The 3-D chain's runs (`beam.model = "chain3d"`): `flexwing modes|static|flutter|study` write
-//! the node `x, y, z` and each element's section rotation (a rotation vector, written at the
-//! element's outboard node) in their CSV files, a table, and a JSON document that is the
-//! library's serialized outcome (`flexwing::analysis::chain3d`); `study` also plots the flutter
-//! speed against the tip deflection beside the undeformed wing's.
+//! The 3-D chain's runs (`beam.model = "chain3d"`; `dynamic` in `chain3d_dynamic.rs`): `flexwing
+//! modes|static|flutter|study` write the node `x, y, z` and each element's section rotation (a
+//! rotation vector, written at the element's outboard node) in their CSV files, a table, and a
+//! JSON document that is the library's serialized outcome (`flexwing::analysis::chain3d`);
+//! `study` also plots the flutter speed against the tip deflection beside the undeformed wing's.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use flexwing::analysis::chain3d::{
-    Chain3dOutcome, Chain3dPlan, Flutter3dOutcome, Mode3d, Shape3dData, Stability3d,
+    Analysis3d, Chain3dOutcome, Chain3dPlan, Flutter3dOutcome, Mode3d, Shape3dData, Stability3d,
     Static3dOutcome, Study3dOutcome,
 };
 use serde::Serialize;
@@ -18,7 +18,15 @@ use super::{finite, Context};
 use crate::output;
 use crate::plot::{write_lines, LinePlot, Panel, Series};
 
-/// Every file a 3-D run may write.
+/// Every file a 3-D run of `plan` may write.
+pub fn previous_files(plan: &Chain3dPlan) -> &'static [&'static str] {
+    match plan.analysis {
+        Analysis3d::Dynamic(_) => super::chain3d_dynamic::FILES,
+        _ => FILES,
+    }
+}
+
+/// Every file a 3-D run but a dynamic one may write.
 pub const FILES: &[&str] = &[
     "frequencies.csv",
     "mode_shapes.csv",
@@ -50,7 +58,6 @@ pub fn model_line(plan: &Chain3dPlan) -> String {
 
 /// The aerodynamics of a flutter or study plan.
 pub fn aero(plan: &Chain3dPlan) -> Option<(flexwing::model::aero::Aerodynamics, f64)> {
-    use flexwing::analysis::chain3d::Analysis3d;
     let f = match &plan.analysis {
         Analysis3d::Flutter(f) => f,
         Analysis3d::Study(s) => &s.flutter,
@@ -131,7 +138,7 @@ struct ModeShapeRow {
 
 pub fn files(
     ctx: &Context,
-    _plan: &Chain3dPlan,
+    plan: &Chain3dPlan,
     outcome: &Chain3dOutcome,
     dir: &Path,
     plot: bool,
@@ -169,6 +176,11 @@ pub fn files(
         }
         Chain3dOutcome::Static(o) => static_files(o, dir, &mut files)?,
         Chain3dOutcome::Flutter(o) => flutter_files(o, dir, &mut files)?,
+        Chain3dOutcome::Dynamic(o) => {
+            if let Analysis3d::Dynamic(d) = &plan.analysis {
+                files.extend(super::chain3d_dynamic::files(ctx, d, o, dir, plot)?);
+            }
+        }
         Chain3dOutcome::Study(o) => {
             let f = dir.join("study.csv");
             output::write_csv(&f, study_rows(o))?;
@@ -422,8 +434,13 @@ fn study_plot(ctx: &Context, o: &Study3dOutcome, dir: &Path) -> Result<Vec<PathB
     write_lines(dir, "study", &plot)
 }
 
-pub fn text(s: &mut String, outcome: &Chain3dOutcome) {
+pub fn text(ctx: &Context, s: &mut String, plan: &Chain3dPlan, outcome: &Chain3dOutcome) {
     match outcome {
+        Chain3dOutcome::Dynamic(o) => {
+            if let Analysis3d::Dynamic(d) = &plan.analysis {
+                super::chain3d_dynamic::text(ctx, s, d, o);
+            }
+        }
         Chain3dOutcome::Modes { modes, .. } => {
             let _ = writeln!(
                 s,
@@ -522,6 +539,8 @@ pub struct Json<'a> {
     n_dofs: usize,
     #[serde(flatten)]
     outcome: &'a Chain3dOutcome,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    node_output: Option<super::dynamic::NodeOutput>,
     notes: &'a [String],
 }
 
@@ -531,6 +550,7 @@ pub fn json<'a>(ctx: &'a Context, plan: &'a Chain3dPlan, outcome: &'a Chain3dOut
         n_elements: plan.model.n_elements(),
         n_dofs: plan.model.n_dofs(),
         outcome,
+        node_output: super::chain3d_dynamic::node_output(ctx, plan),
         notes: &ctx.notes,
     }
 }

@@ -442,7 +442,7 @@ pub fn describe_time(f: &TimeFunction) -> String {
     }
 }
 
-fn damping_line(damping: &Damping) -> String {
+pub fn damping_line(damping: &Damping) -> String {
     match damping {
         Damping::None => "none".into(),
         Damping::Rayleigh { alpha, beta } => {
@@ -455,14 +455,20 @@ fn damping_line(damping: &Damping) -> String {
     }
 }
 
-fn tolerances_line(plan: &DynamicPlan) -> String {
-    let st = &plan.settings;
+/// The integrator's tolerances and options; `uses_gyroscopic`: a model of the run gets the
+/// gyroscopic term (its finite-difference step is then shown).
+pub fn tolerances_line(
+    integrator: Method,
+    st: &flexwing::solve::integrate::IntegratorSettings,
+    gyroscopic: Gyroscopic,
+    uses_gyroscopic: bool,
+) -> String {
     let mut s = format!(
         "rtol {}, atol {} rad on the coordinates",
         short(st.rtol),
         short(st.atol)
     );
-    if plan.integrator == Method::Bdf {
+    if integrator == Method::Bdf {
         let _ = write!(s, ", BDF maximum order {}", st.max_order);
     }
     if let Some(h) = st.step {
@@ -471,31 +477,23 @@ fn tolerances_line(plan: &DynamicPlan) -> String {
     if let Some(h) = st.max_step {
         let _ = write!(s, ", steps at most {} s", short(h));
     }
-    let uses_gyroscopic = plan.full || !plan.reduced.is_empty() || !plan.reduced_modes.is_empty();
-    if let (true, Gyroscopic::FiniteDifference { step }) = (uses_gyroscopic, plan.gyroscopic) {
+    if let (true, Gyroscopic::FiniteDifference { step }) = (uses_gyroscopic, gyroscopic) {
         let _ = write!(s, ", finite-difference γ step {}", short(step));
     }
     s
 }
 
-pub fn text(ctx: &Context, s: &mut String, plan: &DynamicPlan, outcome: &DynamicOutcome) {
-    let initial = match &plan.initial {
-        Initial::Static { loads } => loads.clone(),
-        _ => Vec::new(),
-    };
-    for (i, l) in plan.loads.iter().enumerate() {
-        let when = match &plan.time[i] {
-            Some(f) => describe_time(f),
-            None if initial.contains(&i) => {
-                " (inactive: only for the initial static deflection)".into()
-            }
-            None => " (inactive: not used)".into(),
-        };
-        let _ = writeln!(s, "load {}: {}{when}", plan.load_name(i), l);
-    }
-    let initial = match &plan.initial {
+/// The lines of the initial state, the simulated time and the node file.
+pub fn run_lines(
+    s: &mut String,
+    initial: &Initial,
+    load_name: &dyn Fn(usize) -> String,
+    end_time: f64,
+    times: &[f64],
+) {
+    let initial = match initial {
         Initial::Static { loads } => {
-            let names: Vec<String> = loads.iter().map(|&i| plan.load_name(i)).collect();
+            let names: Vec<String> = loads.iter().map(|&i| load_name(i)).collect();
             format!(
                 "each model's static equilibrium under {}, released at rest",
                 names.join(", ")
@@ -507,17 +505,48 @@ pub fn text(ctx: &Context, s: &mut String, plan: &DynamicPlan, outcome: &Dynamic
         Initial::Rest => "at rest, undeformed".into(),
     };
     let _ = writeln!(s, "initial state: {initial}");
-    let times = &plan.output_times;
     let _ = writeln!(
         s,
         "time: 0 to {} s, {} output times from {} to {} s",
-        short(plan.end_time),
+        short(end_time),
         times.len(),
         short(times[0]),
         short(times[times.len() - 1])
     );
+}
+
+/// When load `i` acts: its time history as a factor, or why it is inactive.
+pub fn load_when(time: &[Option<TimeFunction>], initial: &Initial, i: usize) -> String {
+    let of_initial = matches!(initial, Initial::Static { loads } if loads.contains(&i));
+    match &time[i] {
+        Some(f) => describe_time(f),
+        None if of_initial => " (inactive: only for the initial static deflection)".into(),
+        None => " (inactive: not used)".into(),
+    }
+}
+
+pub fn text(ctx: &Context, s: &mut String, plan: &DynamicPlan, outcome: &DynamicOutcome) {
+    for (i, l) in plan.loads.iter().enumerate() {
+        let when = load_when(&plan.time, &plan.initial, i);
+        let _ = writeln!(s, "load {}: {}{when}", plan.load_name(i), l);
+    }
+    run_lines(
+        s,
+        &plan.initial,
+        &|i| plan.load_name(i),
+        plan.end_time,
+        &plan.output_times,
+    );
+    let times = &plan.output_times;
     let _ = writeln!(s, "damping: {}", damping_line(&plan.damping));
-    let _ = writeln!(s, "tolerances: {}", tolerances_line(plan));
+    let uses_gyroscopic = plan.full || !plan.reduced.is_empty() || !plan.reduced_modes.is_empty();
+    let tolerances = tolerances_line(
+        plan.integrator,
+        &plan.settings,
+        plan.gyroscopic,
+        uses_gyroscopic,
+    );
+    let _ = writeln!(s, "tolerances: {tolerances}");
     let _ = writeln!(
         s,
         "{}",

@@ -10,8 +10,10 @@
 mod aero_dynamic;
 mod aero_static;
 mod chain3d;
+mod chain3d_dynamic;
 mod dynamic;
 mod flutter;
+mod gust_family;
 mod linearize;
 mod modes;
 mod statics;
@@ -23,6 +25,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use flexwing::analysis::aero::flutter::{FlutterOutcome, FlutterPlan};
+use flexwing::analysis::aero::gust_family::{GustFamilyOutcome, GustFamilyPlan};
 use flexwing::analysis::aero::linearize::{LinearizeOutcome, LinearizePlan};
 use flexwing::analysis::aero::response::{AeroDynamicOutcome, AeroDynamicPlan};
 use flexwing::analysis::aero::statics::{AeroPoint, AeroStaticOutcome, AeroStaticPlan};
@@ -103,6 +106,8 @@ pub enum View<'a> {
     Flutter(&'a FlutterPlan, &'a FlutterOutcome),
     /// Aeroelastic response.
     AeroDynamic(&'a AeroDynamicPlan, &'a AeroDynamicOutcome),
+    /// A discrete gust family.
+    GustFamily(&'a GustFamilyPlan, &'a GustFamilyOutcome),
     /// Linear state-space models.
     Linearize(&'a LinearizePlan, &'a LinearizeOutcome),
     /// The 3-D chain's analyses.
@@ -119,6 +124,7 @@ impl<'a> View<'a> {
             (Plan::AeroStatic(p), Outcome::AeroStatic(o)) => View::AeroStatic(p, o),
             (Plan::Flutter(p), Outcome::Flutter(o)) => View::Flutter(p, o),
             (Plan::AeroDynamic(p), Outcome::AeroDynamic(o)) => View::AeroDynamic(p, o),
+            (Plan::GustFamily(p), Outcome::GustFamily(o)) => View::GustFamily(p, o),
             (Plan::Linearize(p), Outcome::Linearize(o)) => View::Linearize(p, o),
             (Plan::Chain3d(p), Outcome::Chain3d(o)) => View::Chain3d(p, o),
             _ => return None,
@@ -135,6 +141,7 @@ impl<'a> View<'a> {
             View::AeroStatic(p, _) => &p.model,
             View::Flutter(p, _) => &p.model,
             View::AeroDynamic(p, _) => &p.structure.model,
+            View::GustFamily(p, _) => &p.response.structure.model,
             View::Linearize(p, _) => &p.model,
         })
         .map_or_else(String::new, model_line)
@@ -146,6 +153,7 @@ impl<'a> View<'a> {
             View::AeroStatic(p, _) => &p.aero,
             View::Flutter(p, _) => &p.aero,
             View::AeroDynamic(p, _) => &p.aero,
+            View::GustFamily(p, _) => &p.response.aero,
             View::Linearize(p, _) => &p.aero,
             View::Chain3d(p, _) => return chain3d::aero(p),
             _ => return None,
@@ -164,8 +172,9 @@ pub fn previous_files(plan: &Plan) -> &'static [&'static str] {
         Plan::AeroStatic(_) => aero_static::FILES,
         Plan::Flutter(_) => flutter::FILES,
         Plan::AeroDynamic(_) => aero_dynamic::FILES,
+        Plan::GustFamily(_) => gust_family::FILES,
         Plan::Linearize(_) => linearize::FILES,
-        Plan::Chain3d(_) => chain3d::FILES,
+        Plan::Chain3d(p) => chain3d::previous_files(p),
         _ => &[],
     }
 }
@@ -180,6 +189,7 @@ pub fn files(ctx: &Context, view: &View, dir: &Path, plot: bool) -> Result<Vec<P
         View::AeroStatic(p, o) => aero_static::files(ctx, p, o, dir, plot),
         View::Flutter(p, o) => flutter::files(ctx, p, o, dir, plot),
         View::AeroDynamic(p, o) => aero_dynamic::files(ctx, p, o, dir, plot),
+        View::GustFamily(p, o) => gust_family::files(ctx, p, o, dir, plot),
         View::Linearize(p, o) => linearize::files(ctx, p, o, dir),
         View::Chain3d(p, o) => chain3d::files(ctx, p, o, dir, plot),
     }?;
@@ -206,8 +216,9 @@ pub fn text(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
         View::AeroStatic(p, o) => aero_static::text(&mut s, p, o),
         View::Flutter(p, o) => flutter::text(&mut s, ctx, p, o),
         View::AeroDynamic(p, o) => aero_dynamic::text(ctx, &mut s, p, o),
+        View::GustFamily(p, o) => gust_family::text(ctx, &mut s, p, o),
         View::Linearize(p, o) => linearize::text(&mut s, p, o),
-        View::Chain3d(_, o) => chain3d::text(&mut s, o),
+        View::Chain3d(p, o) => chain3d::text(ctx, &mut s, p, o),
     }
     let _ = writeln!(s);
     let modes3d = matches!(
@@ -239,6 +250,7 @@ pub fn json(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
         View::AeroStatic(p, o) => document(ctx, aero_static::json(ctx, p, o), files),
         View::Flutter(p, o) => document(ctx, flutter::json(ctx, p, o), files),
         View::AeroDynamic(p, o) => document(ctx, aero_dynamic::json(ctx, p, o), files),
+        View::GustFamily(p, o) => document(ctx, gust_family::json(ctx, p, o), files),
         View::Linearize(p, o) => document(ctx, linearize::json(ctx, p, o), files),
         View::Chain3d(p, o) => document(ctx, chain3d::json(ctx, p, o), files),
     }

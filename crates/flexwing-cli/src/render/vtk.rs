@@ -1,11 +1,15 @@
 //! `[output] vtk` / `--vtk`: the deformed chain for ParaView through `flexwing_io::vtk` — a
 //! `.vtu` per output time (`flexwing dynamic`, the node file's times), load step (`static`) or
-//! mode (`modes`), and a `.pvd` collection per model, in `vtk/` of the output folder.
+//! mode (`modes`), and a `.pvd` collection per model, in `vtk/` of the output folder. The 3-D
+//! chain's frames carry the section rotation vector and the section axes `t`, `n`, `c` as point
+//! vectors beside the displacement.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
+use flexwing::analysis::chain3d::{Analysis3d, Chain3dOutcome, Chain3dPlan, Shape3dData};
 use flexwing::analysis::dynamics::Snapshot;
+use flexwing::model::chain3d::rotation_matrix;
 use flexwing_io::vtk::{self, Frame};
 
 use super::{dynamic, View};
@@ -87,7 +91,62 @@ pub fn files(ctx: &super::Context, view: &View, dir: &Path) -> Result<Vec<PathBu
                 written.push(vtk::write_series(&out, &stem, &frames)?);
             }
         }
-        View::AeroStatic(..) | View::Flutter(..) | View::Linearize(..) | View::Chain3d(..) => {}
+        View::Chain3d(p, o) => written.extend(chain3d_files(ctx, p, o, &out)?),
+        View::AeroStatic(..) | View::Flutter(..) | View::GustFamily(..) | View::Linearize(..) => {}
+    }
+    Ok(written)
+}
+
+/// A frame of the 3-D chain's `shape`, displaced from `reference`.
+fn spatial_frame(time: f64, shape: &Shape3dData, reference: &[[f64; 3]]) -> Frame {
+    let frames: Vec<[[f64; 3]; 3]> = shape.rotation.iter().map(|&r| rotation_matrix(r)).collect();
+    vtk::spatial_frame(time, &shape.position, &shape.rotation, &frames, reference)
+}
+
+/// The 3-D chain's series: its modes, static points or dynamic snapshots (nothing for flutter
+/// and the study).
+fn chain3d_files(
+    ctx: &super::Context,
+    plan: &Chain3dPlan,
+    outcome: &Chain3dOutcome,
+    out: &Path,
+) -> Result<Vec<PathBuf>> {
+    let reference = plan.model.node_positions(&vec![0.0; plan.model.n_dofs()]);
+    let mut written = Vec::new();
+    match (outcome, &plan.analysis) {
+        (Chain3dOutcome::Modes { modes, .. }, _) => {
+            let frames: Vec<Frame> = modes
+                .iter()
+                .map(|m| {
+                    vtk::spatial_mode_frame(m.mode as f64, &m.displacement, &m.rotation, &reference)
+                })
+                .collect();
+            written.push(vtk::write_series(out, "modes", &frames)?);
+        }
+        (Chain3dOutcome::Static(o), _) => {
+            let scales: Vec<f64> = o.points.iter().map(|q| q.scale).collect();
+            let frames: Vec<Frame> = o
+                .points
+                .iter()
+                .zip(step_times(&scales))
+                .map(|(q, t)| spatial_frame(t, &q.shape, &reference))
+                .collect();
+            written.push(vtk::write_series(out, "static_full", &frames)?);
+        }
+        (Chain3dOutcome::Dynamic(o), Analysis3d::Dynamic(d)) => {
+            let times = dynamic::node_indices(&ctx.case.output, d.output_times.len());
+            for r in &o.runs {
+                let frames: Vec<Frame> = r
+                    .snapshots
+                    .iter()
+                    .filter(|s| times.binary_search(&s.index).is_ok())
+                    .map(|s| spatial_frame(s.t, &s.shape, &reference))
+                    .collect();
+                let stem = format!("dynamic_{}", r.label);
+                written.push(vtk::write_series(out, &stem, &frames)?);
+            }
+        }
+        _ => {}
     }
     Ok(written)
 }

@@ -236,8 +236,8 @@ fn bad_3d_input_names_the_key() {
         ),
         (
             "dynamic",
-            chain.clone(),
-            "beam.model: the 3-D chain (\"chain3d\") has no dynamic run",
+            std::fs::read_to_string(example("patil_3d_flutter.toml")).unwrap(),
+            "beam.model: the 3-D chain (\"chain3d\") has no aeroelastic dynamic run",
         ),
         (
             "study",

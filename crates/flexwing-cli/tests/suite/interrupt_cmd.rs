@@ -13,7 +13,11 @@ use crate::common::{example, stderr, TempDir};
 
 /// Start `flexwing ARGS`, send `signal` after `after`, and return its output and the time from
 /// the signal to its exit.
-fn interrupted_run(args: &[&str], signal: &str, after: Duration) -> (std::process::Output, f64) {
+pub(crate) fn interrupted_run(
+    args: &[&str],
+    signal: &str,
+    after: Duration,
+) -> (std::process::Output, f64) {
     let child = Command::new(env!("CARGO_BIN_EXE_flexwing"))
         .args(args)
         .stdout(Stdio::piped())

@@ -7,12 +7,14 @@
 mod aero_cmd;
 mod bad_input;
 mod chain3d_cmd;
+mod chain3d_dynamic_cmd;
 mod common;
 mod dynamic_cmd;
 mod examples;
 mod flutter_cmd;
 mod fmu_cmd;
 mod fuzz_runs;
+mod gust_cmd;
 mod interrupt_cmd;
 mod linearize_cmd;
 mod reproduce_cmd;

@@ -1,6 +1,7 @@
 """The results of the aeroelastic analyses (docs/aeroelastic-model.md): static aeroelastic
 equilibria and divergence (``Case.statics()`` on a case with ``[aero]``), flutter
-(``Case.flutter()``) and the aeroelastic response (``Case.dynamics()`` with ``[aero]``). Plain
+(``Case.flutter()``), the aeroelastic response (``Case.dynamics()`` with ``[aero]``) and the
+discrete gust family (``Case.gust_family()``). Plain
 objects of NumPy arrays on the base classes of ``_base.py``: they pickle, print and convert to
 dicts.
 
@@ -28,7 +29,12 @@ __all__ = [
     "FlutterResult",
     "AeroDynamicRun",
     "AeroDynamicResult",
+    "GustFamilyRun",
+    "GustFamilyResult",
 ]
+
+#: The outputs of a gust family, in order (the library's ``gust_family::OUTPUTS``).
+GUST_OUTPUTS = ("tip_y", "tip_twist", "root_bending_moment", "root_torque", "lift")
 
 
 @dataclass(eq=False, repr=False)
@@ -389,4 +395,113 @@ class AeroDynamicResult(_NodeFiles, _Runs):
     start: str
     rust_time_s: float
     penetration: Optional[str] = None
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass(eq=False, repr=False)
+class GustFamilyRun(_Run):
+    """One model's responses to the gusts of a family (CS 25.341(a)), one value per gust
+    gradient distance H in the order given.
+
+    Attributes:
+        label, kind, modes: as :class:`AeroDynamicRun`.
+        status, stop, message: how the model's runs ended: its first run that stopped, else
+            its first that is not complete, else ``"complete"``.
+        gradient: the gust gradient distances H (m; the 1−cos wavelength is 2H), ``(G,)``.
+        design_velocity: U_ds = U_ref F_g (H/350 ft)^(1/6) of each (m/s), ``(G,)``.
+        tip_y_max, tip_y_max_time, tip_y_min, tip_y_min_time: the largest and smallest change
+            of the tip deflection from the equilibrium (m) at the output times from the gust's
+            start on, and their times (s), ``(G,)`` each. A change that never goes above
+            (below) zero has the peak 0 at the start.
+        tip_twist_max, tip_twist_max_time, tip_twist_min, tip_twist_min_time: the same of the
+            tip twist (rad); zero without torsion.
+        root_bending_moment_max, root_bending_moment_max_time, root_bending_moment_min,
+            root_bending_moment_min_time: the same of the root bending moment (N m).
+        root_torque_max, root_torque_max_time, root_torque_min, root_torque_min_time: the same
+            of the root torque, the clamp's torsion spring moment (N m); zero without torsion.
+        lift_max, lift_max_time, lift_min, lift_min_time: the same of the lift (N).
+        steps: accepted integrator steps per gust, ``(G,)``.
+        member_status: each gust's run status word, ``(G,)`` list.
+        wall_time_s: wall time of the model's integrations over the family (s).
+        critical: per output name, the member of largest peak magnitude among the complete
+            runs — ``{"gradient", "design_velocity", "peak" (signed), "time"}`` — or None.
+    """
+
+    _axis = "gust"
+    _coord = "gradient"
+    _columns = (
+        "gradient",
+        "design_velocity",
+        *(f"{o}_{w}" for o in GUST_OUTPUTS for w in ("max", "max_time", "min", "min_time")),
+        "steps",
+    )
+    _grids = {}
+
+    label: str
+    kind: str
+    modes: Optional[List[int]]
+    status: str
+    stop: Optional[Dict[str, Any]]
+    message: Optional[str]
+    gradient: np.ndarray
+    design_velocity: np.ndarray
+    tip_y_max: np.ndarray
+    tip_y_max_time: np.ndarray
+    tip_y_min: np.ndarray
+    tip_y_min_time: np.ndarray
+    tip_twist_max: np.ndarray
+    tip_twist_max_time: np.ndarray
+    tip_twist_min: np.ndarray
+    tip_twist_min_time: np.ndarray
+    root_bending_moment_max: np.ndarray
+    root_bending_moment_max_time: np.ndarray
+    root_bending_moment_min: np.ndarray
+    root_bending_moment_min_time: np.ndarray
+    root_torque_max: np.ndarray
+    root_torque_max_time: np.ndarray
+    root_torque_min: np.ndarray
+    root_torque_min_time: np.ndarray
+    lift_max: np.ndarray
+    lift_max_time: np.ndarray
+    lift_min: np.ndarray
+    lift_min_time: np.ndarray
+    steps: np.ndarray
+    member_status: List[str]
+    wall_time_s: float
+    critical: Dict[str, Optional[Dict[str, float]]]
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        return _summary(self, ["label", "status"]) + f" [{len(self.gradient)} gusts]"
+
+
+@dataclass(eq=False, repr=False)
+class GustFamilyResult(_Runs):
+    """What a discrete gust family produced (``Case.gust_family()``, as ``flexwing gust``).
+
+    Attributes:
+        runs: one :class:`GustFamilyRun` per model: full, then the reduced models.
+        status: the worst of the runs' statuses.
+        outputs: the output names, in order (``tip_y``, ``tip_twist``, ``root_bending_moment``,
+            ``root_torque``, ``lift``).
+        reference_velocity: U_ref (m/s, true air velocity); alleviation: F_g.
+        start: the time each gust front reaches the wing (s); end_time: the simulated time (s).
+        penetration: ``"uniform"`` or ``"kussner"``.
+        aerodynamics: as ``AeroStaticResult.aerodynamics``.
+        rust_time_s: wall time of the analysis on the Rust side (s).
+    """
+
+    _kind = "gust-family"
+    _nested = {"runs": GustFamilyRun}
+
+    runs: List[GustFamilyRun]
+    status: str
+    outputs: List[str]
+    reference_velocity: float
+    alleviation: float
+    start: float
+    penetration: str
+    end_time: float
+    aerodynamics: Dict[str, Any]
+    rust_time_s: float
     extra: Dict[str, Any] = field(default_factory=dict)

@@ -13,13 +13,15 @@ from typing import Any, Dict, List, Optional
 
 import numpy as np
 
-from ._base import _Result, _summary
+from ._base import _Result, _Run, _Runs, _summary
 
 __all__ = [
     "Chain3dModesResult",
     "Chain3dStaticResult",
     "Chain3dFlutterResult",
     "Chain3dStudyResult",
+    "Chain3dDynamicRun",
+    "Chain3dDynamicResult",
 ]
 
 
@@ -73,6 +75,16 @@ class Chain3dModesResult(_Result):
         """Mode shapes: element rotations (rad per unit modal amplitude), ``(k, n, 3)``."""
         return np.array([m["rotation"] for m in self.modes], dtype=float)
 
+    def write_vtk(self, folder) -> str:
+        """Write the mode shapes to ``folder`` for ParaView, as ``flexwing modes --vtk`` does
+        on the 3-D chain: ``modes_0000.vtu``, … (the undeformed nodes as points, point data
+        ``displacement`` (m per unit modal amplitude: Warp By Vector) and ``rotation``) and
+        ``modes.pvd`` whose times are the mode numbers. Returns the ``.pvd`` path."""
+        from ._files import _spatial_vtk
+
+        numbers = np.array([m["mode"] for m in self.modes], dtype=float)
+        return _spatial_vtk(folder, "modes", numbers, self.displacement, self.rotation, self.position, modes=True)
+
     def __repr__(self) -> str:
         return _summary(self, ["n_elements", "n_dofs"]) + f" with {len(self.modes)} modes"
 
@@ -89,6 +101,7 @@ class Chain3dStaticResult(_Result):
         loaded_modes: the modes about the last equilibrium (as ``Chain3dModesResult.modes``), or
             ``None``; loaded_modes_status: how their computation ended.
         dofs: coordinates of the chain; wall_time_s: wall time of the solve (s).
+        reference: the undeformed node positions (m), ``(n + 1, 3)``.
         n_elements, n_dofs: size of the chain.
         rust_time_s: wall time of the analysis on the Rust side (s).
 
@@ -104,10 +117,22 @@ class Chain3dStaticResult(_Result):
     loaded_modes_status: Dict[str, Any]
     dofs: int
     wall_time_s: float
+    reference: List[List[float]]
     n_elements: int
     n_dofs: int
     rust_time_s: float
     extra: Dict[str, Any] = field(default_factory=dict)
+
+    def write_vtk(self, folder) -> str:
+        """Write the equilibria to ``folder`` for ParaView, as ``flexwing static --vtk`` does on
+        the 3-D chain: ``static_full_0000.vtu``, … one per load step (points, lines,
+        ``displacement``, ``rotation``, ``t``, ``n``, ``c`` as ``Chain3dDynamicResult.write_vtk``)
+        and ``static_full.pvd`` whose times are the load scales (or 1, 2, … when they do not
+        increase). Returns the ``.pvd`` path."""
+        from ._files import _spatial_vtk, _step_times
+
+        return _spatial_vtk(folder, "static_full", _step_times(self.scale), self.position, self.rotation,
+                            self.reference)
 
     @property
     def scale(self) -> np.ndarray:
@@ -264,3 +289,119 @@ class Chain3dStudyResult(_Result):
 
     def __repr__(self) -> str:
         return _summary(self, ["parameter", "n_elements"]) + f" with {len(self.points)} levels"
+
+
+@dataclass(eq=False, repr=False)
+class Chain3dDynamicRun(_Run):
+    """The simulation of one model of the 3-D chain, up to where it stopped (the planar
+    :class:`flexwing.DynamicRun`'s fields, with the 3-D tip).
+
+    Attributes:
+        label, kind, modes, dofs, integrator, gyroscopic, stats, wall_time_s, status, stop,
+            message, energy_audit, notes: as ``DynamicRun``'s.
+        t: output times reached (s), ``(T,)``.
+        tip_x, tip_y, tip_z: tip position (m), ``(T,)``.
+        tip_rotation: the tip element's section rotation vector (rad, global components),
+            ``(T, 3)``.
+        kinetic, strain, total, work, dissipated (J), balance_error: as ``DynamicRun``'s.
+        snapshots: one dict per snapshot: ``index``, ``t`` (s), ``shape`` (``span``,
+            ``position`` (m), ``rotation`` (rad)).
+        max_tip_difference: ``max_t |tip − tip_first|`` (m) from the first model, or ``None``.
+
+    Properties ``snapshot_t`` ``(S,)``, ``position`` ``(S, n + 1, 3)`` and ``rotation``
+    ``(S, n, 3)`` are NumPy arrays of the snapshots.
+    """
+
+    _axis = "time"
+    _coord = "t"
+    _columns = ("t", "tip_x", "tip_y", "tip_z", "kinetic", "strain", "total", "work", "dissipated", "balance_error")
+    _grids = {"tip_rotation": "component"}
+
+    label: str
+    kind: str
+    modes: Optional[List[int]]
+    dofs: int
+    integrator: str
+    gyroscopic: str
+    stats: Dict[str, int]
+    wall_time_s: float
+    status: str
+    stop: Optional[Dict[str, Any]]
+    message: Optional[str]
+    t: np.ndarray
+    tip_x: np.ndarray
+    tip_y: np.ndarray
+    tip_z: np.ndarray
+    tip_rotation: np.ndarray
+    kinetic: np.ndarray
+    strain: np.ndarray
+    total: np.ndarray
+    work: np.ndarray
+    dissipated: np.ndarray
+    balance_error: np.ndarray
+    energy_audit: Optional[Dict[str, Any]]
+    snapshots: List[Dict[str, Any]]
+    max_tip_difference: Optional[float]
+    notes: List[Dict[str, Any]]
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def snapshot_t(self) -> np.ndarray:
+        """Times of the snapshots (s), ``(S,)``."""
+        return np.array([s["t"] for s in self.snapshots], dtype=float)
+
+    @property
+    def position(self) -> np.ndarray:
+        """Node positions at the snapshots (m), ``(S, n + 1, 3)``."""
+        return np.array([s["shape"]["position"] for s in self.snapshots], dtype=float)
+
+    @property
+    def rotation(self) -> np.ndarray:
+        """Element section rotation vectors at the snapshots (rad), ``(S, n, 3)``."""
+        return np.array([s["shape"]["rotation"] for s in self.snapshots], dtype=float)
+
+    def __repr__(self) -> str:
+        return _summary(self, ["label", "status"]) + f" [{len(self.t)} output times]"
+
+
+@dataclass(eq=False, repr=False)
+class Chain3dDynamicResult(_Runs):
+    """What a dynamic run of the 3-D chain produced.
+
+    Attributes:
+        runs: one :class:`Chain3dDynamicRun` per model: full, simplified, then the reduced
+            models.
+        status: the worst of the runs' (``"complete"``, ``"suspect"``, ``"stopped"``).
+        end_time: the simulated time (s).
+        reference: the undeformed node positions (m), ``(n + 1, 3)``.
+        n_elements, n_dofs: size of the chain.
+        rust_time_s: wall time of the analysis on the Rust side (s).
+    """
+
+    _kind = "chain3d-dynamic"
+    _nested = {"runs": Chain3dDynamicRun}
+
+    runs: List[Chain3dDynamicRun]
+    status: str
+    end_time: float
+    reference: List[List[float]]
+    n_elements: int
+    n_dofs: int
+    rust_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    def write_vtk(self, folder) -> List[str]:
+        """Write every run's snapshots to ``folder`` for ParaView, as ``flexwing dynamic
+        --vtk`` does on the 3-D chain: ``dynamic_LABEL_0000.vtu``, … (the nodes at their
+        deformed positions, the elements as lines; point data ``displacement`` (m, from the
+        undeformed nodes), the section ``rotation`` vector (rad) and the section axes ``t``,
+        ``n``, ``c``; node ``k`` carries the element inboard of it, the root node the first
+        element's) and ``dynamic_LABEL.pvd`` with the snapshot times. Returns the ``.pvd``
+        paths."""
+        from ._files import _spatial_vtk
+
+        return [
+            _spatial_vtk(folder, f"dynamic_{r.label}", r.snapshot_t, r.position, r.rotation, self.reference)
+            for r in self.runs
+            if r.snapshots
+        ]

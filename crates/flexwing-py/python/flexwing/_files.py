@@ -28,6 +28,13 @@ def _vtk(folder, stem, times, x, y, twist, stations, modes=False) -> str:
         os.fspath(folder), stem, f64(times), f64(x), f64(y), f64(twist), f64(stations), modes)
 
 
+def _spatial_vtk(folder, stem, times, position, rotation, reference, modes=False) -> str:
+    """The 3-D chain's frames (``flexwing_io``'s writer, as the CLI's ``--vtk``)."""
+    f64 = lambda a: np.ascontiguousarray(a, dtype=np.float64)
+    return _native.write_spatial_vtk(
+        os.fspath(folder), stem, f64(times), f64(position), f64(rotation), f64(reference), modes)
+
+
 class _NodeFiles:
     """``save_npz`` and ``write_vtk`` for the results with node snapshots (``DynamicResult``,
     ``AeroDynamicResult``)."""

@@ -43,6 +43,8 @@ UNITS: Dict[str, str] = {
     "tip_x": "m",
     "tip_y": "m",
     "tip_twist": "rad",
+    "tip_z": "m",
+    "tip_rotation": "rad",
     "tip_difference": "m",
     "max_tip_difference": "m",
     "y": "m",
@@ -52,6 +54,7 @@ UNITS: Dict[str, str] = {
     "dy": "m",
     "lift": "N",
     "root_bending_moment": "N m",
+    "root_torque": "N m",
     "hinge_moments": "N m",
     "dynamic_pressure": "Pa",
     "divergence_pressure": "Pa",
@@ -89,7 +92,16 @@ UNITS: Dict[str, str] = {
     "tolerance": "1",
     "mode": "1",
     "index": "1",
+    # Gust families.
+    "gust": "m",
+    "gradient": "m",
+    "design_velocity": "m/s",
+    "steps": "1",
 }
+# A gust family's peaks are in their output's unit, their times in s.
+for _name in ("tip_y", "tip_twist", "root_bending_moment", "root_torque", "lift"):
+    UNITS.update({f"{_name}_max": UNITS[_name], f"{_name}_min": UNITS[_name]})
+    UNITS.update({f"{_name}_max_time": "s", f"{_name}_min_time": "s"})
 
 
 def _need(module: str, extra: str, what: str):

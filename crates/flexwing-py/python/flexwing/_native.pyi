@@ -15,8 +15,9 @@ from typing import Any, Callable, Dict, Iterable, List, Literal, Mapping, Option
 import numpy as np
 import numpy.typing as npt
 
-from ._aero_results import AeroDynamicResult, AeroStaticResult, FlutterResult
+from ._aero_results import AeroDynamicResult, AeroStaticResult, FlutterResult, GustFamilyResult
 from ._chain3d_results import (
+    Chain3dDynamicResult,
     Chain3dFlutterResult,
     Chain3dModesResult,
     Chain3dStaticResult,
@@ -36,7 +37,7 @@ Load = Mapping[str, Any]
 #: ``callback(done, label)``: ``done`` the fraction of the analysis (0 to 1), ``label`` the model
 #: running (``"full"``, ``"reduced-r2"``, …).
 ProgressCallback = Callable[[float, str], Any]
-AnalysisName = Literal["modes", "static", "dynamic", "flutter", "linearize", "study"]
+AnalysisName = Literal["modes", "static", "dynamic", "flutter", "linearize", "study", "gust"]
 
 class Case:
     """A flexwing case: the beam, the loads and the settings of its analyses, with the keys of
@@ -91,9 +92,10 @@ class Case:
         ``SolverError`` carrying the partial result; else each run's ``status`` says so."""
     def dynamics(
         self, *, progress: Optional[ProgressCallback] = None, check: bool = True
-    ) -> Union[DynamicResult, AeroDynamicResult]:
+    ) -> Union[DynamicResult, AeroDynamicResult, Chain3dDynamicResult]:
         """The non-linear dynamics of ``[[loads]]`` and ``[dynamic]`` (full, simplified and
-        reduced models); with ``[aero]``, the aeroelastic response (``AeroDynamicResult``);
+        reduced models); with ``[aero]``, the aeroelastic response (``AeroDynamicResult``); on
+        the 3-D chain (``beam.model = "chain3d"``), a ``Chain3dDynamicResult``;
         ``check`` as ``statics`` (a suspect energy balance raises too)."""
     def stepper(
         self,
@@ -130,6 +132,14 @@ class Case:
         data (1/s, rad/s), flutter speeds (m/s) and frequencies (rad/s), divergence speeds,
         equilibria and the p-k check, per model. ``check`` raises if an eigen-analysis stopped
         before the last speed."""
+    def gust_family(
+        self, *, progress: Optional[ProgressCallback] = None, check: bool = True
+    ) -> GustFamilyResult:
+        """A discrete gust family as in CS 25.341(a) (``[gust_family]`` on ``[aero]`` and
+        ``[dynamic]``): per model and gust gradient distance H (m), the design velocity (m/s)
+        and the largest and smallest change of the tip deflection (m) and twist (rad), the root
+        bending moment and torque (N m) and the lift (N) with their times (s), and each
+        output's critical H. ``check`` as ``dynamics``."""
     def study(
         self, *, progress: Optional[ProgressCallback] = None, check: bool = True
     ) -> Chain3dStudyResult:
@@ -164,11 +174,13 @@ class Case:
         AeroStaticResult,
         AeroDynamicResult,
         FlutterResult,
+        GustFamilyResult,
         LinearizeResult,
         Chain3dModesResult,
         Chain3dStaticResult,
         Chain3dFlutterResult,
         Chain3dStudyResult,
+        Chain3dDynamicResult,
     ]:
         """Run the analysis named ``analysis`` (as the method of the same name)."""
     def __eq__(self, other: object) -> bool: ...
@@ -483,6 +495,22 @@ def write_node_npz(
     dynamic --format npz``: ``fields`` the (name, unit) pairs of the last axis; each history
     (label, ``t`` ``(S,)``, ``index`` ``(S,)``, values ``(S, nodes, fields)``). Used by
     ``DynamicResult.save_npz``."""
+
+def write_spatial_vtk(
+    folder: Union[str, os.PathLike[str]],
+    stem: str,
+    times: npt.NDArray[np.float64],
+    position: npt.NDArray[np.float64],
+    rotation: npt.NDArray[np.float64],
+    reference: npt.NDArray[np.float64],
+    modes: bool = False,
+) -> str:
+    """Write frames of the 3-D chain to ``folder`` as ``STEM_0000.vtu``, … and ``STEM.pvd``
+    (the CLI's writer) and return the ``.pvd``'s path. Per frame ``k``: ``times[k]``, the node
+    positions ``position[k]`` ``(nodes, 3)`` (m; with ``modes``, a mode's nodal displacements
+    drawn on ``reference``), the elements' section rotation vectors ``rotation[k]``
+    ``(nodes − 1, 3)`` (rad); ``reference`` ``(nodes, 3)`` the undeformed nodes. Used by the
+    3-D results' ``write_vtk``."""
 
 def write_planar_vtk(
     folder: Union[str, os.PathLike[str]],

@@ -4,9 +4,12 @@
 
 * modes: the mode shapes ``dy`` (and ``twist`` with torsion) along the span;
 * statics: the deformed shapes at the last point, and the tip against the sweep's scale;
-* dynamics (structural or aeroelastic): the tip deflection (and the lift, aeroelastic) in time;
+* dynamics (structural or aeroelastic): the tip deflection (and the lift, aeroelastic; the
+  tip's z, the 3-D chain) in time;
 * static aeroelastic sweeps: the tip twist and deflection against the speed;
-* flutter: the V-g and V-ω diagrams of one model's branches, the flutter speed marked.
+* flutter: the V-g and V-ω diagrams of one model's branches, the flutter speed marked;
+* gust families: each output's largest (solid) and smallest (dashed) change against the gust
+  gradient distance H, one panel per output (the twist and torque only with torsion).
 
 Each returns the matplotlib ``Figure`` (its axes in ``figure.axes``); ``ax=`` draws a
 one-panel plot into the caller's axes instead. Nothing is shown or saved: call
@@ -112,15 +115,16 @@ def _runs(plt, result, ax, model: Optional[str] = None, **_):
             axes[1].set_xlabel("scale of the swept load")
             axes[1].set_ylabel(_label("tip_y"))
     elif axis == "time":
-        aero = hasattr(first, "lift")
-        fig, axes = _axes(plt, ax, 2 if aero else 1)
+        # The second panel: the lift of an aeroelastic run, the tip's z of the 3-D chain's.
+        second = "lift" if hasattr(first, "lift") else "tip_z" if hasattr(first, "tip_z") else None
+        fig, axes = _axes(plt, ax, 2 if second else 1)
         for r in runs:
             axes[0].plot(r.t, r.tip_y, label=r.label)
-            if aero:
-                axes[1].plot(r.t, r.lift, label=r.label)
+            if second:
+                axes[-1].plot(r.t, getattr(r, second), label=r.label)
         axes[0].set_ylabel(_label("tip_y"))
-        if aero:
-            axes[1].set_ylabel(_label("lift"))
+        if second:
+            axes[-1].set_ylabel(_label(second))
         axes[-1].set_xlabel(_label("t"))
         axes[0].set_title("tip deflection")
     elif axis == "speed":
@@ -132,6 +136,19 @@ def _runs(plt, result, ax, model: Optional[str] = None, **_):
         axes[1].set_ylabel(_label("tip_y"))
         axes[-1].set_xlabel(_label("speed"))
         axes[0].set_title("static aeroelastic equilibria")
+    elif axis == "gust":
+        names = [o for o in ("tip_y", "tip_twist", "root_bending_moment", "root_torque", "lift")
+                 if any(np.any(getattr(r, f"{o}_max")) or np.any(getattr(r, f"{o}_min")) for r in runs)]
+        fig, axes = _axes(plt, ax, len(names))
+        for k, r in enumerate(runs):
+            colour = f"C{k}"
+            for a, o in zip(axes, names):
+                a.plot(r.gradient, getattr(r, f"{o}_max"), color=colour, marker=".", label=f"{r.label} max")
+                a.plot(r.gradient, getattr(r, f"{o}_min"), color=colour, linestyle="--", label=f"{r.label} min")
+        for a, o in zip(axes, names):
+            a.set_ylabel(f"peak change of {_label(o)}")
+        axes[-1].set_xlabel("gust gradient distance H (m)")
+        axes[0].set_title("discrete gusts (CS 25.341(a))")
     else:
         raise TypeError(f"{type(first).__name__} has no plot")
     for a in set(axes):

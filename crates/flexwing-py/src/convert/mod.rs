@@ -10,6 +10,7 @@ pub mod aero_statics;
 pub mod chain3d;
 pub mod dynamics;
 pub mod flutter;
+pub mod gust_family;
 pub mod linearize;
 pub mod modes;
 pub mod statics;

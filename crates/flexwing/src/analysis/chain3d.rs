@@ -2,7 +2,8 @@
 //! docs/chain3d-model.md) as one plan of the one dispatcher: natural modes about the undeformed
 //! state, non-linear statics with load sweeps and the modes about the last equilibrium, flutter
 //! and divergence about the deformed equilibria on the 3-D deformed geometry, and the flutter
-//! study against a load level ([`crate::solve::aeroelastic::deflection_study`]).
+//! study against a load level ([`crate::solve::aeroelastic::deflection_study`]), and the
+//! non-linear dynamics ([`super::dynamics::chain3d`]).
 //!
 //! Why a plan of its own rather than the planar plans made generic over the structure: the
 //! planar plans' fields and outcomes (`FullModel`, the planar `Shape`, reduced models on the
@@ -17,6 +18,8 @@ use std::time::Instant;
 
 use super::aero::flutter::{check_solver, check_sweep};
 use super::aero::{Aero, Fields, SpeedSweep};
+use super::dynamics::chain3d as dynamics;
+pub use super::dynamics::chain3d::{Dynamic3d, Dynamic3dOutcome, Dynamic3dRun, Snapshot3d};
 use super::statics::Sweep;
 use super::{Note, Progress, Status, Stop};
 use crate::error::{Error, InputError, SolveError};
@@ -55,6 +58,8 @@ pub enum Analysis3d {
     Flutter(Flutter3d),
     /// Flutter and divergence against a load level.
     Study(Study3d),
+    /// Non-linear dynamics ([`super::dynamics::chain3d`]).
+    Dynamic(Dynamic3d),
 }
 
 /// Non-linear statics of the 3-D chain.
@@ -108,13 +113,14 @@ pub struct Study3d {
 }
 
 impl Chain3dPlan {
-    /// `modes`, `static`, `flutter` or `study`.
+    /// `modes`, `static`, `flutter`, `study` or `dynamic`.
     pub fn name(&self) -> &'static str {
         match self.analysis {
             Analysis3d::Modes { .. } => "modes",
             Analysis3d::Static(_) => "static",
             Analysis3d::Flutter(_) => "flutter",
             Analysis3d::Study(_) => "study",
+            Analysis3d::Dynamic(_) => "dynamic",
         }
     }
 
@@ -179,6 +185,7 @@ impl Chain3dPlan {
                 s.options.validate(fields.analysis)
             }
             Analysis3d::Flutter(f) => f.validate(&self.model, fields).map(|_| ()),
+            Analysis3d::Dynamic(d) => d.validate(&self.model, fields.loads, fields.analysis),
             Analysis3d::Study(s) => {
                 let wing = s.flutter.validate(&self.model, fields)?;
                 let field = fields.analysis("study");
@@ -294,7 +301,7 @@ pub struct Shape3dData {
 }
 
 impl Shape3dData {
-    fn of(model: &Chain3d, q: &[f64]) -> Self {
+    pub(crate) fn of(model: &Chain3d, q: &[f64]) -> Self {
         let shape = model.shape(q);
         Self {
             rotation: shape
@@ -579,6 +586,8 @@ pub enum Chain3dOutcome {
     Flutter(Flutter3dOutcome),
     /// The study against a load level.
     Study(Study3dOutcome),
+    /// Dynamics.
+    Dynamic(Dynamic3dOutcome),
 }
 
 impl Chain3dOutcome {
@@ -602,6 +611,11 @@ impl Chain3dOutcome {
                 v
             }
             Chain3dOutcome::Study(o) => vec![("full".to_string(), o.status.clone())],
+            Chain3dOutcome::Dynamic(o) => o
+                .runs
+                .iter()
+                .map(|r| (r.label.clone(), r.status.clone()))
+                .collect(),
         }
     }
 
@@ -609,6 +623,7 @@ impl Chain3dOutcome {
     pub fn notes(&self) -> Vec<&Note> {
         match self {
             Chain3dOutcome::Flutter(o) => o.notes.iter().collect(),
+            Chain3dOutcome::Dynamic(o) => o.runs.iter().flat_map(|r| &r.notes).collect(),
             _ => Vec::new(),
         }
     }
@@ -636,6 +651,7 @@ pub fn run(plan: &Chain3dPlan, progress: &mut dyn Progress) -> Result<Chain3dOut
         Analysis3d::Static(s) => Chain3dOutcome::Static(statics(model, s, progress)?),
         Analysis3d::Flutter(f) => Chain3dOutcome::Flutter(flutter(model, f, progress)?),
         Analysis3d::Study(s) => Chain3dOutcome::Study(study(model, s, progress)?),
+        Analysis3d::Dynamic(d) => Chain3dOutcome::Dynamic(dynamics::run(model, d, progress)?),
     })
 }
 

@@ -9,6 +9,7 @@
 //! | static aeroelasticity, divergence | [`aero::statics::AeroStaticPlan`] | [`aero::statics::run`] | [`aero::statics::AeroStaticOutcome`] |
 //! | flutter (V-g, V-ω, p-k check) | [`aero::flutter::FlutterPlan`] | [`aero::flutter::run`] | [`aero::flutter::FlutterOutcome`] |
 //! | gust and manoeuvre responses | [`aero::response::AeroDynamicPlan`] | [`aero::response::run`] | [`aero::response::AeroDynamicOutcome`] |
+//! | discrete gust families (CS 25.341(a)) | [`aero::gust_family::GustFamilyPlan`] | [`aero::gust_family::run`] | [`aero::gust_family::GustFamilyOutcome`] |
 //! | linear state-space models | [`aero::linearize::LinearizePlan`] | [`aero::linearize::run`] | [`aero::linearize::LinearizeOutcome`] |
 //! | the 3-D chain: modes, statics, flutter, flutter against a load | [`chain3d::Chain3dPlan`] | [`chain3d::run`] | [`chain3d::Chain3dOutcome`] |
 //! | any of these | [`Plan`] | [`run`] | [`Outcome`] |

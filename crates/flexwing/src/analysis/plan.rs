@@ -8,6 +8,7 @@
 //! render it (ARCHITECTURE.md, "Adding an analysis or a model").
 
 use super::aero::flutter::{self, FlutterOutcome, FlutterPlan};
+use super::aero::gust_family::{self, GustFamilyOutcome, GustFamilyPlan};
 use super::aero::linearize::{self, LinearizeOutcome, LinearizePlan};
 use super::aero::response::{self, AeroDynamicOutcome, AeroDynamicPlan};
 use super::aero::statics::{self as aero_statics, AeroStaticOutcome, AeroStaticPlan};
@@ -38,6 +39,8 @@ pub enum Plan {
     Flutter(FlutterPlan),
     /// Aeroelastic response.
     AeroDynamic(AeroDynamicPlan),
+    /// A discrete gust family (CS 25.341(a)): peaks per gust length, critical lengths.
+    GustFamily(GustFamilyPlan),
     /// Linear state-space models about the static aeroelastic equilibrium.
     Linearize(LinearizePlan),
     /// An analysis of the 3-D chain (modes, statics, flutter, the study against a load).
@@ -61,6 +64,8 @@ pub enum Outcome {
     Flutter(FlutterOutcome),
     /// Aeroelastic response.
     AeroDynamic(AeroDynamicOutcome),
+    /// A discrete gust family.
+    GustFamily(GustFamilyOutcome),
     /// Linear state-space models.
     Linearize(LinearizeOutcome),
     /// An analysis of the 3-D chain.
@@ -68,7 +73,8 @@ pub enum Outcome {
 }
 
 impl Plan {
-    /// `modes`, `static`, `dynamic`, `aero-static`, `flutter`, `aero-dynamic` or `linearize`.
+    /// `modes`, `static`, `dynamic`, `aero-static`, `flutter`, `aero-dynamic`, `gust-family` or
+    /// `linearize` (the 3-D chain's: [`Chain3dPlan::name`]).
     pub fn name(&self) -> &'static str {
         match self {
             Plan::Modes(_) => "modes",
@@ -77,6 +83,7 @@ impl Plan {
             Plan::AeroStatic(_) => "aero-static",
             Plan::Flutter(_) => "flutter",
             Plan::AeroDynamic(_) => "aero-dynamic",
+            Plan::GustFamily(_) => "gust-family",
             Plan::Linearize(_) => "linearize",
             Plan::Chain3d(p) => p.name(),
         }
@@ -91,6 +98,7 @@ impl Plan {
             Plan::AeroStatic(p) => &p.model,
             Plan::Flutter(p) => &p.model,
             Plan::AeroDynamic(p) => &p.structure.model,
+            Plan::GustFamily(p) => &p.response.structure.model,
             Plan::Linearize(p) => &p.model,
             Plan::Chain3d(_) => return None,
         })
@@ -102,12 +110,8 @@ impl Plan {
     pub fn checks_seldom(&self) -> bool {
         matches!(
             self,
-            Plan::Static(_)
-                | Plan::AeroStatic(_)
-                | Plan::Flutter(_)
-                | Plan::Linearize(_)
-                | Plan::Chain3d(_)
-        )
+            Plan::Static(_) | Plan::AeroStatic(_) | Plan::Flutter(_) | Plan::Linearize(_)
+        ) || matches!(self, Plan::Chain3d(p) if !matches!(p.analysis, chain3d::Analysis3d::Dynamic(_)))
     }
 }
 
@@ -125,6 +129,7 @@ pub fn run(plan: &Plan, progress: &mut dyn Progress) -> Result<Outcome, Error> {
         Plan::AeroStatic(p) => Outcome::AeroStatic(aero_statics::run(p, progress)?),
         Plan::Flutter(p) => Outcome::Flutter(flutter::run(p, progress)?),
         Plan::AeroDynamic(p) => Outcome::AeroDynamic(response::run(p, progress)?),
+        Plan::GustFamily(p) => Outcome::GustFamily(gust_family::run(p, progress)?),
         Plan::Linearize(p) => Outcome::Linearize(linearize::run(p, progress)?),
         Plan::Chain3d(p) => Outcome::Chain3d(chain3d::run(p, progress)?),
     })
@@ -169,6 +174,11 @@ impl Outcome {
             Outcome::Dynamic(o) => o.runs.iter().map(|r| entry(&r.kind, &r.status)).collect(),
             Outcome::AeroStatic(o) => o.runs.iter().map(|r| entry(&r.kind, &r.status)).collect(),
             Outcome::AeroDynamic(o) => o.runs.iter().map(|r| entry(&r.kind, &r.status)).collect(),
+            Outcome::GustFamily(o) => o
+                .statuses()
+                .into_iter()
+                .map(|(kind, status)| entry(kind, status))
+                .collect(),
             Outcome::Linearize(o) => o.runs.iter().map(|r| entry(&r.kind, &r.status)).collect(),
             Outcome::Flutter(o) => o
                 .runs

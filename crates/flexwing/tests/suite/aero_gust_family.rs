@@ -82,7 +82,8 @@ fn plan(end_time: f64) -> AeroDynamicPlan {
 /// response to its gust run directly (the same code path: bound 1e-12 relative); (2) linear
 /// theory: each peak doubles with `U_ref`, and its departure from ×2 is the model's non-linearity,
 /// O(U): it doubles from the pair (0.025, 0.05) to (0.05, 0.1) (measured ratios 1.9–2.2 where it
-/// exceeds 2e-5, below which the integration error at rtol 1e-6 is comparable; bound 1.6), and
+/// exceeds 2e-5 (1e-4 for the root torque), below which the integration error at rtol 1e-6 is
+/// comparable; bound 1.6), and
 /// stays below 3e-2 (measured up to 1.3e-2, the 350 ft gust, whose tip deflection is 0.14 m per
 /// 0.05 m/s: quasi-static at this speed); (3) an end time before the longest gust has passed is an error naming `dynamic.end_time`.
 #[test]
@@ -96,6 +97,7 @@ fn a_family_is_its_members_run_one_by_one() {
         reference_velocity: u_ref,
         alleviation: 1.0,
         start,
+        penetration: GustPenetration::Uniform,
     };
     let t0 = std::time::Instant::now();
     let small = family_run(&family(0.025), &mut NoProgress).unwrap();
@@ -148,8 +150,12 @@ fn a_family_is_its_members_run_one_by_one() {
                 m.gradient, m.design_velocity, p[r].max, p[r].max_time, p[r].min, p[r].min_time
             );
             assert!(d2 < 3e-2, "{name}, H = {}: {d2:e}", m.gradient);
+            // The root torque is the first torsion joint's spring, a small part of a state
+            // the error control weighs as a whole: its departure at H = 30 ft is 5.2e-5 and
+            // then 5.0e-5 (2026-12-03), not doubling, so integration error, not the model's.
+            let floor = if *name == "root_torque" { 1e-4 } else { 2e-5 };
             assert!(
-                d2 > 1.6 * d1 || d2 < 2e-5,
+                d2 > 1.6 * d1 || d2 < floor,
                 "{name}, H = {}: {d1:e} → {d2:e}",
                 m.gradient
             );

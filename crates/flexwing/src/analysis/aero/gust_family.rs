@@ -11,13 +11,19 @@
 //! alleviation factor, both given by the user. The velocities here are true air velocities of the
 //! wind frame: a user converts EAS with `√(ρ0/ρ)`.
 //!
-//! Not yet here: the root torque and shear (the response's samples carry the tip deflection and
-//! twist, the root bending moment and the lift), the case-file keys, CLI and Python front ends.
+//! The outputs are those a response's samples carry ([`OUTPUTS`]); the root shear, which needs
+//! the wing's accelerations, is an output of the linear model only (`linearize`), as of the
+//! stepper. Peaks are over the plan's output times: their spacing bounds how well a peak's
+//! value and time are resolved.
 
 use super::response::{run as response_run, AeroDynamicPlan, AeroSample};
+use super::Fields;
 use crate::analysis::{ModelKind, Progress, Status};
+use crate::beam::Profile;
 use crate::error::{Error, InputError};
+use crate::model::aero::Aerodynamics;
 use crate::solve::aeroelastic::{Gust, GustPenetration, GustShape};
+use crate::text::short;
 
 /// One foot (m).
 pub const FOOT: f64 = 0.3048;
@@ -44,21 +50,26 @@ pub fn design_gust_velocity(
             format!("{field}.lengths"),
             format!(
                 "a gust gradient distance H must be within [30 ft, 350 ft] = [{MIN_GRADIENT}, \
-                 {MAX_GRADIENT}] m (CS 25.341(a)(2)), got {gradient}"
+                 {MAX_GRADIENT}] m (CS 25.341(a)(2)), got {}",
+                short(gradient)
             ),
         ));
     }
     if !(reference_velocity.is_finite() && reference_velocity > 0.0) {
         return Err(InputError::new(
             format!("{field}.reference_velocity"),
-            format!("must be a positive velocity (m/s), got {reference_velocity}"),
+            format!(
+                "must be a positive velocity (m/s), got {}",
+                short(reference_velocity)
+            ),
         ));
     }
     if !(alleviation > 0.0 && alleviation <= 1.0) {
         return Err(InputError::new(
             format!("{field}.alleviation"),
             format!(
-                "the flight profile alleviation factor F_g must be in (0, 1], got {alleviation}"
+                "the flight profile alleviation factor F_g must be in (0, 1], got {}",
+                short(alleviation)
             ),
         ));
     }
@@ -68,7 +79,7 @@ pub fn design_gust_velocity(
 /// The gust gradient distances `H` of a family (m).
 #[derive(Debug, Clone, PartialEq)]
 pub enum GustLengths {
-    /// `count` distances evenly spaced from `from` to `to` (both included; `count ≥ 2`, or 1 with
+    /// `steps` distances evenly spaced from `from` to `to` (both included; `steps ≥ 2`, or 1 with
     /// `from = to`).
     Range {
         /// The first distance (m).
@@ -76,25 +87,35 @@ pub enum GustLengths {
         /// The last distance (m).
         to: f64,
         /// How many.
-        count: usize,
+        steps: usize,
     },
     /// The distances given (m), at least one.
     List(Vec<f64>),
 }
 
 impl GustLengths {
-    /// The distances, in the order given; errors name `{field}.lengths`.
+    /// The distances, in the order given; errors name `{field}.lengths` (a list) or
+    /// `{field}.from`, `{field}.steps` (a range).
     pub fn values(&self, field: &str) -> Result<Vec<f64>, InputError> {
-        let err = |reason: String| InputError::new(format!("{field}.lengths"), reason);
+        let key = |k: &str| crate::field(field, k);
+        let err = |reason: String| InputError::new(key("lengths"), reason);
         match self {
-            GustLengths::Range { from, to, count } => {
+            GustLengths::Range { from, to, steps } => {
                 if !(from.is_finite() && to.is_finite() && from <= to) {
-                    return Err(err(format!("from ≤ to, both finite, got {from} and {to}")));
+                    return Err(InputError::new(
+                        key("from"),
+                        format!(
+                            "from ≤ to, both finite, got {} and {}",
+                            short(*from),
+                            short(*to)
+                        ),
+                    ));
                 }
-                match *count {
-                    0 => Err(err("count must be at least 1".into())),
+                let steps_error = |r: &str| InputError::new(key("steps"), r);
+                match *steps {
+                    0 => Err(steps_error("must be at least 1")),
                     1 if from == to => Ok(vec![*from]),
-                    1 => Err(err("count = 1 needs from = to".into())),
+                    1 => Err(steps_error("steps = 1 needs from = to")),
                     n => Ok((0..n)
                         .map(|k| from + (to - from) * k as f64 / (n - 1) as f64)
                         .collect()),
@@ -106,11 +127,11 @@ impl GustLengths {
     }
 }
 
-/// A gust family: the response plan (structure, aerodynamics, flight and models; its own gust,
-/// if any, gives only the penetration) and the family's gusts.
+/// A gust family: the response plan (structure, aerodynamics, flight and models; without a gust
+/// of its own: each member's replaces it) and the family's gusts.
 #[derive(Debug, Clone)]
 pub struct GustFamilyPlan {
-    /// The response of each member: its flight's gust is replaced by the member's.
+    /// The response of each member, its flight without gust.
     pub response: AeroDynamicPlan,
     /// The gust gradient distances `H` (m).
     pub lengths: GustLengths,
@@ -120,6 +141,85 @@ pub struct GustFamilyPlan {
     pub alleviation: f64,
     /// When each gust front reaches the wing (s).
     pub start: f64,
+    /// How each gust front meets the sections.
+    pub penetration: GustPenetration,
+}
+
+impl GustFamilyPlan {
+    /// Check the family under the caller's names: the family's own values as `{family}.key`, the
+    /// end time as `{analysis}.end_time` and the speed as `{aero}.flight.speed` of `fields` (the
+    /// response plan is checked by its own `validate`). Returns the gradients and their design
+    /// velocities.
+    ///
+    /// # Errors
+    /// Invalid lengths, velocities or start; a flight with its own gust; an end time before
+    /// the longest gust has passed the wing.
+    pub fn validate(&self, family: &str, fields: &Fields) -> Result<Vec<(f64, f64)>, InputError> {
+        let gradients = self.lengths.values(family)?;
+        let members = gradients
+            .iter()
+            .map(|&h| {
+                design_gust_velocity(h, self.reference_velocity, self.alleviation, family)
+                    .map(|u| (h, u))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        if !(self.start.is_finite() && self.start >= 0.0) {
+            return Err(InputError::new(
+                crate::field(family, "start"),
+                format!("must be a time ≥ 0 (s), got {}", short(self.start)),
+            ));
+        }
+        let aerodynamics = self.response.aero.aerodynamics;
+        if self.penetration == GustPenetration::Kussner
+            && !matches!(
+                aerodynamics,
+                Aerodynamics::Wagner | Aerodynamics::Peters { .. }
+            )
+        {
+            return Err(InputError::new(
+                crate::field(family, "penetration"),
+                format!(
+                    "\"kussner\" is the gust's circulation lag: it needs the wagner or peters \
+                     model, not {}",
+                    aerodynamics.name()
+                ),
+            ));
+        }
+        if self.response.flight.gust.is_some() {
+            return Err(InputError::new(
+                crate::field(family, "response"),
+                "the response's flight has a gust of its own: each member's gust replaces it",
+            ));
+        }
+        let u0 = self.response.flight.initial.speed;
+        if !(u0 > 0.0) {
+            return Err(InputError::new(
+                crate::field(&fields.flight(), "speed"),
+                format!(
+                    "a gust family needs a positive flight speed (the gusts are lengths \
+                     flown through), got {}",
+                    short(u0)
+                ),
+            ));
+        }
+        let longest = gradients.iter().copied().fold(0.0, f64::max);
+        let passed = self.start + 2.0 * longest / u0;
+        let end_time = self.response.structure.end_time;
+        if end_time < passed {
+            return Err(InputError::new(
+                fields.analysis("end_time"),
+                format!(
+                    "the longest gust (H = {} m) has passed the wing at {} s at {} m/s: the \
+                     end time must be at least that, got {}",
+                    short(longest),
+                    short(passed),
+                    short(u0),
+                    short(end_time)
+                ),
+            ));
+        }
+        Ok(members)
+    }
 }
 
 /// The largest and smallest change of one output from its value at `t = 0` (the equilibrium the
@@ -141,13 +241,39 @@ impl Peak {
     pub fn magnitude(&self) -> f64 {
         self.max.abs().max(self.min.abs())
     }
+
+    /// The change of the larger magnitude, signed, and its time: `(max, max_time)` or
+    /// `(min, min_time)`.
+    pub fn extreme(&self) -> (f64, f64) {
+        if self.max.abs() >= self.min.abs() {
+            (self.max, self.max_time)
+        } else {
+            (self.min, self.min_time)
+        }
+    }
 }
 
-/// The outputs of a family, in the order of [`MemberRun::peaks`].
-pub const OUTPUTS: [&str; 4] = ["tip_y", "tip_twist", "root_bending_moment", "lift"];
+/// The outputs of a family, in the order of [`MemberRun::peaks`]: the names of the response's
+/// samples ([`AeroSample`]) and of the linear model's outputs.
+pub const OUTPUTS: [&str; 5] = [
+    "tip_y",
+    "tip_twist",
+    "root_bending_moment",
+    "root_torque",
+    "lift",
+];
 
-fn output_values(s: &AeroSample) -> [f64; 4] {
-    [s.tip_y, s.tip_twist, s.root_bending_moment, s.lift]
+/// The SI units of [`OUTPUTS`].
+pub const OUTPUT_UNITS: [&str; 5] = ["m", "rad", "N·m", "N·m", "N"];
+
+fn output_values(s: &AeroSample) -> [f64; 5] {
+    [
+        s.tip_y,
+        s.tip_twist,
+        s.root_bending_moment,
+        s.root_torque,
+        s.lift,
+    ]
 }
 
 /// One model's response to one member of the family.
@@ -158,7 +284,11 @@ pub struct MemberRun {
     /// The run's status (a stopped run's peaks are over the times it reached).
     pub status: Status,
     /// The peaks of [`OUTPUTS`].
-    pub peaks: [Peak; 4],
+    pub peaks: [Peak; 5],
+    /// Accepted integrator steps.
+    pub steps: usize,
+    /// Wall time of the integration (s).
+    pub wall_time_s: f64,
 }
 
 /// One gust of the family.
@@ -200,70 +330,109 @@ impl GustFamilyOutcome {
             .iter()
             .all(|m| m.runs.iter().all(|r| r.status.is_complete()))
     }
+
+    /// Per model (in the plan's order): its kind and how its runs ended, the first run that
+    /// stopped, else the first that is not complete, else complete.
+    pub fn statuses(&self) -> Vec<(&ModelKind, &Status)> {
+        let Some(first) = self.members.first() else {
+            return Vec::new();
+        };
+        (0..first.runs.len())
+            .map(|k| {
+                let runs = || self.members.iter().map(move |m| &m.runs[k]);
+                let worst = runs()
+                    .find(|r| matches!(r.status, Status::Stopped(_)))
+                    .or_else(|| runs().find(|r| !r.status.is_complete()))
+                    .unwrap_or(&first.runs[k]);
+                (&first.runs[k].kind, &worst.status)
+            })
+            .collect()
+    }
+
+    /// Wall time of model `model`'s runs over all members (s).
+    pub fn wall_time_s(&self, model: usize) -> f64 {
+        self.members.iter().map(|m| m.runs[model].wall_time_s).sum()
+    }
+}
+
+/// The caller's progress seen through one member: model `k` of member `m` is model
+/// `m · count + k` of the whole family, labelled with the member's `H`.
+struct MemberProgress<'a> {
+    inner: &'a mut dyn Progress,
+    member: usize,
+    members: usize,
+    gradient: f64,
+}
+
+impl Progress for MemberProgress<'_> {
+    fn start(&mut self, index: usize, count: usize, label: &str) {
+        let label = format!("{label}, H = {:.2} m", self.gradient);
+        let (i, n) = (self.member * count + index, self.members * count);
+        self.inner.start(i, n, &label);
+    }
+    fn advance(&mut self, fraction: f64) {
+        self.inner.advance(fraction)
+    }
+    fn finish(&mut self) {
+        self.inner.finish()
+    }
+    fn cancelled(&mut self) -> bool {
+        self.inner.cancelled()
+    }
 }
 
 /// Run the family: for each gradient `H`, the response plan with the gust 1−cos of wavelength
-/// `2H` and amplitude `U_ds(H)` from `start` on (penetration as the plan's own gust, uniform
-/// without one). The plan's end time must let the longest gust pass the wing.
+/// `2H` and amplitude `U_ds(H)` from `start` on, uniform over the span. The plan's end time must
+/// let the longest gust pass the wing. An interrupted member ends the family there.
+///
+/// # Errors
+/// An invalid plan (named as in a case file: the family's fields `gust_family.key`, the end time
+/// `dynamic.end_time`), or those of [`super::response::run`].
 pub fn run(plan: &GustFamilyPlan, progress: &mut dyn Progress) -> Result<GustFamilyOutcome, Error> {
-    let field = "gust_family";
-    let gradients = plan.lengths.values(field)?;
-    let velocities = gradients
-        .iter()
-        .map(|&h| design_gust_velocity(h, plan.reference_velocity, plan.alleviation, field))
-        .collect::<Result<Vec<_>, _>>()?;
-    if !(plan.start.is_finite() && plan.start >= 0.0) {
-        return Err(InputError::new(
-            format!("{field}.start"),
-            format!("must be a time ≥ 0 (s), got {}", plan.start),
-        )
-        .into());
-    }
-    let u0 = plan.response.flight.initial.speed;
-    let longest = gradients.iter().copied().fold(0.0, f64::max);
-    let passed = plan.start + 2.0 * longest / u0;
-    if !(u0 > 0.0) || plan.response.structure.end_time < passed {
-        return Err(InputError::new(
-            "dynamic.end_time",
-            format!(
-                "the longest gust (H = {longest} m) has passed the wing at {passed} s at \
-                 {u0} m/s: the end time must be at least that, got {}",
-                plan.response.structure.end_time
-            ),
-        )
-        .into());
-    }
-    let penetration = plan
-        .response
-        .flight
-        .gust
-        .as_ref()
-        .map_or(GustPenetration::Uniform, |g| g.penetration);
-    let mut members = Vec::with_capacity(gradients.len());
-    for (&h, &u_ds) in gradients.iter().zip(&velocities) {
+    let fields = Fields {
+        loads: "loads",
+        aero: "aero",
+        statics: "static",
+        analysis: "dynamic",
+    };
+    let gusts = plan.validate("gust_family", &fields)?;
+    let mut members = Vec::with_capacity(gusts.len());
+    for (m, &(h, u_ds)) in gusts.iter().enumerate() {
         let mut p = plan.response.clone();
         p.flight.gust = Some(Gust {
             shape: GustShape::OneMinusCosine { length: 2.0 * h },
             amplitude: u_ds,
             start: plan.start,
-            spanwise: crate::beam::Profile::Uniform(1.0),
-            penetration,
+            spanwise: Profile::Uniform(1.0),
+            penetration: plan.penetration,
         });
-        let out = response_run(&p, progress)?;
-        let runs = out
+        let mut member_progress = MemberProgress {
+            inner: &mut *progress,
+            member: m,
+            members: gusts.len(),
+            gradient: h,
+        };
+        let out = response_run(&p, &mut member_progress)?;
+        let runs: Vec<MemberRun> = out
             .runs
             .iter()
             .map(|r| MemberRun {
                 kind: r.kind.clone(),
                 status: r.status.clone(),
                 peaks: peaks(&r.samples, plan.start),
+                steps: r.stats.steps,
+                wall_time_s: r.wall_time_s,
             })
             .collect();
+        let interrupted = runs.iter().any(|r| r.status.word() == "interrupted");
         members.push(GustMember {
             gradient: h,
             design_velocity: u_ds,
             runs,
         });
+        if interrupted {
+            break;
+        }
     }
     Ok(GustFamilyOutcome { members })
 }
@@ -271,8 +440,8 @@ pub fn run(plan: &GustFamilyPlan, progress: &mut dyn Progress) -> Result<GustFam
 /// The peaks of the changes from the first sample, over the samples from `start` on (before it
 /// the wing is at its equilibrium: the changes are round-off); a change that never goes above
 /// (below) zero has the peak 0 at `start`.
-fn peaks(samples: &[AeroSample], start: f64) -> [Peak; 4] {
-    let first = samples.first().map(output_values).unwrap_or([0.0; 4]);
+fn peaks(samples: &[AeroSample], start: f64) -> [Peak; 5] {
+    let first = samples.first().map(output_values).unwrap_or([0.0; 5]);
     std::array::from_fn(|r| {
         let mut p = Peak {
             max: 0.0,

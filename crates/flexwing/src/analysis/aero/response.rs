@@ -127,6 +127,8 @@ pub struct AeroSample {
     pub tip_twist: f64,
     /// Root bending moment, the clamp spring's moment `K_θ,1 q_1` (N·m).
     pub root_bending_moment: f64,
+    /// Root torque, the clamp's torsion spring moment `K_ψ,1 q_{n+1}` (N·m; 0 without torsion).
+    pub root_torque: f64,
     /// Total aerodynamic force along the ground's vertical (N).
     pub lift: f64,
     /// Free-stream speed `U(t)` (m/s).
@@ -370,6 +372,7 @@ impl Simulator<'_> {
                 tip_y,
                 tip_twist,
                 root_bending_moment: full.stiffness()[0] * q[0],
+                root_torque: root_torque(full, &q),
                 lift,
                 speed: eqs.speed(t),
                 kinetic,
@@ -392,6 +395,17 @@ impl Simulator<'_> {
         aero: &Aeroelastic<M>,
     ) -> Result<Vec<f64>, SolveError> {
         initial_coordinates(self.plan, self.active_loads, self.time_functions, aero)
+    }
+}
+
+/// The clamp's torsion spring moment `K_ψ,1 q_{n+1}` of the full coordinates `q` (N·m), 0 on a
+/// bending-only beam (the root torque of the linear model's `root_torque` output).
+pub(crate) fn root_torque(full: &crate::model::FullModel, q: &[f64]) -> f64 {
+    let ne = full.n_elements();
+    if full.has_torsion() {
+        full.stiffness()[ne] * q[ne]
+    } else {
+        0.0
     }
 }
 

@@ -798,7 +798,7 @@ fn evaluate<M: PlanarStructure>(
             Output::Y(k) => shape.y[*k],
             Output::Twist(k) => shape.twist[*k],
             Output::RootBendingMoment => full.stiffness()[0] * q[0],
-            Output::RootTorque => full.stiffness()[ne] * q[ne],
+            Output::RootTorque => super::response::root_torque(full, &q),
             Output::Lift => lift,
             Output::HingeMoment(s) => hinge_moments[s.index],
             // Refused by `check_output`.

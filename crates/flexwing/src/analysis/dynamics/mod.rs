@@ -7,6 +7,7 @@
 //! and each run keeps the output times it reached with the reason it stopped.
 
 mod audit;
+pub mod chain3d;
 mod outcome;
 mod run;
 
@@ -149,6 +150,138 @@ impl DynamicPlan {
     /// simulate, reduced models on modes the model does not have, an initial state of the wrong
     /// size or of unknown loads.
     pub fn validate(&self, loads_field: &str, prefix: &str) -> Result<(), InputError> {
+        let checks = self.checks();
+        checks.times(prefix)?;
+        let n_dofs = self.model.n_dofs();
+        let reduced = reduced_models(&self.reduced, &self.reduced_modes, n_dofs, prefix)?;
+        check_something_to_simulate(self.full, self.simplified, reduced.is_empty(), prefix)?;
+        self.model.apply(&self.loads, loads_field)?;
+        checks.histories(loads_field)?;
+        checks.state(prefix)
+    }
+
+    /// The checks it shares with the 3-D chain's dynamic runs.
+    fn checks(&self) -> MotionChecks<'_> {
+        MotionChecks {
+            end_time: self.end_time,
+            output_times: &self.output_times,
+            settings: &self.settings,
+            audit: &self.audit,
+            gyroscopic: self.gyroscopic,
+            time: &self.time,
+            n_loads: self.loads.len(),
+            damping: &self.damping,
+            initial: &self.initial,
+            n_dofs: self.model.n_dofs(),
+        }
+    }
+
+    /// The models simulated, in order: full, simplified, then the reduced models of `reduced`
+    /// and `reduced_modes`.
+    ///
+    /// # Errors
+    /// As [`DynamicPlan::validate`] for the reduced models.
+    pub fn models(&self) -> Result<Vec<ModelKind>, InputError> {
+        model_kinds(
+            self.full,
+            self.simplified,
+            &self.reduced,
+            &self.reduced_modes,
+            self.model.n_dofs(),
+        )
+    }
+
+    /// How the gyroscopic term of a model of this kind is obtained.
+    pub fn gyroscopic_of(&self, kind: &ModelKind) -> Gyroscopic {
+        gyroscopic_of(self.gyroscopic, kind)
+    }
+
+    /// The caller's name of load `i` ([`DynamicPlan::load_names`], else `loads[i]`).
+    pub fn load_name(&self, i: usize) -> String {
+        super::load_name(&self.load_names, i)
+    }
+
+    /// Indices (in [`DynamicPlan::loads`]) of the loads that act during the motion.
+    pub fn active(&self) -> Vec<usize> {
+        active(&self.time)
+    }
+}
+
+/// The models of a dynamic run, in order: full, simplified, then the reduced models of
+/// `reduced` and `reduced_modes` on a model of `n_dofs` coordinates.
+pub(crate) fn model_kinds(
+    full: bool,
+    simplified: bool,
+    reduced: &[usize],
+    reduced_modes: &[Vec<usize>],
+    n_dofs: usize,
+) -> Result<Vec<ModelKind>, InputError> {
+    let reduced = reduced_models(reduced, reduced_modes, n_dofs, "")?;
+    let full = full.then_some(ModelKind::Full);
+    let simplified = simplified.then_some(ModelKind::Simplified);
+    Ok(full
+        .into_iter()
+        .chain(simplified)
+        .chain(reduced.into_iter().map(|(k, _)| k))
+        .collect())
+}
+
+/// How the gyroscopic term of a model of `kind` is obtained when the plan asks for `gyroscopic`:
+/// the simplified model neglects it.
+pub(crate) fn gyroscopic_of(gyroscopic: Gyroscopic, kind: &ModelKind) -> Gyroscopic {
+    match kind {
+        ModelKind::Simplified => Gyroscopic::Neglected,
+        _ => gyroscopic,
+    }
+}
+
+/// Indices of the loads with a time history: those acting during the motion.
+pub(crate) fn active(time: &[Option<TimeFunction>]) -> Vec<usize> {
+    (0..time.len()).filter(|&i| time[i].is_some()).collect()
+}
+
+/// Refuse a plan that simulates no model; errors name `{prefix}.full`.
+pub(crate) fn check_something_to_simulate(
+    full: bool,
+    simplified: bool,
+    no_reduced: bool,
+    prefix: &str,
+) -> Result<(), InputError> {
+    let field = |key: &str| crate::field(prefix, key);
+    if !full && !simplified && no_reduced {
+        return Err(InputError::new(
+            field("full"),
+            format!(
+                "nothing to simulate: full = false, simplified = false and no reduced models \
+                 (give {} or {})",
+                field("reduced"),
+                field("reduced_modes")
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// What a dynamic run checks whatever its model (the planar [`DynamicPlan`] and the 3-D
+/// chain's [`crate::analysis::chain3d::Dynamic3d`]): the times, the integrator's settings, the
+/// audit, the gyroscopic option, the time histories, the damping and the initial state.
+pub(crate) struct MotionChecks<'a> {
+    pub end_time: f64,
+    pub output_times: &'a [f64],
+    pub settings: &'a IntegratorSettings,
+    pub audit: &'a AuditSettings,
+    pub gyroscopic: Gyroscopic,
+    pub time: &'a [Option<TimeFunction>],
+    pub n_loads: usize,
+    pub damping: &'a Damping,
+    pub initial: &'a Initial,
+    pub n_dofs: usize,
+}
+
+impl MotionChecks<'_> {
+    /// End time, output times, tolerances and steps, the audit, the gyroscopic step; errors
+    /// name `{prefix}.end_time`, ….
+    pub fn times(&self, prefix: &str) -> Result<(), InputError> {
         let field = |key: &str| crate::field(prefix, key);
         let end = self.end_time;
         if !(end > 0.0 && end.is_finite()) {
@@ -162,47 +295,43 @@ impl DynamicPlan {
         self.settings.validate(prefix)?;
         self.check_steps(prefix)?;
         self.audit.validate(prefix)?;
-        self.gyroscopic.validate(&field("gyroscopic_step"))?;
-        let n_dofs = self.model.n_dofs();
-        let reduced = reduced_models(&self.reduced, &self.reduced_modes, n_dofs, prefix)?;
-        if !self.full && !self.simplified && reduced.is_empty() {
-            return Err(InputError::new(
-                field("full"),
-                format!(
-                    "nothing to simulate: full = false, simplified = false and no reduced models \
-                     (give {} or {})",
-                    field("reduced"),
-                    field("reduced_modes")
-                ),
-            ));
-        }
-        self.model.apply(&self.loads, loads_field)?;
-        if self.time.len() != self.loads.len() {
+        self.gyroscopic.validate(&field("gyroscopic_step"))
+    }
+
+    /// One time history per load, each valid over `[0, end_time]`; errors name
+    /// `{loads_field}[i].time`.
+    pub fn histories(&self, loads_field: &str) -> Result<(), InputError> {
+        if self.time.len() != self.n_loads {
             return Err(InputError::new(
                 loads_field,
                 format!(
                     "{} loads but {} time histories",
-                    self.loads.len(),
+                    self.n_loads,
                     self.time.len()
                 ),
             ));
         }
         for (i, f) in self.time.iter().enumerate() {
             if let Some(f) = f {
-                f.validate(&format!("{loads_field}[{i}].time"), 0.0, end)?;
+                f.validate(&format!("{loads_field}[{i}].time"), 0.0, self.end_time)?;
             }
         }
-        self.damping.validate(&field("damping"), n_dofs)?;
-        self.check_initial(&field("initial"))
+        Ok(())
     }
 
+    /// The damping and the initial state; errors name `{prefix}.damping`, `{prefix}.initial`.
+    pub fn state(&self, prefix: &str) -> Result<(), InputError> {
+        let field = |key: &str| crate::field(prefix, key);
+        self.damping.validate(&field("damping"), self.n_dofs)?;
+        self.check_initial(&field("initial"))
+    }
     /// Bounds of the tolerances and steps that the generic integrator settings do not know:
     /// `atol` is a joint rotation (rad), at most [`MAX_ATOL`] (a larger error is no answer) and
     /// at least [`MIN_ATOL`] (below round-off of the joint rotations); `max_steps` at most
     /// [`MAX_STEPS`]; a fixed step or a step cap so small that the run cannot reach `end_time`
     /// within `max_steps` is refused before it starts.
     fn check_steps(&self, prefix: &str) -> Result<(), InputError> {
-        let st = &self.settings;
+        let st = self.settings;
         if !(MIN_ATOL..=MAX_ATOL).contains(&st.atol) {
             return Err(InputError::new(
                 crate::field(prefix, "atol"),
@@ -246,7 +375,7 @@ impl DynamicPlan {
 
     fn check_output_times(&self, prefix: &str) -> Result<(), InputError> {
         let field = crate::field(prefix, "output_times");
-        let (times, end) = (&self.output_times, self.end_time);
+        let (times, end) = (self.output_times, self.end_time);
         if times.is_empty() {
             return Err(InputError::new(field, "must not be empty"));
         }
@@ -283,7 +412,7 @@ impl DynamicPlan {
     }
 
     fn check_initial(&self, field: &str) -> Result<(), InputError> {
-        let n_dofs = self.model.n_dofs();
+        let n_dofs = self.n_dofs;
         match &self.initial {
             Initial::Rest => Ok(()),
             Initial::Static { loads } => {
@@ -294,10 +423,10 @@ impl DynamicPlan {
                          equilibrium under",
                     ));
                 }
-                match loads.iter().position(|&i| i >= self.loads.len()) {
+                match loads.iter().position(|&i| i >= self.n_loads) {
                     Some(k) => Err(InputError::new(
                         format!("{field}.loads[{k}]"),
-                        format!("there is no load {} (of {})", loads[k], self.loads.len()),
+                        format!("there is no load {} (of {})", loads[k], self.n_loads),
                     )),
                     None => Ok(()),
                 }
@@ -327,42 +456,6 @@ impl DynamicPlan {
                 Ok(())
             }
         }
-    }
-
-    /// The models simulated, in order: full, simplified, then the reduced models of `reduced`
-    /// and `reduced_modes`.
-    ///
-    /// # Errors
-    /// As [`DynamicPlan::validate`] for the reduced models.
-    pub fn models(&self) -> Result<Vec<ModelKind>, InputError> {
-        let reduced = reduced_models(&self.reduced, &self.reduced_modes, self.model.n_dofs(), "")?;
-        let full = self.full.then_some(ModelKind::Full);
-        let simplified = self.simplified.then_some(ModelKind::Simplified);
-        Ok(full
-            .into_iter()
-            .chain(simplified)
-            .chain(reduced.into_iter().map(|(k, _)| k))
-            .collect())
-    }
-
-    /// How the gyroscopic term of a model of this kind is obtained.
-    pub fn gyroscopic_of(&self, kind: &ModelKind) -> Gyroscopic {
-        match kind {
-            ModelKind::Simplified => Gyroscopic::Neglected,
-            _ => self.gyroscopic,
-        }
-    }
-
-    /// The caller's name of load `i` ([`DynamicPlan::load_names`], else `loads[i]`).
-    pub fn load_name(&self, i: usize) -> String {
-        super::load_name(&self.load_names, i)
-    }
-
-    /// Indices (in [`DynamicPlan::loads`]) of the loads that act during the motion.
-    pub fn active(&self) -> Vec<usize> {
-        (0..self.loads.len())
-            .filter(|&i| self.time.get(i).is_some_and(Option::is_some))
-            .collect()
     }
 }
 

@@ -7,7 +7,7 @@ use std::time::Instant;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
-use super::audit::{integrate_audited, EnergyAudit};
+use super::audit::{integrate_audited, AuditedRun, EnergyAudit};
 use super::outcome::{compare_with_first, DynamicOutcome, DynamicRun, Sample, Snapshot};
 use super::{DynamicPlan, Initial};
 use crate::analysis::models::ModelKind;
@@ -142,34 +142,162 @@ impl Simulator<'_> {
             dofs: model.n_dofs(),
             ..DynamicRun::not_run(kind, plan, Stop::Interrupted { time: None })
         };
-        let (x0, xdot0) = match self.initial_state(model, reduced) {
-            Ok(s) => s,
-            Err(e) => {
-                let loads = match &plan.initial {
-                    Initial::Static { loads } => loads.iter().map(|&i| plan.load_name(i)).collect(),
-                    _ => Vec::new(),
-                };
-                run.status = Status::Stopped(Stop::InitialState { loads, error: e });
+        let motion = Motion {
+            all_loads: self.all_loads,
+            active_loads: self.active_loads,
+            time_functions: self.time_functions,
+            initial: &plan.initial,
+            load_names: &plan.load_names,
+            end_time: plan.end_time,
+            output_times: &plan.output_times,
+            integrator: plan.integrator,
+            settings: &plan.settings,
+            audit: &plan.audit,
+        };
+        let reduce = reduced.map(|r| move |x: &[f64]| r.reduce_coordinates(x));
+        let mut sim = match motion.simulate(model, reduce, gyroscopic, damping, progress) {
+            Ok(sim) => sim,
+            Err(stop) => {
+                run.status = Status::Stopped(*stop);
                 return run;
             }
         };
-        let equations = EquationsOfMotion::new(
+        run.wall_time_s = sim.wall_time_s;
+        run.stats = sim.audited.stats;
+        run.status = sim.audited.status.clone();
+        let mut next_snapshot = self.snapshots.iter().peekable();
+        for (index, p) in sim.points(model).into_iter().enumerate() {
+            let shape = self.full.shape(&p.q);
+            let (tip_x, tip_y, tip_twist) = shape.tip();
+            run.samples.push(Sample {
+                t: p.t,
+                tip_x,
+                tip_y,
+                tip_twist,
+                kinetic: p.kinetic,
+                strain: p.strain,
+                work: p.work,
+                dissipated: p.dissipated,
+                balance_error: p.balance_error,
+            });
+            if next_snapshot.peek() == Some(&&index) {
+                next_snapshot.next();
+                run.snapshots.push(Snapshot {
+                    index,
+                    t: p.t,
+                    shape,
+                });
+            }
+        }
+        run.energy_audit = Some(EnergyAudit::of(&sim.audited.balance));
+        run.notes
+            .extend(Note::newton(kind, plan.integrator, self.full, &run.stats));
+        run
+    }
+}
+
+/// What one model's dynamic run needs besides the model, whatever its kind (the planar
+/// chain's runs and the 3-D chain's, `analysis::chain3d`).
+pub(crate) struct Motion<'a> {
+    /// Every load (those of a static initial state too).
+    pub all_loads: &'a AppliedLoads,
+    /// The loads acting during the motion.
+    pub active_loads: &'a AppliedLoads,
+    /// Their time histories.
+    pub time_functions: &'a [TimeFunction],
+    /// The state at `t = 0`.
+    pub initial: &'a Initial,
+    /// The caller's load names, for a failed static initial state.
+    pub load_names: &'a [String],
+    pub end_time: f64,
+    pub output_times: &'a [f64],
+    pub integrator: crate::solve::integrate::Method,
+    pub settings: &'a crate::solve::integrate::IntegratorSettings,
+    pub audit: &'a super::AuditSettings,
+}
+
+/// One model's audited integration: its equations (for the energies at the samples), the run
+/// and the wall time of the integration alone.
+pub(crate) struct Simulated<'a, M: StructuralModel> {
+    pub eom: EquationsOfMotion<'a, M>,
+    pub audited: AuditedRun,
+    pub wall_time_s: f64,
+}
+
+/// A run's state at one output time: the full model's coordinates and the energies.
+pub(crate) struct Point {
+    pub t: f64,
+    /// The full model's coordinates (a reduced model's expanded).
+    pub q: Vec<f64>,
+    pub kinetic: f64,
+    pub strain: f64,
+    pub work: f64,
+    pub dissipated: f64,
+    /// The energy balance relative to the energy held or given so far.
+    pub balance_error: f64,
+}
+
+impl<M: StructuralModel> Simulated<'_, M> {
+    /// The run at every output time reached.
+    pub fn points(&mut self, model: &M) -> Vec<Point> {
+        let n = model.n_dofs();
+        let (trajectory, balance) = (&self.audited.trajectory, &self.audited.balance);
+        trajectory
+            .t
+            .iter()
+            .zip(&trajectory.y)
+            .map(|(&t, y)| {
+                let (kinetic, strain) = self.eom.energies(y);
+                let (work, dissipated) = (y[2 * n], y[2 * n + 1]);
+                Point {
+                    t,
+                    q: model.full_coordinates(&y[..n]),
+                    kinetic,
+                    strain,
+                    work,
+                    dissipated,
+                    balance_error: balance.relative(kinetic + strain, work, dissipated),
+                }
+            })
+            .collect()
+    }
+}
+
+impl<'a> Motion<'a> {
+    /// Integrate `model` from its initial state (`reduce` projects a given full state on a
+    /// reduced model's coordinates) with the energy audit; the caller's cancellation, polled
+    /// after every step, stops the integrator through the equations' halt flag.
+    ///
+    /// # Errors
+    /// The stop of a run that did not get to integrate: its static initial state or its
+    /// equations failed.
+    pub fn simulate<M: StructuralModel>(
+        &self,
+        model: &'a M,
+        reduce: Option<impl Fn(&[f64]) -> Vec<f64>>,
+        gyroscopic: crate::solve::Gyroscopic,
+        damping: &Damping,
+        progress: &mut dyn Progress,
+    ) -> Result<Simulated<'a, M>, Box<Stop>> {
+        let (x0, xdot0) = self.initial_state(model, reduce).map_err(|error| {
+            let loads = match self.initial {
+                Initial::Static { loads } => loads
+                    .iter()
+                    .map(|&i| crate::analysis::load_name(self.load_names, i))
+                    .collect(),
+                _ => Vec::new(),
+            };
+            Box::new(Stop::InitialState { loads, error })
+        })?;
+        let mut eom = EquationsOfMotion::new(
             model,
             self.active_loads,
             self.time_functions.to_vec(),
             gyroscopic,
             damping,
-        );
-        let mut eom = match equations {
-            Ok(eom) => eom,
-            Err(e) => {
-                run.status = Status::Stopped(Stop::Equations(e));
-                return run;
-            }
-        };
-        let end = plan.end_time;
-        // The caller's cancellation, polled after every step, stops the integrator through the
-        // equations' halt flag.
+        )
+        .map_err(|e| Box::new(Stop::Equations(e)))?;
+        let end = self.end_time;
         let halt = Arc::new(AtomicBool::new(false));
         let flag = Arc::clone(&halt);
         let mut report = |t: f64| {
@@ -183,56 +311,28 @@ impl Simulator<'_> {
             &mut eom,
             &x0,
             &xdot0,
-            &plan.output_times,
-            plan.integrator,
-            &plan.settings,
-            &plan.audit,
+            self.output_times,
+            self.integrator,
+            self.settings,
+            self.audit,
             Some(halt),
             &mut report,
         );
-        run.wall_time_s = start.elapsed().as_secs_f64();
-        run.stats = audited.stats;
-        run.status = audited.status;
-        let trajectory = audited.trajectory;
-        let n = model.n_dofs();
-        let balance = audited.balance;
-        let mut next_snapshot = self.snapshots.iter().peekable();
-        for (index, (&t, y)) in trajectory.t.iter().zip(&trajectory.y).enumerate() {
-            let q = model.full_coordinates(&y[..n]);
-            let (kinetic, strain) = eom.energies(y);
-            let (work, dissipated) = (y[2 * n], y[2 * n + 1]);
-            let shape = self.full.shape(&q);
-            let (tip_x, tip_y, tip_twist) = shape.tip();
-            run.samples.push(Sample {
-                t,
-                tip_x,
-                tip_y,
-                tip_twist,
-                kinetic,
-                strain,
-                work,
-                dissipated,
-                balance_error: balance.relative(kinetic + strain, work, dissipated),
-            });
-            if next_snapshot.peek() == Some(&&index) {
-                next_snapshot.next();
-                run.snapshots.push(Snapshot { index, t, shape });
-            }
-        }
-        run.energy_audit = Some(EnergyAudit::of(&balance));
-        run.notes
-            .extend(Note::newton(kind, plan.integrator, self.full, &run.stats));
-        run
+        Ok(Simulated {
+            eom,
+            audited,
+            wall_time_s: start.elapsed().as_secs_f64(),
+        })
     }
 
     /// The model's coordinates and velocities at `t = 0`, or why the static deflection failed.
     fn initial_state<M: StructuralModel>(
         &self,
         model: &M,
-        reduced: Option<&ReducedModel>,
+        reduce: Option<impl Fn(&[f64]) -> Vec<f64>>,
     ) -> Result<(Vec<f64>, Vec<f64>), SolveError> {
         let n = model.n_dofs();
-        match &self.plan.initial {
+        match self.initial {
             Initial::Rest => Ok((vec![0.0; n], vec![0.0; n])),
             Initial::Static { loads } => {
                 let mut scales = vec![0.0; self.all_loads.n_loads()];
@@ -242,9 +342,9 @@ impl Simulator<'_> {
                 solve_static(model, self.all_loads, &scales, &StaticOptions::default())
                     .map(|s| (s.x, vec![0.0; n]))
             }
-            Initial::Given { q, qdot } => Ok(match reduced {
+            Initial::Given { q, qdot } => Ok(match reduce {
                 None => (q.clone(), qdot.clone()),
-                Some(r) => (r.reduce_coordinates(q), r.reduce_coordinates(qdot)),
+                Some(r) => (r(q), r(qdot)),
             }),
         }
     }

@@ -43,7 +43,7 @@ pub use loads::{SpatialDistributed, SpatialLoad, SpatialVector};
 pub use model::{Chain3d, Workspace3d};
 pub(crate) use newton::Newton3d;
 pub use reduced::{ReducedChain3d, ReducedWorkspace3d};
-pub use rotation::rotation_vector;
+pub use rotation::{rotation_matrix, rotation_vector};
 pub use section::{
     ElementInertia, JointCalibration, SectionInertia, SectionStiffness, StiffnessCoupling,
 };

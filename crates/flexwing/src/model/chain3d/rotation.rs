@@ -183,6 +183,12 @@ pub(crate) fn tangent_left_times<D: Real>(phi: &V3<D>, v: &V3<D>, c: &Coefficien
     )
 }
 
+/// The rotation matrix `exp(r̂)` of a rotation vector (the inverse of [`rotation_vector`]), for
+/// output: a section frame from the rotation vector a shape reports.
+pub fn rotation_matrix(r: [f64; 3]) -> [[f64; 3]; 3] {
+    exp_and_tangent(&r, &Coefficients::of(&r)).0
+}
+
 /// The rotation vector of a rotation matrix (`log`, the inverse of [`exp`] for angles in
 /// `[0, π]`), for output: the axis from the skew part, the angle from `atan2` of the skew part's
 /// norm and the trace (accurate at every angle; near π from the symmetric part).

@@ -14,8 +14,14 @@ use nalgebra::DMatrix;
 /// Balance `a` in place (row and column norms excluding the diagonal, radix 2, until no scaling
 /// reduces the sum of a row's and its column's norms by 5 %).
 pub(crate) fn balance(a: &mut DMatrix<f64>) {
+    balance_scales(a);
+}
+
+/// [`balance`], returning the scales `d` of the similarity `D⁻¹ A D`, `D = diag(d)`.
+pub(crate) fn balance_scales(a: &mut DMatrix<f64>) -> Vec<f64> {
     const RADIX: f64 = 2.0;
     let n = a.nrows();
+    let mut scales = vec![1.0; n];
     let mut converged = false;
     while !converged {
         converged = true;
@@ -44,6 +50,7 @@ pub(crate) fn balance(a: &mut DMatrix<f64>) {
             }
             if (c + r) / f < 0.95 * s {
                 converged = false;
+                scales[i] *= f;
                 for j in 0..n {
                     a[(i, j)] /= f;
                     a[(j, i)] *= f;
@@ -51,6 +58,7 @@ pub(crate) fn balance(a: &mut DMatrix<f64>) {
             }
         }
     }
+    scales
 }
 
 #[cfg(test)]

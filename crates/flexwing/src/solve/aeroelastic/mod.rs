@@ -27,6 +27,7 @@ mod flutter;
 mod linearize;
 mod signals;
 mod tracking;
+pub mod turbulence;
 
 pub use flutter::{
     flutter, flutter_polled, stability_eigenvalues, Branch, Crossing, CrossingKind, FlutterMethod,
