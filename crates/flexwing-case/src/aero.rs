@@ -311,6 +311,7 @@ pub(crate) fn condition(f: &FlightSpec, speed: f64) -> FlightCondition {
 /// angle with their time histories, the gust.
 fn history(f: &FlightSpec, speed: f64) -> Result<FlightHistory, InputError> {
     Ok(FlightHistory {
+        deflection_changes: Vec::new(),
         initial: condition(f, speed),
         speed_change: change(
             ("speed_change", f.speed_change),

@@ -146,6 +146,7 @@ fn fmi_unit(unit: &str) -> Option<(&'static str, [i32; 4])> {
         "N·m" => ("N.m", [1, 2, -2, 0]),
         "m/s²" => ("m/s2", [0, 1, -2, 0]),
         "rad/s" => ("rad/s", [0, 0, -1, 1]),
+        "rad/s²" => ("rad/s2", [0, 0, -2, 1]),
         "1" => ("1", [0, 0, 0, 0]),
         _ => return None,
     })
@@ -237,7 +238,7 @@ pub fn model_description(
     let inputs: Vec<(Input, f64)> = stepper
         .inputs()
         .iter()
-        .copied()
+        .cloned()
         .zip(stepper.start_values().iter().copied())
         .collect();
     let mut vr = 0usize;
@@ -457,7 +458,7 @@ mod tests {
             "torque[1]",
         ];
         for name in inputs {
-            let i = Input::parse(name, n, true, "i").unwrap();
+            let i = Input::parse(name, n, true, &[], "i").unwrap();
             assert!(fmi_unit(i.unit()).is_some(), "{name}: {}", i.unit());
         }
         let outputs = [
@@ -475,7 +476,7 @@ mod tests {
             "acceleration[1]",
         ];
         for name in outputs {
-            let o = Output::parse(name, n, true, "o").unwrap();
+            let o = Output::parse(name, n, true, &[], "o").unwrap();
             assert!(fmi_unit(o.unit()).is_some(), "{name}: {}", o.unit());
         }
     }

@@ -106,12 +106,13 @@ pub fn options_of(
 ) -> Result<StepperOptions, String> {
     let m = &plan.structure.model;
     let (ne, torsion) = (m.n_elements(), m.has_torsion());
+    let surfaces = &plan.aero.section.surfaces;
     let mut options = StepperOptions::new(torsion);
     if let Some(list) = inputs {
         options.inputs = list
             .iter()
             .enumerate()
-            .map(|(i, n)| Input::parse(n, ne, torsion, &format!("inputs[{i}]")))
+            .map(|(i, n)| Input::parse(n, ne, torsion, surfaces, &format!("inputs[{i}]")))
             .collect::<Result<_, _>>()
             .map_err(|e| e.to_string())?;
     }
@@ -119,7 +120,7 @@ pub fn options_of(
         options.outputs = list
             .iter()
             .enumerate()
-            .map(|(i, n)| Output::parse(n, ne, torsion, &format!("outputs[{i}]")))
+            .map(|(i, n)| Output::parse(n, ne, torsion, surfaces, &format!("outputs[{i}]")))
             .collect::<Result<_, _>>()
             .map_err(|e| e.to_string())?;
     }

@@ -75,12 +75,13 @@ impl PyAeroStepper {
         };
         let model = &plan.structure.model;
         let (ne, torsion) = (model.n_elements(), model.has_torsion());
+        let surfaces = &plan.aero.section.surfaces;
         let mut options = StepperOptions::new(torsion);
         if let Some(list) = names(kw.get("inputs")?, "inputs")? {
             options.inputs = list
                 .iter()
                 .enumerate()
-                .map(|(i, n)| Input::parse(n, ne, torsion, &format!("inputs[{i}]")))
+                .map(|(i, n)| Input::parse(n, ne, torsion, surfaces, &format!("inputs[{i}]")))
                 .collect::<Result<_, _>>()
                 .map_err(|e| errors::library_input(py, &e))?;
         }
@@ -88,7 +89,7 @@ impl PyAeroStepper {
             options.outputs = list
                 .iter()
                 .enumerate()
-                .map(|(i, n)| Output::parse(n, ne, torsion, &format!("outputs[{i}]")))
+                .map(|(i, n)| Output::parse(n, ne, torsion, surfaces, &format!("outputs[{i}]")))
                 .collect::<Result<_, _>>()
                 .map_err(|e| errors::library_input(py, &e))?;
         }

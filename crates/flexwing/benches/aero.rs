@@ -49,6 +49,7 @@ fn flutter_plan(modes: usize, speeds: usize) -> FlutterOptions {
 
 fn gust_plan(rtol: f64) -> ResponseOptions {
     let flight = FlightHistory {
+        deflection_changes: Vec::new(),
         initial: FlightCondition::at_speed(25.0),
         speed_change: None,
         root_angle_change: None,
@@ -174,6 +175,7 @@ fn family_plan(n: usize, reduced: bool, rtol: f64) -> GustFamilyPlan {
         speed_change: None,
         root_angle_change: None,
         gust: None,
+        deflection_changes: Vec::new(),
     };
     GustFamilyPlan {
         response: AeroDynamicPlan::new(s, aero, flight),

@@ -172,6 +172,7 @@ fn by_method<S: OdeSystem>(
 
 fn flight() -> FlightHistory {
     FlightHistory {
+        deflection_changes: Vec::new(),
         initial: FlightCondition::at_speed(25.0),
         speed_change: None,
         root_angle_change: None,

@@ -11,7 +11,7 @@ use serde_json::Value;
 
 use crate::common::{assert_success, example, flexwing_in, stderr, stdout, TempDir};
 
-fn matrix(v: &Value) -> DMatrix<f64> {
+pub(crate) fn matrix(v: &Value) -> DMatrix<f64> {
     let rows: Vec<Vec<f64>> = v
         .as_array()
         .unwrap()
@@ -28,7 +28,7 @@ fn matrix(v: &Value) -> DMatrix<f64> {
     DMatrix::from_fn(n, m, |i, j| rows[i][j])
 }
 
-fn names(v: &Value) -> Vec<String> {
+pub(crate) fn names(v: &Value) -> Vec<String> {
     v.as_array()
         .unwrap()
         .iter()
@@ -36,7 +36,7 @@ fn names(v: &Value) -> Vec<String> {
         .collect()
 }
 
-fn run_json(dir: &TempDir, case: &std::path::Path, extra: &[&str]) -> Value {
+pub(crate) fn run_json(dir: &TempDir, case: &std::path::Path, extra: &[&str]) -> Value {
     let out = dir.path().join("out");
     let mut args = vec![
         "linearize",

@@ -264,6 +264,7 @@ fn gust_response(
 ) -> Vec<(f64, f64)> {
     let wing = stiff_wing(aerodynamics);
     let flight = FlightHistory {
+        deflection_changes: Vec::new(),
         initial: FlightCondition::at_speed(U),
         speed_change: None,
         root_angle_change: None,

@@ -64,6 +64,7 @@ fn plan(end_time: f64) -> AeroDynamicPlan {
     s.settings.rtol = 1e-6;
     s.settings.atol = 1e-8;
     let flight = FlightHistory {
+        deflection_changes: Vec::new(),
         initial: FlightCondition {
             speed: 25.0,
             root_angle: 0.0349,

@@ -73,6 +73,7 @@ fn flutter_speed_accuracy_against_r() {
 fn gust_response_of_reduced_models() {
     let full = common::patil_wing(16, Aerodynamics::Peters { states: 6 });
     let flight = FlightHistory {
+        deflection_changes: Vec::new(),
         initial: FlightCondition::at_speed(25.0),
         speed_change: None,
         root_angle_change: None,
@@ -135,6 +136,7 @@ fn regression_reduced_gust_radau_audit_balance_at_rtol_1e_3() {
     use flexwing::solve::{AuditLimits, Damping};
 
     let flight = FlightHistory {
+        deflection_changes: Vec::new(),
         initial: FlightCondition::at_speed(25.0),
         speed_change: None,
         root_angle_change: None,

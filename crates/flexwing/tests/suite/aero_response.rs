@@ -50,6 +50,7 @@ fn lift_after_a_sharp_edged_gust_follows_wagner() {
     let wing = stiff_wing(Aerodynamics::Wagner);
     let (u, vg, t0, b) = (30.0, 0.3, 0.01, 0.5);
     let flight = FlightHistory {
+        deflection_changes: Vec::new(),
         initial: FlightCondition::at_speed(u),
         speed_change: None,
         root_angle_change: None,
@@ -90,6 +91,7 @@ fn a_root_angle_ramp_settles_on_the_static_equilibrium() {
     let wing = common::goland_wing(8, Aerodynamics::Peters { states: 4 });
     let angle = 2f64.to_radians();
     let flight = FlightHistory {
+        deflection_changes: Vec::new(),
         initial: FlightCondition::at_speed(100.0),
         speed_change: None,
         root_angle_change: Some((
@@ -143,6 +145,7 @@ fn a_root_angle_ramp_settles_on_the_static_equilibrium() {
 fn regression_gust_response_with_eliminated_lag_states_matches_dense_newton() {
     let wing = common::patil_wing(8, Aerodynamics::Peters { states: 6 });
     let flight = FlightHistory {
+        deflection_changes: Vec::new(),
         initial: FlightCondition::at_speed(25.0),
         speed_change: None,
         root_angle_change: None,
@@ -195,6 +198,7 @@ fn gust_response_errors_follow_the_tolerance_against_a_tight_reference() {
     let rom = wing.reduced(&(0..6).collect::<Vec<_>>()).unwrap();
     let plan = |rtol: f64| {
         let flight = FlightHistory {
+            deflection_changes: Vec::new(),
             initial: FlightCondition::at_speed(25.0),
             speed_change: None,
             root_angle_change: None,

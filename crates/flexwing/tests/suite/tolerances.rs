@@ -144,6 +144,7 @@ fn the_gust_at_a_tighter_rtol_is_not_worse() {
         s.settings.atol = atol;
         s.settings.max_steps = 2_000_000;
         let flight = FlightHistory {
+            deflection_changes: Vec::new(),
             initial: FlightCondition {
                 speed: 25.0,
                 root_angle: 0.0349,

@@ -21,6 +21,7 @@ use crate::solve::{Damping, TimeFunction};
 /// term of the aerodynamic work (and the time-varying gravity factor `cos α_r(t)`).
 fn flight(manoeuvre: bool) -> FlightHistory {
     FlightHistory {
+        deflection_changes: Vec::new(),
         initial: FlightCondition {
             speed: 25.0,
             root_angle: 0.0349,

@@ -106,14 +106,15 @@ impl LinearizePlan {
             }
             Ok(out)
         }
+        let surfaces = &self.aero.section.surfaces;
         let inputs = parse(&self.inputs, fields.analysis("inputs"), "inputs", |s, f| {
-            Input::parse(s, n, torsion, f)
+            Input::parse(s, n, torsion, surfaces, f)
         })?;
         let outputs = parse(
             &self.outputs,
             fields.analysis("outputs"),
             "outputs",
-            |s, f| Output::parse(s, n, torsion, f),
+            |s, f| Output::parse(s, n, torsion, surfaces, f),
         )?;
         Ok((inputs, outputs))
     }

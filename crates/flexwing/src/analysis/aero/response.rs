@@ -525,6 +525,7 @@ mod tests {
 
     fn gust() -> FlightHistory {
         FlightHistory {
+            deflection_changes: Vec::new(),
             initial: FlightCondition {
                 speed: 20.0,
                 root_angle: 0.02,

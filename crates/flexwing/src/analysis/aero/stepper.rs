@@ -112,10 +112,12 @@ impl StepperOptions {
 }
 
 /// Every input a stepper takes, for messages.
-pub const STEPPER_INPUT_NAMES: &str = "root_angle, speed, gust, force[k] and torque[k] (node k)";
+pub const STEPPER_INPUT_NAMES: &str =
+    "root_angle, speed, gust, force[k] and torque[k] (node k), delta[NAME] (surface NAME)";
 /// Every output a stepper gives, for messages.
 pub const STEPPER_OUTPUT_NAMES: &str = "tip_x, tip_y, tip_twist, x[k], y[k], twist[k] (node k), \
-                                        root_bending_moment, root_torque, lift";
+                                        root_bending_moment, root_torque, lift, \
+                                        hinge_moment[NAME] (surface NAME)";
 
 /// Whether a stepper takes `input` (a linear model's input): the per-strip gusts are not yet,
 /// and the gust's rate is its hold's (the gust's apparent mass follows the `gust` input).
@@ -124,9 +126,18 @@ pub const STEPPER_OUTPUT_NAMES: &str = "tip_x, tip_y, tip_twist, x[k], y[k], twi
 /// The reason, naming the inputs it takes.
 pub fn check_input(input: &Input) -> Result<(), String> {
     match input {
-        Input::RootAngle | Input::Speed | Input::Gust | Input::Force(_) | Input::Torque(_) => {
-            Ok(())
-        }
+        Input::RootAngle
+        | Input::Speed
+        | Input::Gust
+        | Input::Force(_)
+        | Input::Torque(_)
+        | Input::Deflection(_) => Ok(()),
+        Input::DeflectionRate(_) | Input::DeflectionAcceleration(_) => Err(format!(
+            "{} is an input of the linear model only: a stepper takes a surface's rate from \
+             its hold of delta (the slope over the interval, zero when held); it takes \
+             {STEPPER_INPUT_NAMES}",
+            input.name()
+        )),
         Input::StripGust(_) => Err(format!(
             "{} is an input of the linear model only; a stepper takes {STEPPER_INPUT_NAMES}",
             input.name()
@@ -277,12 +288,25 @@ impl AeroStepper {
         let full = plan.aero.wing(&s.model, fields.aero)?;
         let ne = full.full().n_elements();
         let torsion = full.full().has_torsion();
-        // The signals' own checks (indices, torsion), as their names parse.
+        let surfaces = full.surfaces();
+        // The signals' own checks (indices, torsion, surfaces), as their names parse.
         for (i, input) in options.inputs.iter().enumerate() {
-            Input::parse(&input.name(), ne, torsion, &format!("inputs[{i}]"))?;
+            Input::parse(
+                &input.name(),
+                ne,
+                torsion,
+                surfaces,
+                &format!("inputs[{i}]"),
+            )?;
         }
         for (i, output) in options.outputs.iter().enumerate() {
-            Output::parse(&output.name(), ne, torsion, &format!("outputs[{i}]"))?;
+            Output::parse(
+                &output.name(),
+                ne,
+                torsion,
+                surfaces,
+                &format!("outputs[{i}]"),
+            )?;
         }
         let kinds = plan.models()?;
         let kind = kinds.get(options.model).cloned().ok_or_else(|| {
@@ -324,6 +348,9 @@ impl AeroStepper {
             )
         };
         let case_loads = &loads[..n_case];
+        // The surfaces' deflections at the start (the equilibrium's and the history's).
+        let mut deflections0 = full.rest_deflections();
+        plan.flight.add_deflection_changes(0.0, &mut deflections0);
         let (wing, x0, damping, applied) = match build(&full, &kind)? {
             Built::Full => {
                 let x0 = initial_coordinates(plan, case_loads, &case_functions, &full)
@@ -384,6 +411,7 @@ impl AeroStepper {
             .map(|i| match i {
                 Input::RootAngle => plan.flight.root_angle(0.0),
                 Input::Speed => plan.flight.speed(0.0),
+                Input::Deflection(s) => deflections0[s.index][0],
                 _ => 0.0,
             })
             .collect();
@@ -542,7 +570,18 @@ impl AeroStepper {
                 Input::RootAngle => offsets.root_angle = segment(i),
                 Input::Speed => offsets.speed = segment(i),
                 Input::Gust => offsets.gust = segment(i),
-                Input::Force(_) | Input::Torque(_) | Input::StripGust(_) | Input::GustRate => {}
+                Input::Deflection(s) => {
+                    if offsets.deflections.len() <= s.index {
+                        offsets.deflections.resize(s.index + 1, Segment::held(0.0));
+                    }
+                    offsets.deflections[s.index] = segment(i);
+                }
+                Input::Force(_)
+                | Input::Torque(_)
+                | Input::StripGust(_)
+                | Input::GustRate
+                | Input::DeflectionRate(_)
+                | Input::DeflectionAcceleration(_) => {}
             }
         }
         let mut functions = self.case_functions.clone();
@@ -579,7 +618,7 @@ impl AeroStepper {
             let before_offsets = e.0.flight_offsets();
             let before_functions = functions_of(&e.0);
             let before_balance = e.0.energy_balance().cloned();
-            e.0.set_flight_offsets(offsets);
+            e.0.set_flight_offsets(offsets.clone());
             if e.0.speed(t1) < 0.0 {
                 e.0.set_flight_offsets(before_offsets);
                 return Err(StepError::Input(InputError::new(
@@ -657,7 +696,7 @@ impl AeroStepper {
         // its segments also carry the rates over it (the gust's apparent mass), as the
         // integration ended with them.
         let offsets = match self.hold {
-            Hold::Linear => self.last_offsets,
+            Hold::Linear => self.last_offsets.clone(),
             Hold::Zero => self.forcing(&in_force, &in_force, t, t).0,
         };
         let y = &self.y;
@@ -745,6 +784,11 @@ fn evaluate<M: PlanarStructure>(
     } else {
         0.0
     };
+    let hinge_moments = if outputs.iter().any(|o| matches!(o, Output::HingeMoment(_))) {
+        eqs.hinge_moments_at(t, y)
+    } else {
+        Vec::new()
+    };
     for (o, output) in out.iter_mut().zip(outputs) {
         *o = match output {
             Output::TipX => shape.x[ne],
@@ -756,6 +800,7 @@ fn evaluate<M: PlanarStructure>(
             Output::RootBendingMoment => full.stiffness()[0] * q[0],
             Output::RootTorque => super::response::root_torque(full, &q),
             Output::Lift => lift,
+            Output::HingeMoment(s) => hinge_moments[s.index],
             // Refused by `check_output`.
             Output::RootShear | Output::TipAcceleration | Output::Acceleration(_) => f64::NAN,
         };

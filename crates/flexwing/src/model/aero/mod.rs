@@ -22,7 +22,7 @@ mod theodorsen;
 
 pub(crate) use chain::AeroScratch;
 pub use flap::FlapCoefficients;
-pub(crate) use flap::{FlapAir, StripFlap};
+pub(crate) use flap::{flap_air, hinge_moment, FlapAir, StripFlap};
 pub(crate) use fluid::FluidInertia;
 pub(crate) use lag::Lag;
 pub(crate) use strip::{loads as strip_loads, Air, Motion, StripData};

@@ -215,6 +215,7 @@ mod tests {
                 )
                 .unwrap();
             let flight = FlightHistory {
+                deflection_changes: Vec::new(),
                 initial: FlightCondition {
                     speed: 10.0,
                     root_angle: 0.03,
@@ -356,6 +357,7 @@ mod tests {
                 )
                 .unwrap();
             let flight = FlightHistory {
+                deflection_changes: Vec::new(),
                 initial: FlightCondition {
                     speed: 12.0,
                     root_angle: 0.05,

@@ -98,6 +98,8 @@ pub struct AeroelasticEquations<'a, M: AeroStructure> {
     gust_delays: Vec<f64>,
     /// Per strip: the gust velocity, its rate and its Küssner-lagged velocity of the instant.
     gust_now: [Vec<f64>; 3],
+    /// Per surface: `(δ, δ̇, δ̈)` of the instant.
+    deflections: Vec<[f64; 3]>,
     /// Right-hand-side evaluations.
     pub rhs_evaluations: usize,
     /// Jacobian evaluations.
@@ -180,6 +182,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
             halt: None,
             gust_delays,
             gust_now: [vec![0.0; strips], vec![0.0; strips], vec![0.0; strips]],
+            deflections: aero.rest_deflections(),
             rhs_evaluations: 0,
             jacobian_evaluations: 0,
         })
@@ -347,7 +350,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
 
     /// The increments added to the flight history.
     pub(crate) fn flight_offsets(&self) -> FlightOffsets {
-        self.offsets
+        self.offsets.clone()
     }
 
     /// Free-stream speed at `t` (m/s): the history's and the offset's.
@@ -624,7 +627,29 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
                 }
             }
         }
+        if !self.deflections.is_empty() {
+            // The surfaces' deflections: equilibrium, the history's changes, the offsets.
+            for (d, s) in self.deflections.iter_mut().zip(self.aero.surfaces()) {
+                *d = [s.deflection, 0.0, 0.0];
+            }
+            flight.add_deflection_changes(t, &mut self.deflections);
+            self.offsets.add_deflections(t, &mut self.deflections);
+            self.eval.set_deflections(&self.deflections);
+        }
         self.eval.set_air_with_gust(u, alpha, (v, rate, lagged));
+    }
+
+    /// Each surface's hinge moment (N·m, trailing edge down) at state `y` and time `t`
+    /// ([`Aeroelastic::hinge_moments_into`]: the deflection, flap-rate and circulatory terms),
+    /// by one evaluation of the strips as [`Self::vertical_aerodynamic_force_at`].
+    pub fn hinge_moments_at(&mut self, t: f64, y: &[f64]) -> Vec<f64> {
+        if self.deflections.is_empty() {
+            return Vec::new();
+        }
+        if self.vertical_aerodynamic_force_at(t, y).is_nan() {
+            return vec![f64::NAN; self.deflections.len()];
+        }
+        self.eval.hinge_moments()
     }
 
     fn gravity_scale(&self, t: f64) -> [f64; 1] {
@@ -839,6 +864,15 @@ pub(crate) mod tests {
 
     /// A small tapered wing with an offset mass centre, every section datum non-trivial.
     pub(crate) fn test_wing(n: usize, aerodynamics: Aerodynamics) -> Aeroelastic {
+        test_wing_with(n, aerodynamics, Vec::new())
+    }
+
+    /// [`test_wing`] with the control surfaces `surfaces`.
+    pub(crate) fn test_wing_with(
+        n: usize,
+        aerodynamics: Aerodynamics,
+        surfaces: Vec<crate::model::aero::ControlSurface>,
+    ) -> Aeroelastic {
         let section = SectionProperties {
             ei: Profile::Uniform(400.0),
             mass_per_length: Profile::Table {
@@ -871,7 +905,7 @@ pub(crate) mod tests {
             zero_lift_angle: Profile::Uniform(-0.03),
             cm0: Profile::Uniform(-0.02),
             cd0: Profile::Uniform(0.01),
-            surfaces: Vec::new(),
+            surfaces,
         };
         Aeroelastic::new(&full, &aero, 1.1, aerodynamics, "aero").unwrap()
     }
@@ -971,6 +1005,7 @@ pub(crate) mod tests {
             )
             .unwrap();
         let flight = FlightHistory {
+            deflection_changes: Vec::new(),
             initial: FlightCondition {
                 speed: 12.0,
                 root_angle: 0.05,

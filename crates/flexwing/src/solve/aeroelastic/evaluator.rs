@@ -81,6 +81,17 @@ impl<'a, M: AeroStructure> AeroEvaluator<'a, M> {
         }
     }
 
+    /// Set each surface's `(δ, δ̇, δ̈)` for the next [`Self::set_air`] or
+    /// [`Self::set_air_with_gust`].
+    pub(crate) fn set_deflections(&mut self, deflections: &[[f64; 3]]) {
+        self.deflections.copy_from_slice(deflections);
+    }
+
+    /// Each surface's `(δ, δ̇, δ̈)` in force.
+    pub(crate) fn deflections(&self) -> &[[f64; 3]] {
+        &self.deflections
+    }
+
     /// Hinge moment of every surface (N·m) at the last [`Self::evaluate`]
     /// ([`Aeroelastic::hinge_moments_into`]).
     pub(crate) fn hinge_moments(&self) -> Vec<f64> {

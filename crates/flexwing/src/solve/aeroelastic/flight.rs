@@ -210,8 +210,8 @@ impl Gust {
     }
 }
 
-/// The flight condition over time: `U(t) = U₀ + ΔU f_U(t)`, `α_r(t) = α_r0 + Δα f_α(t)`, and a
-/// gust.
+/// The flight condition over time: `U(t) = U₀ + ΔU f_U(t)`, `α_r(t) = α_r0 + Δα f_α(t)`, a
+/// gust, and the control surfaces' deflections `δ_k(t) = δ_k0 + Δδ_k f_k(t)`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FlightHistory {
     /// The initial condition (speed, root angle, gravity).
@@ -222,6 +222,12 @@ pub struct FlightHistory {
     pub root_angle_change: Option<(f64, TimeFunction)>,
     /// A gust, or none.
     pub gust: Option<Gust>,
+    /// Per control surface (in the order of the surfaces, possibly fewer), the change of its
+    /// deflection `Δδ` (rad, trailing edge down) and its time function, or `None` (held at its
+    /// equilibrium deflection). The rates follow the function: `δ̇ = Δδ f'(t)`, `δ̈ = Δδ f''(t)`
+    /// (a sine's exact derivatives; a ramp or table is piecewise linear, its rate the slope of
+    /// each piece and no acceleration; a step's jump carries no rate).
+    pub deflection_changes: Vec<Option<(f64, TimeFunction)>>,
 }
 
 impl FlightHistory {
@@ -232,6 +238,19 @@ impl FlightHistory {
             speed_change: None,
             root_angle_change: None,
             gust: None,
+            deflection_changes: Vec::new(),
+        }
+    }
+
+    /// The deflections `(δ, δ̇, δ̈)` (rad, rad/s, rad/s²) of the surfaces at `t` into `out`, which
+    /// holds their equilibrium values `(δ_0, 0, 0)` on entry.
+    pub(crate) fn add_deflection_changes(&self, t: f64, out: &mut [[f64; 3]]) {
+        for (o, change) in out.iter_mut().zip(&self.deflection_changes) {
+            if let Some((d, f)) = change {
+                o[0] += d * f.at(t);
+                o[1] += d * time_function_rate(f, t);
+                o[2] += d * time_function_acceleration(f, t);
+            }
         }
     }
 
@@ -254,6 +273,65 @@ impl FlightHistory {
         self.gust.as_ref().map_or(0.0, |g| {
             g.amplitude * g.spanwise.at(s) * g.factor(t, self.initial.speed)
         })
+    }
+
+    /// Check the surfaces' deflection changes for a run over `[t0, t1]` against the surfaces'
+    /// equilibrium deflections `rest`: finite, valid time functions, `|δ(t)| < 90°` (sampled at
+    /// 201 times and the table's); errors name `{surfaces}[k].deflection_change` and
+    /// `{surfaces}[k].deflection_function` (`surfaces`: the surfaces' key, `aero.surfaces`).
+    ///
+    /// # Errors
+    /// As above, and more changes than surfaces.
+    pub fn validate_deflection_changes(
+        &self,
+        surfaces: &str,
+        rest: &[f64],
+        t0: f64,
+        t1: f64,
+    ) -> Result<(), InputError> {
+        if self.deflection_changes.len() > rest.len() {
+            return Err(InputError::new(
+                surfaces,
+                format!(
+                    "{} deflection changes for {} surfaces",
+                    self.deflection_changes.len(),
+                    rest.len()
+                ),
+            ));
+        }
+        for (k, change) in self.deflection_changes.iter().enumerate() {
+            let Some((d, f)) = change else { continue };
+            let key = |name: &str| format!("{surfaces}[{k}].{name}");
+            if !d.is_finite() {
+                return Err(InputError::new(
+                    key("deflection_change"),
+                    format!("must be finite, got {d}"),
+                ));
+            }
+            crate::magnitude::check(&key("deflection_change"), "", *d)?;
+            f.validate(&key("deflection_function"), t0, t1)?;
+            let mut times: Vec<f64> = (0..=200)
+                .map(|i| t0 + (t1 - t0) * i as f64 / 200.0)
+                .collect();
+            if let TimeFunction::Table { t, .. } = f {
+                times.extend(t.iter().copied().filter(|s| (t0..=t1).contains(s)));
+            }
+            if let Some(t) = times
+                .into_iter()
+                .find(|&t| (rest[k] + d * f.at(t)).abs() >= 0.5 * std::f64::consts::PI)
+            {
+                return Err(InputError::new(
+                    key("deflection_change"),
+                    format!(
+                        "makes the deflection {} rad at t = {} s: thin-airfoil flap theory needs \
+                         |δ| well below 90° (π/2 rad)",
+                        crate::text::short(rest[k] + d * f.at(t)),
+                        crate::text::short(t)
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Check the history for a run over `[t0, t1]` on a wing of span `length`; `field` prefixes
@@ -362,6 +440,15 @@ fn time_function_rate(f: &TimeFunction, t: f64) -> f64 {
     }
 }
 
+/// `f''(t)` of a time function: a sine's `−ω² sin(ωt + φ)`; zero for the piecewise-linear ones
+/// (their kinks' impulses are not represented) and the constant and step.
+fn time_function_acceleration(f: &TimeFunction, t: f64) -> f64 {
+    match f {
+        TimeFunction::Sine { omega, phase } => -omega * omega * (omega * t + phase).sin(),
+        _ => 0.0,
+    }
+}
+
 /// A value linear in time over `[t0, t1]` and held outside it: an input of a stepper over one
 /// communication interval (first-order hold), or held (`t0 = t1`: zero-order hold).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -405,9 +492,9 @@ impl Segment {
 }
 
 /// Increments of the flight condition set from outside between integrations (a stepper's or an
-/// FMU's inputs, `analysis::aero::stepper`), added to the flight history's root angle, speed and
-/// uniform gust; zero by default.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// FMU's inputs, `analysis::aero::stepper`), added to the flight history's root angle, speed,
+/// uniform gust and surface deflections; zero by default.
+#[derive(Debug, Clone, PartialEq, Default)]
 pub(crate) struct FlightOffsets {
     /// Root angle (rad).
     pub root_angle: Segment,
@@ -415,6 +502,19 @@ pub(crate) struct FlightOffsets {
     pub speed: Segment,
     /// Uniform vertical gust velocity (m/s, up).
     pub gust: Segment,
+    /// Deflection of each control surface (rad; fewer than the surfaces: the others none):
+    /// the segment's value and rate are `δ` and `δ̇` (no `δ̈`: a hold is piecewise linear).
+    pub deflections: Vec<Segment>,
+}
+
+impl FlightOffsets {
+    /// The deflections' increments `(δ, δ̇, 0)` at `t` added to `out`.
+    pub(crate) fn add_deflections(&self, t: f64, out: &mut [[f64; 3]]) {
+        for (o, s) in out.iter_mut().zip(&self.deflections) {
+            o[0] += s.at(t);
+            o[1] += s.rate(t);
+        }
+    }
 }
 
 #[cfg(test)]

@@ -32,11 +32,12 @@ use num_dual::Dual64;
 use super::equations::AeroelasticEquations;
 use super::evaluator::AeroEvaluator;
 use super::flight::FlightHistory;
-use super::signals::{Input, Output, Signal, StateBasis};
+use super::signals::{Input, Output, Signal, StateBasis, Surface};
 use super::statics::SteadyAeroModel;
 use crate::error::{Error, InputError};
 use crate::model::aero::{
-    strip_loads, Aerodynamics, Aeroelastic, FlightCondition, Motion, PlanarStructure,
+    strip_loads, AeroScratch, Aerodynamics, Aeroelastic, FlapAir, FlightCondition, Motion,
+    PlanarStructure,
 };
 use crate::model::{DistributedForce, Force, Load, StructuralModel};
 use crate::solve::integrate::OdeSystem;
@@ -186,6 +187,7 @@ pub fn linearize<M: PlanarStructure>(
             .map(|i| match i {
                 Input::RootAngle => flight.root_angle,
                 Input::Speed => flight.speed,
+                Input::Deflection(s) => aero.surfaces()[s.index].deflection,
                 _ => 0.0,
             })
             .collect(),
@@ -337,6 +339,9 @@ struct WindDerivative {
     upwash: [f64; 3],
     /// `∂|W|/∂W_k`.
     speed: [f64; 3],
+    /// `∂(F, M)/∂w` with the lagged upwash following (`D̄`, 1 without lag) at fixed lag states:
+    /// the loads per unit equivalent upwash of a flap.
+    per_upwash: [f64; 4],
 }
 
 /// The linearization point: the evaluation of the strips at the equilibrium and what the rows
@@ -448,7 +453,37 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
             out.upwash[k] = dwk;
             out.speed[k] = dv;
         }
+        out.per_upwash = std::array::from_fn(|r| dw[r] + dweff[r] * lagged);
         out
+    }
+
+    /// Per strip, what a unit deflection input adds (`flap::flap_air` of a unit `δ`, `δ̇` or
+    /// `δ̈` of its surface, linear in them); `None` for another input.
+    fn flap_per_unit(&self, input: &Input) -> Option<Vec<FlapAir>> {
+        let (surface, unit) = match input {
+            Input::Deflection(s) => (s, [1.0, 0.0, 0.0]),
+            Input::DeflectionRate(s) => (s, [0.0, 1.0, 0.0]),
+            Input::DeflectionAcceleration(s) => (s, [0.0, 0.0, 1.0]),
+            _ => return None,
+        };
+        Some(
+            self.aero
+                .strips
+                .iter()
+                .zip(&self.eval.air)
+                .map(|(s, air)| match &s.flap {
+                    Some(f) if f.surface == surface.index => crate::model::aero::flap_air(
+                        f,
+                        s.b,
+                        self.aero.density(),
+                        air.speed,
+                        unit,
+                        self.aero.aerodynamics().is_unsteady(),
+                    ),
+                    _ => FlapAir::default(),
+                })
+                .collect(),
+        )
     }
 
     /// The wind change per unit input at strip `i` (wing frame), `None` for a non-wind input.
@@ -461,7 +496,12 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
             Input::Speed => Some([0.0, sa, -ca]),
             Input::Gust => Some([0.0, ca, sa]),
             Input::StripGust(k) => Some(if *k == i + 1 { [0.0, ca, sa] } else { [0.0; 3] }),
-            Input::GustRate | Input::Force(_) | Input::Torque(_) => None,
+            Input::GustRate
+            | Input::Force(_)
+            | Input::Torque(_)
+            | Input::Deflection(_)
+            | Input::DeflectionRate(_)
+            | Input::DeflectionAcceleration(_) => None,
         }
     }
 
@@ -470,6 +510,29 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
     fn strip_changes(&self, input: &Input) -> Vec<[f64; 4]> {
         if *input == Input::GustRate {
             return self.apparent_mass_of_gust_rate();
+        }
+        if let Some(flaps) = self.flap_per_unit(input) {
+            // The equivalent upwash through the loads' upwash derivatives, the normal force
+            // along ν and the moment (`model::aero::strip::loads`).
+            return flaps
+                .iter()
+                .enumerate()
+                .map(|(i, fa)| {
+                    let d = &self.wind[i];
+                    let m = self.eval.sc.motion[i];
+                    let nu = [
+                        -(m.cos_psi * m.sin_theta),
+                        m.cos_psi * m.cos_theta,
+                        -m.sin_psi,
+                    ];
+                    let mut c: [f64; 4] = std::array::from_fn(|r| d.per_upwash[r] * fa.upwash);
+                    for k in 0..3 {
+                        c[k] += nu[k] * fa.normal;
+                    }
+                    c[3] += fa.moment;
+                    c
+                })
+                .collect();
         }
         (0..self.aero.n_strips())
             .map(|i| match self.wind_of(input, i) {
@@ -581,6 +644,15 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
                                     rate * lag.b[k] * dup + self.adot[r] / air.speed * dv;
                             }
                         }
+                        // A flap's equivalent upwash is the lag's input as the strip's own.
+                        if let Some(flaps) = self.flap_per_unit(input) {
+                            for (i, fa) in flaps.iter().enumerate() {
+                                let rate = self.eval.air[i].speed / self.aero.strips[i].b;
+                                for k in 0..ns {
+                                    b[(2 * n + i * ns + k, col)] = rate * lag.b[k] * fa.upwash;
+                                }
+                            }
+                        }
                     }
                     q
                 }
@@ -593,6 +665,17 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
     /// Per-strip load changes along a direction of the coordinates (`rates`: of the velocities),
     /// at fixed lag states: one dual-number pass of the chain.
     fn strip_changes_along(&self, direction: &[f64], rates: bool) -> Vec<[f64; 4]> {
+        let dsc = self.along(direction, rates);
+        dsc.force
+            .iter()
+            .zip(&dsc.moment)
+            .map(|(f, m)| [f[0].eps, f[1].eps, f[2].eps, m.eps])
+            .collect()
+    }
+
+    /// The chain's evaluation along a direction of the coordinates (`rates`: of the
+    /// velocities) at fixed lag states, as dual numbers: flows, lagged upwash and loads.
+    fn along(&self, direction: &[f64], rates: bool) -> AeroScratch<Dual64> {
         let aero = self.aero;
         let sc = &self.eval.sc;
         let mut dsc = aero.scratch::<Dual64>();
@@ -617,11 +700,7 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
             dsc.weff[i] = Dual64::new(sc.weff[i], dbar * dsc.w[i].eps);
         }
         aero.set_loads(&self.eval.air, &mut dsc);
-        dsc.force
-            .iter()
-            .zip(&dsc.moment)
-            .map(|(f, m)| [f[0].eps, f[1].eps, f[2].eps, m.eps])
-            .collect()
+        dsc
     }
 
     /// The per-strip load changes per unit lag state `(strip i, state k)`: `∂F_i/∂w_eff C̄_k`.
@@ -724,6 +803,12 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
                     d.row_mut(r).copy_from(&(j.transpose() * &acc_b));
                     (None, 0.0)
                 }
+                Output::HingeMoment(surface) => {
+                    let (crow, drow) = self.hinge_rows(surface, inputs);
+                    c.row_mut(r).copy_from(&crow.transpose());
+                    d.row_mut(r).copy_from(&drow.transpose());
+                    (None, self.eval.hinge_moments()[surface.index])
+                }
                 Output::Lift | Output::RootShear => {
                     let v = vertical.get_or_insert_with(|| self.vertical_force(inputs));
                     let lift = matches!(output, Output::Lift);
@@ -822,6 +907,139 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
             })
             .sum();
         (momentum, gravity, applied)
+    }
+
+    /// The rows of `C` (momentum basis) and `D` of the hinge moment of `surface`
+    /// (`Aeroelastic::hinge_moments_into`): per covered strip `h = h_δ(V, δ) + κ L_c`,
+    /// `κ = −T12 b/(2π)`, `L_c = q 2b c_lα (atan2(ŵ, W_T) − α0)` with `ŵ` the lagged upwash
+    /// plus the uncovered share of the flap's, differentiated in `ŵ`, `W_T`, `q` and `V`.
+    fn hinge_rows(&self, surface: &Surface, inputs: &[Input]) -> (DVector<f64>, DVector<f64>) {
+        let aero = self.aero;
+        let n = aero.structure().n_dofs();
+        let ns = aero.aerodynamics().states_per_strip();
+        let unsteady = aero.aerodynamics().is_unsteady();
+        let rho = aero.density();
+        let nf = aero.full().n_dofs();
+        let rest = self.eval.deflections()[surface.index];
+        let lagged = if self.eval.lag().is_some() {
+            self.eval.feedthrough()
+        } else {
+            1.0
+        };
+        // Per covered strip: (i, weight φℓ, ∂h/∂ŵ, ∂h/∂W_T, ∂h/∂q, ∂h/∂V, its flap).
+        let mut parts = Vec::new();
+        for (i, s) in aero.strips.iter().enumerate() {
+            let Some(f) = s.flap.filter(|f| f.surface == surface.index) else {
+                continue;
+            };
+            let air = &self.eval.air[i];
+            let (w, wt) = (
+                self.eval.sc.weff[i] + (1.0 - f.coverage) * air.flap.covered_upwash,
+                self.eval.sc.wt[i],
+            );
+            let kappa = -f.coefficients.t[12] * s.b / (2.0 * std::f64::consts::PI);
+            let slope = kappa * air.pressure * 2.0 * s.b * s.lift_slope / (w * w + wt * wt);
+            let per_pressure = kappa * 2.0 * s.b * s.lift_slope * (w.atan2(wt) - s.alpha0);
+            // h_δ is `V² δ` times a constant at the equilibrium (δ̇ = δ̈ = 0).
+            let flap =
+                crate::model::aero::hinge_moment(&f, s.b, rho, air.speed, rest, unsteady, 0.0);
+            let per_speed = 2.0 * flap / air.speed;
+            let weight = f.coverage * s.width;
+            parts.push((
+                i,
+                weight,
+                slope * wt,
+                -slope * w,
+                per_pressure,
+                per_speed,
+                f,
+            ));
+        }
+        let mut crow = DVector::zeros(2 * n + aero.n_aero_states());
+        let mut rate_row = DVector::zeros(n);
+        for k in 0..n {
+            let dir: Vec<f64> = match aero.structure().basis() {
+                None => (0..nf).map(|j| if j == k { 1.0 } else { 0.0 }).collect(),
+                Some(phi) => phi.column(k).iter().copied().collect(),
+            };
+            let flows = |dsc: &AeroScratch<Dual64>| -> f64 {
+                parts
+                    .iter()
+                    .map(|&(i, weight, hw, ht, ..)| {
+                        weight * (hw * dsc.weff[i].eps + ht * dsc.wt[i].eps)
+                    })
+                    .sum()
+            };
+            crow[k] = flows(&self.along(&dir, false));
+            if unsteady {
+                rate_row[k] = flows(&self.along(&dir, true));
+            }
+        }
+        // ∂/∂p = ∂/∂ẋ M⁻¹ (M symmetric).
+        let chol = self
+            .mass
+            .clone()
+            .cholesky()
+            .expect("the wet mass matrix is positive definite");
+        crow.rows_mut(n, n).copy_from(&chol.solve(&rate_row));
+        if let Some(lag) = self.eval.lag() {
+            for &(i, weight, hw, ..) in &parts {
+                for k in 0..ns {
+                    crow[2 * n + i * ns + k] = weight * hw * lag.c[k];
+                }
+            }
+        }
+        let mut drow = DVector::zeros(inputs.len());
+        for (j, input) in inputs.iter().enumerate() {
+            if let Some(flaps) = self.flap_per_unit(input) {
+                // The surface's own terms for its own deflection only.
+                let unit = match input {
+                    Input::Deflection(s) if s == surface => [1.0, 0.0, 0.0],
+                    Input::DeflectionRate(s) if s == surface => [0.0, 1.0, 0.0],
+                    Input::DeflectionAcceleration(s) if s == surface => [0.0, 0.0, 1.0],
+                    _ => [0.0; 3],
+                };
+                drow[j] = parts
+                    .iter()
+                    .map(|&(i, weight, hw, _, _, _, f)| {
+                        let fa = &flaps[i];
+                        let s = &aero.strips[i];
+                        let speed = self.eval.air[i].speed;
+                        let dw = lagged * fa.upwash + (1.0 - f.coverage) * fa.covered_upwash;
+                        let own = crate::model::aero::hinge_moment(
+                            &f, s.b, rho, speed, unit, unsteady, 0.0,
+                        );
+                        weight * (hw * dw + own)
+                    })
+                    .sum();
+                continue;
+            }
+            drow[j] = parts
+                .iter()
+                .map(|&(i, weight, hw, ht, hq, hv, f)| {
+                    let Some(dw) = self.wind_of(input, i) else {
+                        return 0.0;
+                    };
+                    let d = &self.wind[i];
+                    let air = &self.eval.air[i];
+                    let m = self.eval.sc.motion[i];
+                    let t = [
+                        -(m.sin_psi * m.sin_theta),
+                        m.sin_psi * m.cos_theta,
+                        m.cos_psi,
+                    ];
+                    let dot = |v: &[f64; 3]| -> f64 { (0..3).map(|k| v[k] * dw[k]).sum() };
+                    let dv = dot(&d.speed);
+                    let dq = rho * dot(&air.wind);
+                    // The uncovered share of the flap's upwash grows with the speed as `V δ`.
+                    let dhat = lagged * dot(&d.upwash)
+                        + (1.0 - f.coverage) * air.flap.covered_upwash / air.speed * dv;
+                    let dwt = -dot(&t);
+                    weight * (hw * dhat + ht * dwt + hq * dq + hv * dv)
+                })
+                .sum();
+        }
+        (crow, drow)
     }
 
     /// The strips' summed forces along the wing frame's `y` and `z` per unit state and input,

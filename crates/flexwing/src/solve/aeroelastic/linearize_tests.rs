@@ -2,19 +2,52 @@
 //! against central differences of the non-linear right-hand side and outputs with the inputs
 //! changed where the non-linear model takes them (the flight history, the loads); the vertical
 //! momentum of the root shear against differences of positions in time; the two bases'
-//! transfer functions.
+//! transfer functions. The wing carries two control surfaces (one covering parts of its end
+//! strips), deflected at the equilibrium, so that the surfaces' inputs and hinge moments are
+//! checked with the others.
 
 use nalgebra::{Complex, DMatrix, DVector};
 
-use super::super::equations::tests::test_wing;
+use super::super::equations::tests::{test_wing, test_wing_with};
 use super::super::evaluator::AeroEvaluator;
 use super::super::flight::{FlightHistory, Gust, GustPenetration, GustShape};
 use super::*;
 use crate::beam::Profile;
+use crate::model::aero::ControlSurface;
 use crate::model::ReducedModel;
+
+/// The two surfaces of the test wing (3 m, 5 elements of 0.6 m): a flap over 0.4–1.7 m (a
+/// third of element 1 and all but a sixth of element 3), an aileron over 1.8–3 m with a hinge
+/// table; both deflected.
+fn surfaces() -> Vec<ControlSurface> {
+    let mut flap = ControlSurface::new("flap", 0.4, 1.7, 0.75);
+    flap.deflection = 0.04;
+    let mut aileron = ControlSurface::new("aileron", 1.8, 3.0, 0.8);
+    aileron.hinge = Profile::Table {
+        x: vec![0.0, 3.0],
+        value: vec![0.7, 0.8],
+    };
+    aileron.deflection = -0.02;
+    vec![flap, aileron]
+}
+
+fn surface(index: usize) -> super::super::signals::Surface {
+    super::super::signals::Surface {
+        index,
+        name: surfaces()[index].name.clone(),
+    }
+}
+
+fn flapped_wing(n: usize, aerodynamics: Aerodynamics) -> Aeroelastic {
+    test_wing_with(n, aerodynamics, surfaces())
+}
 
 fn inputs() -> Vec<Input> {
     vec![
+        Input::Deflection(surface(0)),
+        Input::DeflectionRate(surface(0)),
+        Input::DeflectionAcceleration(surface(1)),
+        Input::Deflection(surface(1)),
         Input::RootAngle,
         Input::Speed,
         Input::Gust,
@@ -38,6 +71,8 @@ fn outputs(n: usize) -> Vec<Output> {
         Output::RootShear,
         Output::TipAcceleration,
         Output::Acceleration(n - 1),
+        Output::HingeMoment(surface(0)),
+        Output::HingeMoment(surface(1)),
     ]
 }
 
@@ -64,7 +99,9 @@ fn options(basis: StateBasis, n: usize) -> LinearizeOptions {
     }
 }
 
-/// The non-linear model with input `j` changed by `h`: its equations' loads and flight.
+/// The non-linear model with input `j` changed by `h`: its equations' loads and flight. A
+/// deflection's acceleration cannot be changed alone by a time history: it is `δ = δ₀ + h cos ωt`
+/// (at t = 0 the change `h`, no rate, the acceleration `−ω² h`), `omega` its `ω`.
 struct Perturbed {
     loads: Vec<Load>,
     flight: FlightHistory,
@@ -73,8 +110,7 @@ struct Perturbed {
 fn perturbed<M: PlanarStructure>(
     aero: &Aeroelastic<M>,
     o: &LinearizeOptions,
-    j: usize,
-    h: f64,
+    (j, h, omega): (usize, f64, f64),
 ) -> Perturbed {
     let mut loads = o.loads.clone();
     let mut flight = FlightHistory::steady(o.flight);
@@ -87,14 +123,43 @@ fn perturbed<M: PlanarStructure>(
         spanwise,
         penetration: GustPenetration::Uniform,
     };
-    match o.inputs[j] {
+    fn deflect(
+        flight: &mut FlightHistory,
+        s: &super::super::signals::Surface,
+        h: f64,
+        f: TimeFunction,
+    ) {
+        flight.deflection_changes.resize(s.index + 1, None);
+        flight.deflection_changes[s.index] = Some((h, f));
+    }
+    match &o.inputs[j] {
+        Input::Deflection(s) => deflect(&mut flight, s, h, TimeFunction::Constant),
+        // h sin t: no change at t = 0, the rate h.
+        Input::DeflectionRate(s) => deflect(
+            &mut flight,
+            s,
+            h,
+            TimeFunction::Sine {
+                omega: 1.0,
+                phase: 0.0,
+            },
+        ),
+        Input::DeflectionAcceleration(s) => deflect(
+            &mut flight,
+            s,
+            h,
+            TimeFunction::Sine {
+                omega,
+                phase: 0.5 * std::f64::consts::PI,
+            },
+        ),
         Input::RootAngle => flight.initial.root_angle += h,
         Input::Speed => flight.initial.speed += h,
         Input::Gust => flight.gust = Some(gust(Profile::Uniform(1.0))),
         Input::StripGust(k) => {
             // 1 at the strip of element k, 0 at every other strip.
             let value = (1..=stations.len())
-                .map(|i| if i == k { 1.0 } else { 0.0 })
+                .map(|i| if i == *k { 1.0 } else { 0.0 })
                 .collect();
             flight.gust = Some(gust(Profile::Table {
                 x: stations.clone(),
@@ -112,11 +177,11 @@ fn perturbed<M: PlanarStructure>(
             })
         }
         Input::Force(k) => loads.push(Load::PointForce {
-            span: nodes[k],
+            span: nodes[*k],
             force: Force::Dead { fx: 0.0, fy: h },
         }),
         Input::Torque(k) => loads.push(Load::Torque {
-            span: nodes[k],
+            span: nodes[*k],
             value: h,
         }),
     }
@@ -124,15 +189,15 @@ fn perturbed<M: PlanarStructure>(
 }
 
 /// The right-hand side and the outputs of the non-linear model at state `y` (momentum basis)
-/// with input `j` changed by `h` (`None`: no change).
+/// with input `j` changed by `h` (`None`: no change; `ω` as [`perturbed`]).
 fn nonlinear<M: PlanarStructure>(
     aero: &Aeroelastic<M>,
     o: &LinearizeOptions,
     y: &[f64],
-    input: Option<(usize, f64)>,
+    input: Option<(usize, f64, f64)>,
 ) -> (Vec<f64>, Vec<f64>) {
     let p = match input {
-        Some((j, h)) => perturbed(aero, o, j, h),
+        Some(change) => perturbed(aero, o, change),
         None => Perturbed {
             loads: o.loads.clone(),
             flight: FlightHistory::steady(o.flight),
@@ -164,8 +229,12 @@ fn nonlinear<M: PlanarStructure>(
     let kin = full.kinematics(&q);
     let shape = full.shape(&q);
     let ne = full.n_elements();
-    let lift_of = |wy: f64, wz: f64| {
+    let mut hinges = Vec::new();
+    let mut lift_of = |wy: f64, wz: f64| {
         let mut ev = AeroEvaluator::new(aero);
+        let mut deflections = aero.rest_deflections();
+        p.flight.add_deflection_changes(0.0, &mut deflections);
+        ev.set_deflections(&deflections);
         let flight = &p.flight;
         // The gust and its rate (its apparent mass, uniform penetration) at every strip.
         let gust: Vec<f64> = aero
@@ -191,6 +260,7 @@ fn nonlinear<M: PlanarStructure>(
         let mut f = vec![0.0; n];
         let mut adot = vec![0.0; aero.n_aero_states()];
         ev.evaluate(x, xdot.as_slice(), &y[2 * n..], &mut f, false, &mut adot);
+        hinges = ev.hinge_moments();
         ev.sc
             .force
             .iter()
@@ -204,6 +274,8 @@ fn nonlinear<M: PlanarStructure>(
         jr.dot(&xddot)
     };
     let alpha = p.flight.root_angle(0.0);
+    let lift = lift_of(alpha.cos(), alpha.sin());
+    let lift_y = lift_of(1.0, 0.0);
     let values = o
         .outputs
         .iter()
@@ -216,7 +288,8 @@ fn nonlinear<M: PlanarStructure>(
             Output::Twist(k) => shape.twist[*k],
             Output::RootBendingMoment => full.stiffness()[0] * q[0],
             Output::RootTorque => full.stiffness()[ne] * q[ne],
-            Output::Lift => lift_of(alpha.cos(), alpha.sin()),
+            Output::Lift => lift,
+            Output::HingeMoment(s) => hinges[s.index],
             Output::TipAcceleration => accel(ne),
             Output::Acceleration(k) => accel(*k),
             Output::RootShear => {
@@ -236,7 +309,7 @@ fn nonlinear<M: PlanarStructure>(
                     })
                     .sum();
                 let lp = momentum_row(aero, x);
-                lift_of(1.0, 0.0) + gravity + applied - lp.dot(&xddot)
+                lift_y + gravity + applied - lp.dot(&xddot)
             }
         })
         .collect();
@@ -269,7 +342,7 @@ fn b_c_d_agree_with_finite_differences() {
         Aerodynamics::Wagner,
         Aerodynamics::Peters { states: 3 },
     ] {
-        let wing = test_wing(5, am);
+        let wing = flapped_wing(5, am);
         check(&wing);
         check(&wing.reduced(&[0, 1, 2, 3]).unwrap());
     }
@@ -304,19 +377,29 @@ fn check<M: PlanarStructure>(aero: &Aeroelastic<M>) {
             );
         }
     };
+    let central = |j: usize, omega: f64, h: f64| {
+        let (fp, gp) = nonlinear(aero, &o, &y0, Some((j, h, omega)));
+        let (fm, gm) = nonlinear(aero, &o, &y0, Some((j, -h, omega)));
+        let diff = |p: &[f64], m: &[f64]| -> Vec<f64> {
+            p.iter().zip(m).map(|(a, b)| (a - b) / (2.0 * h)).collect()
+        };
+        (diff(&fp, &fm), diff(&gp, &gm))
+    };
     for j in 0..o.inputs.len() {
-        let (fp, gp) = nonlinear(aero, &o, &y0, Some((j, h)));
-        let (fm, gm) = nonlinear(aero, &o, &y0, Some((j, -h)));
-        let db: Vec<f64> = fp
-            .iter()
-            .zip(&fm)
-            .map(|(a, b)| (a - b) / (2.0 * h))
-            .collect();
-        let dd: Vec<f64> = gp
-            .iter()
-            .zip(&gm)
-            .map(|(a, b)| (a - b) / (2.0 * h))
-            .collect();
+        let (db, dd) = match o.inputs[j] {
+            // `h cos ωt` changes by `B_δ − ω² B_δ̈` per unit h: ω = 1 and 2 give `B_δ̈`. The
+            // flap's apparent mass is small (its column ~1e-3 of the others): step 1e-4 keeps
+            // the round-off (~1e-16 |f|/h) below the bound; the truncation, O(h²) through the
+            // lift's atan2 of the deflection's upwash, is ~1e-8 relative.
+            Input::DeflectionAcceleration(_) => {
+                let ((b1, d1), (b2, d2)) = (central(j, 1.0, 1e-4), central(j, 2.0, 1e-4));
+                let third = |a: &[f64], b: &[f64]| -> Vec<f64> {
+                    a.iter().zip(b).map(|(x, y)| (x - y) / 3.0).collect()
+                };
+                (third(&b1, &b2), third(&d1, &d2))
+            }
+            _ => central(j, 0.0, h),
+        };
         let name = o.inputs[j].name();
         compare(&format!("B[:, {name}]"), &db, ss.b.column(j).as_slice());
         compare(&format!("D[:, {name}]"), &dd, ss.d.column(j).as_slice());
@@ -400,7 +483,7 @@ fn the_vertical_momentum_is_that_of_the_positions() {
 /// for the full and a reduced model.
 #[test]
 fn both_bases_have_one_transfer_function() {
-    let wing = test_wing(5, Aerodynamics::Peters { states: 3 });
+    let wing = flapped_wing(5, Aerodynamics::Peters { states: 3 });
     let rom: Aeroelastic<ReducedModel> = wing.reduced(&[0, 1, 2]).unwrap();
     fn transfer<M: PlanarStructure>(
         aero: &Aeroelastic<M>,
@@ -443,8 +526,8 @@ fn both_bases_have_one_transfer_function() {
 /// load; past the divergence speed the static solver finds no stable equilibrium.
 #[test]
 fn bad_requests_and_no_equilibrium() {
-    let wing = test_wing(4, Aerodynamics::Wagner);
-    let mut o = options(StateBasis::Velocities, 4);
+    let wing = flapped_wing(5, Aerodynamics::Wagner);
+    let mut o = options(StateBasis::Velocities, 5);
     o.inputs.clear();
     let e = linearize(&wing, &o, "linearize").unwrap_err();
     assert!(
@@ -452,7 +535,7 @@ fn bad_requests_and_no_equilibrium() {
             .starts_with("linearize.inputs: needs at least one"),
         "{e}"
     );
-    let mut o = options(StateBasis::Velocities, 4);
+    let mut o = options(StateBasis::Velocities, 5);
     o.flight.speed = 0.0;
     let e = linearize(&wing, &o, "aero.flight").unwrap_err();
     assert!(
@@ -460,7 +543,7 @@ fn bad_requests_and_no_equilibrium() {
             .starts_with("aero.flight.speed: must be positive"),
         "{e}"
     );
-    let mut o = options(StateBasis::Velocities, 4);
+    let mut o = options(StateBasis::Velocities, 5);
     o.loads.push(Load::PointForce {
         span: 2.0,
         force: Force::Follower {
@@ -474,8 +557,40 @@ fn bad_requests_and_no_equilibrium() {
             .starts_with("linearize.outputs: root_shear is not available"),
         "{e}"
     );
-    let mut o = options(StateBasis::Velocities, 4);
+    let mut o = options(StateBasis::Velocities, 5);
     o.flight.speed = 200.0;
     let e = linearize(&wing, &o, "linearize").unwrap_err();
     assert!(matches!(e, Error::Solve(_)), "{e:?}");
+}
+
+/// The surfaces' inputs and hinge moments add columns and rows, not dynamics: `A` is the same
+/// matrix (bit for bit) with or without them, so the poles are the flutter analysis' (tested in
+/// `tests/suite/aero_linearize.rs`); and a positive deflection (trailing edge down) raises the
+/// lift (the static gain `D − C A⁻¹ B` of `delta[flap]` on `lift` is positive).
+#[test]
+fn surface_signals_leave_a_alone_and_a_positive_deflection_raises_the_lift() {
+    let wing = flapped_wing(5, Aerodynamics::Peters { states: 3 });
+    let mut plain = options(StateBasis::Velocities, 5);
+    plain.inputs = vec![Input::Gust];
+    plain.outputs = vec![Output::Lift];
+    let with = options(StateBasis::Velocities, 5);
+    let (a, b) = (
+        linearize(&wing, &plain, "l").unwrap(),
+        linearize(&wing, &with, "l").unwrap(),
+    );
+    assert_eq!(a.a, b.a);
+    let j = with
+        .inputs
+        .iter()
+        .position(|i| *i == Input::Deflection(surface(0)))
+        .unwrap();
+    let r = with
+        .outputs
+        .iter()
+        .position(|o| *o == Output::Lift)
+        .unwrap();
+    let x = b.a.clone().lu().solve(&b.b.column(j).into_owned()).unwrap();
+    let gain = b.d[(r, j)] - (b.c.row(r) * x)[0];
+    eprintln!("static lift per rad of flap: {gain:.3} N");
+    assert!(gain > 0.0, "{gain}");
 }

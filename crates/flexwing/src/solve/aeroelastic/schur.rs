@@ -496,6 +496,7 @@ mod tests {
     fn newton_step_difference<M: AeroStructure>(aero: &Aeroelastic<M>, c: f64) -> f64 {
         let loads = AppliedLoads::none();
         let flight = FlightHistory {
+            deflection_changes: Vec::new(),
             initial: FlightCondition {
                 speed: 12.0,
                 root_angle: 0.05,

@@ -5,9 +5,20 @@
 //! at the inboard node of element `k`).
 
 use crate::error::InputError;
+use crate::model::aero::ControlSurface;
+
+/// A control surface a signal belongs to: its index among `[[aero.surfaces]]` (0-based) and its
+/// name (the signal's name carries it: `delta[aileron]`).
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct Surface {
+    /// Index of the surface (0-based, in the order of the surfaces).
+    pub index: usize,
+    /// Its name.
+    pub name: String,
+}
 
 /// An input of the linear model: a perturbation about the equilibrium's value.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub enum Input {
     /// `root_angle` (rad): the root angle of attack, a nose-up rotation of the free stream (and
     /// of gravity) in the wing's frame, as `FlightHistory`'s root angle.
@@ -28,10 +39,22 @@ pub enum Input {
     /// `torque[k]` (N·m): a torque about the span axis (nose-up) on the element inboard of node
     /// `k` (`1 … n`).
     Torque(usize),
+    /// `delta[NAME]` (rad): the deflection `δ` of the surface `NAME`, trailing edge down (it
+    /// raises the lift): its circulatory upwash `V T10 δ/π` (lagged) and the moment
+    /// `−ρb²(T4 + T10)V²δ` (docs/aeroelastic-model.md §3b).
+    Deflection(Surface),
+    /// `delta_rate[NAME]` (rad/s): the rate `δ̇`, for the upwash `b T11 δ̇/(2π)` and the
+    /// non-circulatory terms; feed it with `delta[NAME]` (`iω δ` in the frequency domain). None
+    /// with steady aerodynamics.
+    DeflectionRate(Surface),
+    /// `delta_acceleration[NAME]` (rad/s²): the acceleration `δ̈`, for the apparent-mass terms
+    /// (`−ρb³T1 δ̈` normal force); `−ω² δ` in the frequency domain. None with steady
+    /// aerodynamics.
+    DeflectionAcceleration(Surface),
 }
 
 /// An output of the linear model: a perturbation about the equilibrium's value.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub enum Output {
     /// `tip_x` (m): the tip node's spanwise position.
     TipX,
@@ -61,6 +84,11 @@ pub enum Output {
     TipAcceleration,
     /// `acceleration[k]` (m/s²): node `k`'s vertical acceleration.
     Acceleration(usize),
+    /// `hinge_moment[NAME]` (N·m): the hinge moment of the surface `NAME`, positive in the sense
+    /// of `δ` (trailing edge down): Theodorsen's deflection, flap-rate and circulatory terms over
+    /// the covered span (the terms in the structure's own rates and accelerations are not
+    /// included, docs/aeroelastic-model.md §3b).
+    HingeMoment(Surface),
 }
 
 /// The structural states of the model: velocities `(x, ẋ, a)` or momenta `(x, p, a)`.
@@ -124,21 +152,51 @@ fn index_in(inner: &str, what: &str, lo: usize, hi: usize) -> Result<usize, Stri
 /// Every name an input takes, for messages.
 pub const INPUT_NAMES: &str =
     "root_angle, speed, gust, gust[k] (strip of element k), gust_rate, force[k] and torque[k] \
-     (node k)";
+     (node k), delta[NAME], delta_rate[NAME], delta_acceleration[NAME] (surface NAME)";
 
 /// Every name an output takes, for messages.
 pub const OUTPUT_NAMES: &str = "tip_x, tip_y, tip_twist, x[k], y[k], twist[k] (node k), \
                                 root_bending_moment, root_shear, root_torque, lift, \
-                                tip_acceleration, acceleration[k]";
+                                tip_acceleration, acceleration[k], hinge_moment[NAME] (surface \
+                                NAME)";
+
+/// The surface called `inner` among `surfaces`.
+fn surface_in(inner: &str, surfaces: &[ControlSurface]) -> Result<Surface, String> {
+    match surfaces.iter().position(|s| s.name == inner) {
+        Some(index) => Ok(Surface {
+            index,
+            name: inner.to_string(),
+        }),
+        None if surfaces.is_empty() => Err(format!(
+            "there is no control surface {inner:?}: the case has no [[aero.surfaces]]"
+        )),
+        None => Err(format!(
+            "there is no control surface {inner:?}; the surfaces are {}",
+            surfaces
+                .iter()
+                .map(|s| s.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+    }
+}
 
 impl Input {
-    /// The input called `name` on a chain of `n` elements (`torsion`: with twist); errors name
-    /// `field`.
+    /// The input called `name` on a chain of `n` elements (`torsion`: with twist) with the
+    /// control surfaces `surfaces`; errors name `field`.
     ///
     /// # Errors
-    /// An unknown name, an index out of range, a torque on a bending-only beam.
-    pub fn parse(name: &str, n: usize, torsion: bool, field: &str) -> Result<Self, InputError> {
+    /// An unknown name, an index out of range, a torque on a bending-only beam, a surface the
+    /// wing does not have.
+    pub fn parse(
+        name: &str,
+        n: usize,
+        torsion: bool,
+        surfaces: &[ControlSurface],
+        field: &str,
+    ) -> Result<Self, InputError> {
         let error = |reason: String| InputError::new(field, reason);
+        let surface = |i: &str| surface_in(i, surfaces).map_err(error);
         let input = match (name, indexed(name)) {
             ("root_angle", _) => Input::RootAngle,
             ("speed", _) => Input::Speed,
@@ -149,6 +207,9 @@ impl Input {
             }
             (_, Some(("force", i))) => Input::Force(index_in(i, "node", 1, n).map_err(error)?),
             (_, Some(("torque", i))) => Input::Torque(index_in(i, "node", 1, n).map_err(error)?),
+            (_, Some(("delta", i))) => Input::Deflection(surface(i)?),
+            (_, Some(("delta_rate", i))) => Input::DeflectionRate(surface(i)?),
+            (_, Some(("delta_acceleration", i))) => Input::DeflectionAcceleration(surface(i)?),
             _ => {
                 return Err(error(format!(
                     "unknown input {name:?}; the inputs are {INPUT_NAMES}"
@@ -173,6 +234,9 @@ impl Input {
             Input::GustRate => "gust_rate".into(),
             Input::Force(k) => format!("force[{k}]"),
             Input::Torque(k) => format!("torque[{k}]"),
+            Input::Deflection(s) => format!("delta[{}]", s.name),
+            Input::DeflectionRate(s) => format!("delta_rate[{}]", s.name),
+            Input::DeflectionAcceleration(s) => format!("delta_acceleration[{}]", s.name),
         }
     }
 
@@ -184,6 +248,9 @@ impl Input {
             Input::GustRate => "m/s²",
             Input::Force(_) => "N",
             Input::Torque(_) => "N·m",
+            Input::Deflection(_) => "rad",
+            Input::DeflectionRate(_) => "rad/s",
+            Input::DeflectionAcceleration(_) => "rad/s²",
         }
     }
 
@@ -201,6 +268,16 @@ impl Input {
             Input::Torque(k) => {
                 format!("torque about the span axis (nose-up) on the element inboard of node {k}")
             }
+            Input::Deflection(s) => {
+                format!(
+                    "deflection of control surface {} (trailing edge down)",
+                    s.name
+                )
+            }
+            Input::DeflectionRate(s) => format!("rate of deflection of control surface {}", s.name),
+            Input::DeflectionAcceleration(s) => {
+                format!("acceleration of deflection of control surface {}", s.name)
+            }
         }
     }
 
@@ -214,12 +291,19 @@ impl Input {
 }
 
 impl Output {
-    /// The output called `name` on a chain of `n` elements (`torsion`: with twist); errors name
-    /// `field`.
+    /// The output called `name` on a chain of `n` elements (`torsion`: with twist) with the
+    /// control surfaces `surfaces`; errors name `field`.
     ///
     /// # Errors
-    /// An unknown name, an index out of range, a twist or torque of a bending-only beam.
-    pub fn parse(name: &str, n: usize, torsion: bool, field: &str) -> Result<Self, InputError> {
+    /// An unknown name, an index out of range, a twist or torque of a bending-only beam, a
+    /// surface the wing does not have.
+    pub fn parse(
+        name: &str,
+        n: usize,
+        torsion: bool,
+        surfaces: &[ControlSurface],
+        field: &str,
+    ) -> Result<Self, InputError> {
         let error = |reason: String| InputError::new(field, reason);
         let node = |i: &str| index_in(i, "node", 0, n).map_err(error);
         let output = match (name, indexed(name)) {
@@ -235,6 +319,9 @@ impl Output {
             (_, Some(("y", i))) => Output::Y(node(i)?),
             (_, Some(("twist", i))) => Output::Twist(node(i)?),
             (_, Some(("acceleration", i))) => Output::Acceleration(node(i)?),
+            (_, Some(("hinge_moment", i))) => {
+                Output::HingeMoment(surface_in(i, surfaces).map_err(error)?)
+            }
             _ => {
                 return Err(error(format!(
                     "unknown output {name:?}; the outputs are {OUTPUT_NAMES}"
@@ -266,6 +353,7 @@ impl Output {
             Output::Lift => "lift".into(),
             Output::TipAcceleration => "tip_acceleration".into(),
             Output::Acceleration(k) => format!("acceleration[{k}]"),
+            Output::HingeMoment(s) => format!("hinge_moment[{}]", s.name),
         }
     }
 
@@ -274,7 +362,7 @@ impl Output {
         match self {
             Output::TipX | Output::TipY | Output::X(_) | Output::Y(_) => "m",
             Output::TipTwist | Output::Twist(_) => "rad",
-            Output::RootBendingMoment | Output::RootTorque => "N·m",
+            Output::RootBendingMoment | Output::RootTorque | Output::HingeMoment(_) => "N·m",
             Output::RootShear | Output::Lift => "N",
             Output::TipAcceleration | Output::Acceleration(_) => "m/s²",
         }
@@ -295,6 +383,12 @@ impl Output {
             Output::Lift => "total aerodynamic force along the ground's vertical".into(),
             Output::TipAcceleration => "tip node's vertical acceleration".into(),
             Output::Acceleration(k) => format!("node {k}'s vertical acceleration"),
+            Output::HingeMoment(s) => {
+                format!(
+                    "hinge moment of control surface {} (trailing edge down)",
+                    s.name
+                )
+            }
         }
     }
 
@@ -313,6 +407,10 @@ mod tests {
 
     #[test]
     fn names_round_trip_and_errors_name_the_field() {
+        let surfaces = [
+            ControlSurface::new("flap", 0.0, 1.0, 0.8),
+            ControlSurface::new("aileron", 1.0, 2.0, 0.75),
+        ];
         for name in [
             "root_angle",
             "speed",
@@ -321,8 +419,12 @@ mod tests {
             "gust_rate",
             "force[4]",
             "torque[1]",
+            "delta[aileron]",
+            "delta_rate[flap]",
+            "delta_acceleration[aileron]",
         ] {
-            assert_eq!(Input::parse(name, 4, true, "i").unwrap().name(), name);
+            let input = Input::parse(name, 4, true, &surfaces, "i").unwrap();
+            assert_eq!(input.name(), name);
         }
         for name in [
             "tip_x",
@@ -337,33 +439,43 @@ mod tests {
             "lift",
             "tip_acceleration",
             "acceleration[3]",
+            "hinge_moment[flap]",
         ] {
-            assert_eq!(Output::parse(name, 4, true, "o").unwrap().name(), name);
+            let output = Output::parse(name, 4, true, &surfaces, "o").unwrap();
+            assert_eq!(output.name(), name);
         }
         let cases = [
             (
-                Input::parse("gusts", 4, true, "linearize.inputs[1]").unwrap_err(),
+                Input::parse("gusts", 4, true, &[], "linearize.inputs[1]").unwrap_err(),
                 "linearize.inputs[1]: unknown input \"gusts\"; the inputs are root_angle",
             ),
             (
-                Input::parse("force[5]", 4, true, "i").unwrap_err(),
+                Input::parse("force[5]", 4, true, &[], "i").unwrap_err(),
                 "i: node 5 is out of range: 1 to 4",
             ),
             (
-                Input::parse("gust[0]", 4, true, "i").unwrap_err(),
+                Input::parse("gust[0]", 4, true, &[], "i").unwrap_err(),
                 "i: element 0 is out of range: 1 to 4",
             ),
             (
-                Input::parse("torque[2]", 4, false, "i").unwrap_err(),
+                Input::parse("torque[2]", 4, false, &[], "i").unwrap_err(),
                 "i: a torque input needs torsion",
             ),
             (
-                Output::parse("y[x]", 4, true, "o").unwrap_err(),
+                Output::parse("y[x]", 4, true, &[], "o").unwrap_err(),
                 "o: \"x\" is not a node number",
             ),
             (
-                Output::parse("tip_twist", 4, false, "o").unwrap_err(),
+                Output::parse("tip_twist", 4, false, &[], "o").unwrap_err(),
                 "o: tip_twist needs torsion",
+            ),
+            (
+                Input::parse("delta[rudder]", 4, true, &surfaces, "i").unwrap_err(),
+                "i: there is no control surface \"rudder\"; the surfaces are flap, aileron",
+            ),
+            (
+                Output::parse("hinge_moment[flap]", 4, true, &[], "o").unwrap_err(),
+                "o: there is no control surface \"flap\": the case has no [[aero.surfaces]]",
             ),
         ];
         for (e, expected) in cases {
