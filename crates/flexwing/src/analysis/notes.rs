@@ -67,6 +67,18 @@ pub enum Note {
         /// The speed of the equilibrium (m/s).
         speed: f64,
     },
+    /// The power spectrum of an output in turbulence falls no faster than `1/ω` at high
+    /// frequency (`Φ_y ∝ ω^slope` beyond every pole): its variance diverges with the cut-off (an output
+    /// with a direct feed-through of the gust's rate, whose variance is infinite in von Kármán
+    /// and Dryden turbulence); its RMS is the part below `max_frequency`.
+    VarianceDiverges {
+        /// The output's name.
+        output: String,
+        /// The exponent `p` of `Φ_y ∝ ω^p` at high frequency.
+        slope: f64,
+        /// The cut-off (rad/s).
+        max_frequency: f64,
+    },
     /// A flutter analysis of the planar chain about an equilibrium whose tip is deflected by at
     /// least [`PLANAR_DEFLECTION_NOTE`] of the span: the planar chain bends in one plane and
     /// cannot couple torsion with lag through the flap deflection, and its flutter speed stays
@@ -232,6 +244,19 @@ impl fmt::Display for Note {
                 short(*speed),
                 short(*tip_deflection),
                 100.0 * tip_deflection / span,
+            ),
+            Note::VarianceDiverges {
+                output,
+                slope,
+                max_frequency,
+            } => write!(
+                f,
+                "the power spectrum of {output} falls as ω^{} at high frequency, no faster \
+                 than 1/ω: its variance diverges with the cut-off (the gust's rate feeds \
+                 through, and its variance is infinite in this turbulence); its RMS is the part \
+                 below max_frequency = {} rad/s",
+                crate::text::significant(*slope, 3),
+                short(*max_frequency)
             ),
         }
     }

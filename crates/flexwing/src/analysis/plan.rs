@@ -12,6 +12,7 @@ use super::aero::gust_family::{self, GustFamilyOutcome, GustFamilyPlan};
 use super::aero::linearize::{self, LinearizeOutcome, LinearizePlan};
 use super::aero::response::{self, AeroDynamicOutcome, AeroDynamicPlan};
 use super::aero::statics::{self as aero_statics, AeroStaticOutcome, AeroStaticPlan};
+use super::aero::turbulence::{self, TurbulenceOutcome, TurbulencePlan};
 use super::chain3d::{self, Chain3dOutcome, Chain3dPlan};
 use super::dynamics::{self, DynamicOutcome, DynamicPlan};
 use super::modes::{self, ModesOutcome, ModesPlan};
@@ -43,6 +44,8 @@ pub enum Plan {
     GustFamily(GustFamilyPlan),
     /// Linear state-space models about the static aeroelastic equilibrium.
     Linearize(LinearizePlan),
+    /// Output spectra and RMS in continuous turbulence, through the linear model.
+    Turbulence(TurbulencePlan),
     /// An analysis of the 3-D chain (modes, statics, flutter, the study against a load).
     Chain3d(Chain3dPlan),
 }
@@ -68,13 +71,15 @@ pub enum Outcome {
     GustFamily(GustFamilyOutcome),
     /// Linear state-space models.
     Linearize(LinearizeOutcome),
+    /// Output spectra and RMS in continuous turbulence.
+    Turbulence(TurbulenceOutcome),
     /// An analysis of the 3-D chain.
     Chain3d(Chain3dOutcome),
 }
 
 impl Plan {
-    /// `modes`, `static`, `dynamic`, `aero-static`, `flutter`, `aero-dynamic`, `gust-family` or
-    /// `linearize` (the 3-D chain's: [`Chain3dPlan::name`]).
+    /// `modes`, `static`, `dynamic`, `aero-static`, `flutter`, `aero-dynamic`, `gust-family`,
+    /// `linearize` or `turbulence` (the 3-D chain's: [`Chain3dPlan::name`]).
     pub fn name(&self) -> &'static str {
         match self {
             Plan::Modes(_) => "modes",
@@ -85,6 +90,7 @@ impl Plan {
             Plan::AeroDynamic(_) => "aero-dynamic",
             Plan::GustFamily(_) => "gust-family",
             Plan::Linearize(_) => "linearize",
+            Plan::Turbulence(_) => "turbulence",
             Plan::Chain3d(p) => p.name(),
         }
     }
@@ -100,6 +106,7 @@ impl Plan {
             Plan::AeroDynamic(p) => &p.structure.model,
             Plan::GustFamily(p) => &p.response.structure.model,
             Plan::Linearize(p) => &p.model,
+            Plan::Turbulence(p) => &p.linearize.model,
             Plan::Chain3d(_) => return None,
         })
     }
@@ -110,7 +117,11 @@ impl Plan {
     pub fn checks_seldom(&self) -> bool {
         matches!(
             self,
-            Plan::Static(_) | Plan::AeroStatic(_) | Plan::Flutter(_) | Plan::Linearize(_)
+            Plan::Static(_)
+                | Plan::AeroStatic(_)
+                | Plan::Flutter(_)
+                | Plan::Linearize(_)
+                | Plan::Turbulence(_)
         ) || matches!(self, Plan::Chain3d(p) if !matches!(p.analysis, chain3d::Analysis3d::Dynamic(_)))
     }
 }
@@ -131,6 +142,7 @@ pub fn run(plan: &Plan, progress: &mut dyn Progress) -> Result<Outcome, Error> {
         Plan::AeroDynamic(p) => Outcome::AeroDynamic(response::run(p, progress)?),
         Plan::GustFamily(p) => Outcome::GustFamily(gust_family::run(p, progress)?),
         Plan::Linearize(p) => Outcome::Linearize(linearize::run(p, progress)?),
+        Plan::Turbulence(p) => Outcome::Turbulence(turbulence::run(p, progress)?),
         Plan::Chain3d(p) => Outcome::Chain3d(chain3d::run(p, progress)?),
     })
 }
@@ -180,6 +192,11 @@ impl Outcome {
                 .map(|(kind, status)| entry(kind, status))
                 .collect(),
             Outcome::Linearize(o) => o.runs.iter().map(|r| entry(&r.kind, &r.status)).collect(),
+            Outcome::Turbulence(o) => o
+                .runs
+                .iter()
+                .map(|r| entry(&r.linear.kind, &r.status))
+                .collect(),
             Outcome::Flutter(o) => o
                 .runs
                 .iter()
@@ -230,6 +247,11 @@ impl Outcome {
             Outcome::Dynamic(o) => o.runs.iter().flat_map(|r| of(&r.kind, &r.notes)).collect(),
             Outcome::Flutter(o) => o.runs.iter().flat_map(|r| of(&r.kind, &r.notes)).collect(),
             Outcome::Linearize(o) => o.runs.iter().flat_map(|r| of(&r.kind, &r.notes)).collect(),
+            Outcome::Turbulence(o) => o
+                .runs
+                .iter()
+                .flat_map(|r| of(&r.linear.kind, &r.notes))
+                .collect(),
             Outcome::Chain3d(o) => o.notes().into_iter().map(|n| ("full".into(), n)).collect(),
             _ => Vec::new(),
         }

@@ -194,6 +194,19 @@ pub enum Stop {
         #[cfg_attr(feature = "serde", serde(serialize_with = "ser::described"))]
         error: SolveError,
     },
+    /// The linear model of a turbulence analysis at `speed` (m/s) has `count` unstable poles
+    /// (past the flutter speed): its response to turbulence is not stationary, it has no
+    /// spectra.
+    TurbulenceUnstable {
+        /// How many poles have a positive real part.
+        count: usize,
+        /// The largest real part (1/s).
+        real: f64,
+        /// Its frequency `|Im s|` (rad/s).
+        frequency: f64,
+        /// The speed (m/s).
+        speed: f64,
+    },
     /// The flutter analysis lost a branch between `from` and `speed` (m/s), or (`branch:
     /// None`) needed more sub-steps than its cap there
     /// ([`crate::solve::aeroelastic::FlutterStop::BranchLost`]); its data up to there are kept.
@@ -300,6 +313,21 @@ impl fmt::Display for Stop {
                 "{field} = {} m/s: no stable static equilibrium to linearize about (past the \
                  divergence speed, or the static solver failed): {error}",
                 short(*speed)
+            ),
+            Stop::TurbulenceUnstable {
+                count,
+                real,
+                frequency,
+                speed,
+            } => write!(
+                f,
+                "the linear model at {} m/s has {count} unstable pole{} (the largest real part \
+                 {} 1/s at {} rad/s: past the flutter speed): its response to turbulence is not \
+                 stationary and has no spectra",
+                short(*speed),
+                if *count == 1 { "" } else { "s" },
+                short(*real),
+                short(*frequency)
             ),
             Stop::FlutterBranchLost {
                 branch,

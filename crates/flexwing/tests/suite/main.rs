@@ -17,6 +17,7 @@ mod aero_reduced;
 mod aero_response;
 mod aero_statics;
 mod aero_surfaces;
+mod aero_turbulence;
 mod aero_typical_section;
 mod architecture;
 mod bad_input;

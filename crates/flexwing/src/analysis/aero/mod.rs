@@ -25,6 +25,7 @@ pub mod linearize;
 pub mod response;
 pub mod statics;
 pub mod stepper;
+pub mod turbulence;
 
 use crate::error::{Error, InputError};
 use crate::model::aero::{AeroSection, Aerodynamics, Aeroelastic};

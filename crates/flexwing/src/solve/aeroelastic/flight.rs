@@ -25,6 +25,10 @@ pub enum GustShape {
     /// The time factor `f(t)` of a time function (a sine, a step, a ramp, a table), whatever the
     /// speed: harmonic gusts for frequency responses, the histories a stepper or an FMU sets.
     History(TimeFunction),
+    /// A seeded realization of continuous turbulence (m/s; the gust's `amplitude` scales it,
+    /// 1 for the realization as drawn), from `start` on, periodic
+    /// ([`super::turbulence::Realization`]).
+    Turbulence(Box<super::turbulence::Realization>),
 }
 
 /// How a gust front meets a section (docs/aeroelastic-model.md §3a).
@@ -106,6 +110,7 @@ impl Gust {
         match &self.shape {
             GustShape::SharpEdged => 0.0,
             GustShape::History(f) => time_function_rate(f, t),
+            GustShape::Turbulence(r) => r.value_and_rate(tau).1,
             GustShape::OneMinusCosine { length } => {
                 let x = tau * u0 / length;
                 if (0.0..=1.0).contains(&x) {
@@ -176,7 +181,7 @@ impl Gust {
             }
             GustShape::History(TimeFunction::Constant) => kussner_fit(u0 * tau / b),
             // Refused by `FlightHistory::validate`.
-            GustShape::History(_) => f64::NAN,
+            GustShape::History(_) | GustShape::Turbulence(_) => f64::NAN,
         }
     }
 
@@ -194,6 +199,13 @@ impl Gust {
             GustShape::History(f) => {
                 if tau >= 0.0 {
                     f.at(t)
+                } else {
+                    0.0
+                }
+            }
+            GustShape::Turbulence(r) => {
+                if tau >= 0.0 {
+                    r.value_and_rate(tau).0
                 } else {
                     0.0
                 }
@@ -378,11 +390,13 @@ impl FlightHistory {
                     GustShape::History(f) => {
                         matches!(f, TimeFunction::Sine { .. } | TimeFunction::Constant)
                     }
+                    GustShape::Turbulence(_) => false,
                 };
                 if !closed_form {
                     return Err(InputError::new(
                         format!("{field}.gust.penetration"),
-                        "\"kussner\" takes a sharp-edged, 1−cos, sine or constant gust",
+                        "\"kussner\" takes a sharp-edged, 1−cos, sine or constant gust, not a \
+                         turbulence realization",
                     ));
                 }
                 if !(self.initial.speed > 0.0) {

@@ -21,11 +21,13 @@
 //!
 //! **RMS.** The variance `∫₀^∞ Φ_y dω` by the trapezoidal rule in the variable of
 //! [`FrequencyGrid::nodes`] (a logarithmic grid with a cluster per lightly damped pole), plus `ω_min Φ_y(ω_min)` below the grid (both spectra are flat there) and
-//! the tail above `ω_max` from the local slope `Φ_y ∝ ω^p` between `ω_max` and `2 ω_max`:
-//! `ω_max Φ_y(ω_max)/(−p − 1)` if `p < −1`, else the variance diverges (an output with a direct
-//! feed-through of the gust rate, whose variance is infinite for both spectra) and only the part
-//! below `ω_max` is given, flagged. The quadrature error is estimated as `|T_h − T_2h|/3` (the
-//! trapezoidal rule on every other node), plus the low-end rectangle's `ω_min |ΔΦ_y|`.
+//! the tail above `ω_max` from the asymptotic slope `Φ_y ∝ ω^p`, measured between `ω_f` and
+//! `2 ω_f` beyond every pole (`ω_f = max(2 ω_max, 4 max |λ|)`, so that a resonance just above
+//! the cut-off does not pass for a divergence): `ω_max Φ_y(ω_max)/(−p − 1)` if `p < −1`, else
+//! the variance diverges (an output with a direct feed-through of the gust rate, whose variance
+//! is infinite for both spectra) and only the part below `ω_max` is given, flagged. The
+//! quadrature error is estimated as `|T_h − T_2h|/3` (the trapezoidal rule on every other node),
+//! plus the low-end rectangle's `ω_min |ΔΦ_y|`, plus the whole tail (a model, not a quadrature).
 //!
 //! **Realizations.** A stationary Gaussian process of period `T` with the spectrum sampled at
 //! the lines `ω_k = 2πk/T ≤ ω_max`: `w(t) = Σ_k a_k cos ω_k t + b_k sin ω_k t` with `a_k, b_k`
@@ -449,7 +451,9 @@ pub struct GustSpectra {
     /// Each output's variance above `max_frequency` included in `rms` (unit²); `None` where the
     /// variance diverges with the cut-off (`rms` is then the part below it).
     pub tail: Vec<Option<f64>>,
-    /// The exponent `p` of `Φ_y ∝ ω^p` at the cut-off, per output.
+    /// The asymptotic exponent `p` of `Φ_y ∝ ω^p`, per output, measured beyond every pole
+    /// (`4 max |λ|`): `−5/3` (von Kármán) or `−2` (Dryden) for an output that follows the gust,
+    /// steeper for one that filters it, above `−1` where the gust's rate feeds through.
     pub tail_slope: Vec<f64>,
     /// The gust's RMS over the same grid and tails (m/s): `σ_w` up to the quadrature error.
     pub gust_rms: f64,
@@ -483,17 +487,28 @@ pub fn gust_spectra(
             psd[k].push(hk.norm_sqr() * pw);
         }
     }
-    // The tail's slope between ω_max and 2 ω_max.
+    // The asymptotic slope, between ω_far and 2 ω_far beyond every pole (a resonance just
+    // above ω_max would make a local slope meaningless).
     let top = grid.max_frequency;
-    response.at(2.0 * top, &mut h);
-    let above: Vec<f64> = h
+    let far = poles
         .iter()
-        .map(|hk| hk.norm_sqr() * turbulence.psd(2.0 * top, speed))
+        .map(|p| p.norm())
+        .fold(2.0 * top, |a, b| a.max(4.0 * b));
+    response.at(far, &mut h);
+    let at_far: Vec<f64> = h
+        .iter()
+        .map(|hk| hk.norm_sqr() * turbulence.psd(far, speed))
+        .collect();
+    response.at(2.0 * far, &mut h);
+    let slopes: Vec<f64> = h
+        .iter()
+        .zip(&at_far)
+        .map(|(hk, &f)| local_slope(f, hk.norm_sqr() * turbulence.psd(2.0 * far, speed)))
         .collect();
     let (mut rms, mut variance_error, mut tail, mut tail_slope) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for (k, phi) in psd.iter().enumerate() {
-        let v = variance(&frequencies, &jacobian, phi, above[k]);
+        let v = variance(&frequencies, &jacobian, phi, slopes[k]);
         rms.push(v.variance.max(0.0).sqrt());
         variance_error.push(v.error);
         tail.push(v.tail);
@@ -503,7 +518,7 @@ pub fn gust_spectra(
         &frequencies,
         &jacobian,
         &gust_psd,
-        turbulence.psd(2.0 * top, speed),
+        local_slope(turbulence.psd(far, speed), turbulence.psd(2.0 * far, speed)),
     );
     Ok(GustSpectra {
         frequencies,
@@ -525,9 +540,18 @@ struct Variance {
     slope: f64,
 }
 
-/// `∫₀^∞ Φ dω` from `Φ` at the nodes `w` (evenly spaced in `s`, `dω/ds` = `jacobian`) and its
-/// value `above` at `2 w_last`.
-fn variance(w: &[f64], jacobian: &[f64], phi: &[f64], above: f64) -> Variance {
+/// The exponent `p` of `Φ ∝ ω^p` from `Φ` at `ω` and `2ω` (`−∞` where either is zero).
+fn local_slope(at: f64, above: f64) -> f64 {
+    if at > 0.0 && above > 0.0 {
+        (above / at).ln() / 2f64.ln()
+    } else {
+        f64::NEG_INFINITY
+    }
+}
+
+/// `∫₀^∞ Φ dω` from `Φ` at the nodes `w` (evenly spaced in `s`, `dω/ds` = `jacobian`) and the
+/// asymptotic exponent `slope` of `Φ ∝ ω^slope`.
+fn variance(w: &[f64], jacobian: &[f64], phi: &[f64], slope: f64) -> Variance {
     let n = w.len();
     // The trapezoidal rule in s with spacing `step` (the last interval shorter if need be).
     let trapezoid = |step: usize| -> f64 {
@@ -547,11 +571,6 @@ fn variance(w: &[f64], jacobian: &[f64], phi: &[f64], above: f64) -> Variance {
     let low = w[0] * phi[0];
     let low_error = w[0] * (phi[1] - phi[0]).abs();
     let last = phi[n - 1];
-    let slope = if last > 0.0 && above > 0.0 {
-        (above / last).ln() / 2f64.ln()
-    } else {
-        f64::NEG_INFINITY
-    };
     let tail = if last == 0.0 {
         Some(0.0)
     } else if slope < -1.0 {
@@ -561,7 +580,8 @@ fn variance(w: &[f64], jacobian: &[f64], phi: &[f64], above: f64) -> Variance {
     };
     Variance {
         variance: low + fine + tail.unwrap_or(0.0),
-        error: (fine - coarse).abs() / 3.0 + low_error,
+        // The tail is a model (the asymptotic slope from ω_max on): counted whole as error.
+        error: (fine - coarse).abs() / 3.0 + low_error + tail.unwrap_or(0.0),
         tail,
         slope,
     }
