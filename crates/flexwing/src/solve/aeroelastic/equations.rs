@@ -221,9 +221,24 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         v
     }
 
-    /// Energies of `(x, p)`: kinetic (structure and fluid), strain (J).
+    /// Energies of `(x, p)`: kinetic (structure and fluid), strain (J). The velocity solve uses
+    /// the workspace of [`Self::vertical_aerodynamic_force_at`], so that a sample's force and
+    /// energies configure a reduced model once (its cache holds the last configuration).
     pub fn energies(&mut self, y: &[f64]) -> (f64, f64) {
-        self.structural.energies(&y[..2 * self.n])
+        let n = self.n;
+        let (x, p) = (&y[..n], &y[n..2 * n]);
+        let mut xdot = std::mem::take(&mut self.xdot);
+        let ok = self
+            .aero
+            .structure()
+            .velocities_into(x, p, &mut self.ws, &mut xdot);
+        let kinetic = if ok {
+            0.5 * p.iter().zip(&xdot).map(|(a, b)| a * b).sum::<f64>()
+        } else {
+            f64::NAN
+        };
+        self.xdot = xdot;
+        (kinetic, self.structural.strain_energy(x))
     }
 
     /// The steady lag states for the upwash of the configuration `x` at rest at time `t`:

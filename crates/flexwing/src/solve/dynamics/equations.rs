@@ -434,8 +434,14 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
         let (x, p) = (&y[..n], &y[n..2 * n]);
         self.solve_velocities(x, p);
         let kinetic = 0.5 * p.iter().zip(&self.xdot).map(|(a, b)| a * b).sum::<f64>();
-        let strain = 0.5 * (0..n).map(|i| x[i] * self.k.row_dot(i, x)).sum::<f64>();
-        (kinetic, strain)
+        (kinetic, self.strain_energy(x))
+    }
+
+    /// The strain energy `½ xᵀ K x` of the coordinates `x` (J).
+    pub fn strain_energy(&self, x: &[f64]) -> f64 {
+        0.5 * (0..self.n)
+            .map(|i| x[i] * self.k.row_dot(i, x))
+            .sum::<f64>()
     }
 
     /// `ẋ = M(x)⁻¹ p` into `self.xdot` (NaN if `M(x)` is not positive definite); false if
