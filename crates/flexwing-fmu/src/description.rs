@@ -199,6 +199,24 @@ fn guid(parts: &[&str]) -> String {
     )
 }
 
+/// Whether `name` is a legal FMI 2.0 structured name of the forms the signals take: an identifier
+/// (`[A-Za-z_][A-Za-z0-9_]*`), optionally with one unsigned integer index (`x[12]`).
+fn structured(name: &str) -> bool {
+    let (base, index) = match name.split_once('[') {
+        Some((b, rest)) => match rest.strip_suffix(']') {
+            Some(i) => (b, Some(i)),
+            None => return false,
+        },
+        None => (name, None),
+    };
+    let mut chars = base.chars();
+    chars
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+        && index.is_none_or(|i| !i.is_empty() && i.chars().all(|c| c.is_ascii_digit()))
+}
+
 /// What a model description says of the run.
 pub struct Header<'a> {
     /// `modelName`.
@@ -292,6 +310,18 @@ pub fn model_description(
             xml(name)
         );
     }
+    // FMI 2.0's structured names take integer array indices only (`force[3]`); a surface's
+    // `delta[aileron]` is a legal flat name (any string), so the convention follows the names.
+    let convention = if inputs
+        .iter()
+        .map(|(i, _)| i.name())
+        .chain(outputs.iter().map(Output::name))
+        .all(|n| structured(&n))
+    {
+        "structured"
+    } else {
+        "flat"
+    };
     let unknowns: String = (first_output..first_output + outputs.len())
         .map(|i| format!("      <Unknown index=\"{i}\"/>\n"))
         .collect();
@@ -299,7 +329,7 @@ pub fn model_description(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n\
          <fmiModelDescription fmiVersion=\"2.0\" modelName=\"{name}\" guid=\"{guid}\" \
          description=\"{description}\" generationTool=\"flexwing {version}\" \
-         variableNamingConvention=\"structured\" numberOfEventIndicators=\"0\">\n  \
+         variableNamingConvention=\"{convention}\" numberOfEventIndicators=\"0\">\n  \
          <CoSimulation modelIdentifier=\"{MODEL_IDENTIFIER}\" \
          canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"false\" \
          canRunAsynchronuously=\"false\" canBeInstantiatedOnlyOncePerProcess=\"false\" \
@@ -445,6 +475,26 @@ pub fn write_fmu(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The structured names FMI 2.0 allows (its grammar, §2.2.9: an identifier with integer
+    /// indices) against the signals' names: a surface's name in brackets is not one.
+    #[test]
+    fn structured_names_are_identifiers_with_integer_indices() {
+        for name in ["tip_y", "force[12]", "x[0]", "_a1"] {
+            assert!(structured(name), "{name}");
+        }
+        for name in [
+            "delta[aileron]",
+            "hinge_moment[flap]",
+            "x[]",
+            "1x",
+            "x[1",
+            "a-b",
+            "",
+        ] {
+            assert!(!structured(name), "{name}");
+        }
+    }
 
     #[test]
     fn every_signal_unit_has_an_fmi_definition() {

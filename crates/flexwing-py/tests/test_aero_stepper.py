@@ -85,3 +85,60 @@ def test_inputs_move_the_wing_and_errors_name_what_is_wrong(gust_case):
         assert message in str(e.value), str(e.value)
     # A failed call leaves the stepper as it was.
     assert stepper.t == t and stepper.inputs == {"gust": 1.0, "force[16]": 10.0}
+
+
+def aileron_case(speed, deflection, dynamic=True):
+    """examples/patil_aileron.toml at one speed, Wagner's lag, the aileron at `deflection`."""
+    d = flexwing.Case.load(example("patil_aileron.toml")).to_dict()
+    d["aero"].pop("sweep")
+    d["aero"]["aerodynamics"] = {"model": "wagner"}
+    d["aero"]["surfaces"][1]["deflection"] = deflection
+    d["aero"]["flight"] = {"speed": speed}
+    if dynamic:
+        d["dynamic"] = {"end_time": 1.0, "output_step": 0.01, "rtol": 1e-8, "atol": 1e-10}
+    return d
+
+
+def test_a_stepped_deflection_settles_at_the_static_equilibrium_of_flexwing_static(cli, tmp_path):
+    """`delta[aileron]` as a stepper input: from the undeflected equilibrium, the aileron
+    ramped to 0.02 rad over 0.1 s (linear hold) and held; after 20 s the outputs are those of
+    `flexwing static` with `deflection = 0.02` (the CLI, steady aerodynamics: the steady state
+    of every model). The wing's slowest pole at 10 m/s (an overdamped bending mode, from the
+    linear model) sets what is left of the transient: the bound is 10 e^{Re(p) T} of each
+    output's change plus 100 times the integration tolerance."""
+    speed, delta, end = 10.0, 0.02, 20.0
+    static = aileron_case(speed, delta, dynamic=False)
+    static["aero"]["sweep"] = {"speeds": [speed]}
+    path = tmp_path / "static.toml"
+    path.write_text(flexwing.Case(static).to_toml())
+    point = run_cli(cli, "static", path, tmp_path / "out")
+    case = flexwing.Case(aileron_case(speed, 0.0))
+    outputs = ["tip_y", "tip_twist", "lift", "hinge_moment[aileron]"]
+    stepper = case.stepper(inputs=["delta[aileron]"], outputs=outputs)
+    assert stepper.input_names == ["delta[aileron]"]
+    assert stepper.units["delta[aileron]"] == "rad"
+    assert stepper.units["hinge_moment[aileron]"] == "N·m"
+    assert stepper.inputs == {"delta[aileron]": 0.0}
+    before = stepper.outputs
+    stepper.step(0.1, {"delta[aileron]": delta})
+    while stepper.t < end - 1e-9:
+        stepper.step(0.25)
+    after = stepper.outputs
+    assert stepper.status["status"] == "complete"
+    slowest = max(p.real for p in case.linearize(inputs=["root_angle"]).runs[0].poles)
+    assert slowest < 0.0
+    decay = 10.0 * math.exp(slowest * end)
+    p = point["models"][0]["points"][0]
+    hinge = next(h for h in point["models"][0]["hinge_moments"] if h["surface"] == "aileron")
+    expected = {
+        "tip_y": p["tip_y_m"],
+        "tip_twist": p["tip_twist_rad"],
+        "lift": p["lift_n"],
+        "hinge_moment[aileron]": hinge["hinge_moment_n_m"],
+    }
+    # TE down raises the lift (one sign of the convention).
+    assert after["lift"] > before["lift"] + 0.5 * abs(expected["lift"])
+    for key in outputs:
+        change = abs(expected[key] - before[key])
+        bound = decay * change + 1e-6 * max(abs(expected[key]), change)
+        assert abs(after[key] - expected[key]) < bound, (key, after[key], expected[key], bound)

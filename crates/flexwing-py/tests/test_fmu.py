@@ -287,3 +287,45 @@ def test_calls_out_of_order_are_errors_and_the_host_survives(gust_fmu):
     assert "AFTER RESET True" in out
     assert out.rstrip().endswith("DONE")
     assert "panicked" not in done.stderr
+
+
+def test_a_control_surface_is_an_fmu_input_and_its_hinge_moment_an_output(library, tmp_path):
+    """`delta[NAME]` and `hinge_moment[NAME]` come into the model description from the
+    stepper's signal list, with their units; FMPy's run with the aileron ramped to 0.02 rad is
+    the Python stepper's fed the same samples (a regression test of the FMI path: the same core,
+    the same steps, so to 1e-9 of each output's scale). The physics of the stepped deflection is
+    tested in test_aero_stepper.py (it settles at `flexwing static`'s equilibrium)."""
+    d = flexwing.Case.load(example("patil_aileron.toml")).to_dict()
+    d["aero"].pop("sweep")
+    d["aero"]["aerodynamics"] = {"model": "wagner"}
+    d["aero"]["surfaces"][1]["deflection"] = 0.0
+    d["aero"]["flight"] = {"speed": 10.0}
+    d["dynamic"] = {"end_time": 1.0, "output_step": 0.05}
+    case = flexwing.Case(d)
+    inputs, outputs = ["delta[aileron]"], ["tip_y", "lift", "hinge_moment[aileron]"]
+    path = tmp_path / "aileron.fmu"
+    summary = case.fmu(path, library=library, inputs=inputs, outputs=outputs, hold="linear")
+    assert summary["inputs"] == inputs and summary["outputs"] == outputs
+    assert fmpy.validation.validate_fmu(str(path)) == []
+    md = fmpy.read_model_description(str(path))
+    units = {v.name: (v.causality, v.unit) for v in md.modelVariables}
+    assert units["delta[aileron]"] == ("input", "rad")
+    assert units["hinge_moment[aileron]"] == ("output", "N.m")
+    h = 0.05
+    t = np.arange(0.0, 1.0 + h / 2, h)
+    delta = 0.02 * np.clip(t / 0.1, 0.0, 1.0)
+    signal = np.array(
+        list(zip(t, delta)), dtype=[("time", np.float64), ("delta[aileron]", np.float64)]
+    )
+    result = fmpy.simulate_fmu(
+        str(path), stop_time=1.0, step_size=h, output_interval=h, input=signal
+    )
+    stepper = case.stepper(inputs=inputs, outputs=outputs, hold="linear")
+    expected = [stepper.outputs]
+    for k in range(len(t) - 1):
+        stepper.step(h, {"delta[aileron]": delta[k]})
+        expected.append(stepper.outputs)
+    for key in outputs:
+        y = np.array([e[key] for e in expected])
+        assert np.max(np.abs(result[key] - y)) <= 1e-9 * np.max(np.abs(y)), key
+    assert result["lift"][-1] > 0.1 and result["hinge_moment[aileron]"][-1] < 0.0
