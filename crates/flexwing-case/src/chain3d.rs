@@ -252,6 +252,7 @@ impl Case {
             Analysis::Dynamic => (Analysis3d::Dynamic(self.dynamic3d(&model)?), "dynamic"),
             Analysis::Linearize => return not_yet("linearization"),
             Analysis::GustFamily => return not_yet("gust family"),
+            Analysis::Turbulence => return not_yet("turbulence analysis"),
         };
         let plan = Chain3dPlan {
             model,

@@ -49,6 +49,7 @@ mod spec_aero;
 mod spec_chain3d;
 mod spec_output;
 mod statics;
+mod turbulence;
 mod words;
 
 use std::path::Path;
@@ -67,8 +68,8 @@ pub use spec::{
 };
 pub use spec_aero::{
     AeroModelSpec, AeroSpec, AerodynamicsSpec, FlightSpec, FlutterSpec, GustFamilySpec,
-    GustPenetrationSpec, GustShapeSpec, GustSpec, LinearizeSpec, SpeedSweepSpec, StatesSpec,
-    SurfaceSpec,
+    GustPenetrationSpec, GustShapeSpec, GustSpec, LinearizeSpec, SpectrumSpec, SpeedSweepSpec,
+    StatesSpec, SurfaceSpec, TurbulenceSpec,
 };
 pub use spec_chain3d::{CouplingSpec, StructureSpec, StudyParameterSpec, StudySpec};
 pub use spec_output::{thinned_indices, NodeTimesSpec, OutputFormatSpec, OutputSpec};

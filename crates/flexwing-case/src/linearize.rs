@@ -24,7 +24,7 @@ impl Case {
         self.checked_linearize_plan().map_err(|e| self.error(e))
     }
 
-    fn checked_linearize_plan(&self) -> Result<LinearizePlan, InputError> {
+    pub(crate) fn checked_linearize_plan(&self) -> Result<LinearizePlan, InputError> {
         let (spec, model, aero) = self.aero_parts()?;
         let speed = spec.flight.speed.ok_or_else(|| {
             InputError::new(

@@ -28,11 +28,14 @@ pub enum Analysis {
     /// A discrete gust family (`[gust_family]` on the aeroelastic response of `[aero]` and
     /// `[dynamic]`): `flexwing gust`.
     GustFamily,
+    /// Output spectra and RMS in continuous turbulence (`[turbulence]` through the linear model
+    /// of `[linearize]`): `flexwing turbulence`.
+    Turbulence,
 }
 
 impl Analysis {
     /// Every analysis.
-    pub const ALL: [Analysis; 7] = [
+    pub const ALL: [Analysis; 8] = [
         Analysis::Modes,
         Analysis::Static,
         Analysis::Dynamic,
@@ -40,10 +43,11 @@ impl Analysis {
         Analysis::Linearize,
         Analysis::Study,
         Analysis::GustFamily,
+        Analysis::Turbulence,
     ];
 
-    /// `modes`, `static`, `dynamic`, `flutter`, `linearize`, `study` or `gust`: the CLI's
-    /// subcommand.
+    /// `modes`, `static`, `dynamic`, `flutter`, `linearize`, `study`, `gust` or `turbulence`: the
+    /// CLI's subcommand.
     pub fn name(self) -> &'static str {
         match self {
             Analysis::Modes => "modes",
@@ -53,6 +57,7 @@ impl Analysis {
             Analysis::Linearize => "linearize",
             Analysis::Study => "study",
             Analysis::GustFamily => "gust",
+            Analysis::Turbulence => "turbulence",
         }
     }
 
@@ -66,7 +71,8 @@ impl Case {
     /// The plan of `analysis` for this case, validated: [`Case::modes_plan`],
     /// [`Case::static_plan`] or [`Case::aero_static_plan`], [`Case::dynamic_plan`] or
     /// [`Case::aero_dynamic_plan`], [`Case::flutter_plan`], [`Case::linearize_plan`],
-    /// [`Case::gust_family_plan`] — the aeroelastic one when the case has `[aero]`.
+    /// [`Case::gust_family_plan`], [`Case::turbulence_plan`] — the aeroelastic one when the case
+    /// has `[aero]`.
     ///
     /// # Errors
     /// Those of the plan built.
@@ -98,6 +104,7 @@ impl Case {
             Analysis::Flutter => Plan::Flutter(self.flutter_plan()?),
             Analysis::Linearize => Plan::Linearize(self.linearize_plan()?),
             Analysis::GustFamily => Plan::GustFamily(self.gust_family_plan()?),
+            Analysis::Turbulence => Plan::Turbulence(self.turbulence_plan()?),
             Analysis::Study => {
                 return Err(self.error(flexwing::InputError::new(
                     "beam.model",

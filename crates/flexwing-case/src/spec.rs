@@ -44,6 +44,9 @@ pub struct Case {
     /// `[gust_family]`, required by `flexwing gust` only.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gust_family: Option<super::spec_aero::GustFamilySpec>,
+    /// `[turbulence]`, required by `flexwing turbulence` only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub turbulence: Option<super::spec_aero::TurbulenceSpec>,
     /// `[output]`, optional: how the front ends write the results (`spec_output.rs`).
     #[serde(default, skip_serializing_if = "is_default")]
     pub output: super::spec_output::OutputSpec,

@@ -247,6 +247,42 @@ pub struct GustFamilySpec {
     pub penetration: Option<GustPenetrationSpec>,
 }
 
+/// `[turbulence]`: the continuous vertical turbulence of `flexwing turbulence`, through the linear
+/// model of `[linearize]` ([`flexwing::analysis::aero::turbulence::TurbulencePlan`]).
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct TurbulenceSpec {
+    /// The gust velocity's spectrum; default von Kármán.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spectrum: Option<SpectrumSpec>,
+    /// `σ_w`, the RMS vertical gust velocity (m/s).
+    pub intensity: f64,
+    /// `L` (m); default the spectrum's handbook value (2500 ft, 1750 ft).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale_length: Option<f64>,
+    /// Number of frequencies of the output spectra.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frequencies: Option<usize>,
+    /// Lowest frequency (rad/s).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_frequency: Option<f64>,
+    /// Highest frequency (rad/s).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_frequency: Option<f64>,
+}
+
+/// `turbulence.spectrum`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SpectrumSpec {
+    /// von Kármán's.
+    VonKarman,
+    /// Dryden's.
+    Dryden,
+}
+
+word_enum!(SpectrumSpec { VonKarman = "von-karman", Dryden = "dryden" });
+
 /// `[linearize]`: the models, signals and states of `flexwing linearize` (the equilibrium's
 /// flight condition is `[aero.flight]`).
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]

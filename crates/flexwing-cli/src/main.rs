@@ -129,6 +129,18 @@ enum Command {
         gust_family.svg/.png (peaks against H). See docs/cli.md."
     )]
     Gust(CaseArgs),
+    /// Output power spectra and RMS in continuous (von Kármán or Dryden) turbulence.
+    #[command(
+        long_about = "The response to continuous vertical turbulence of [turbulence] (von Kármán \
+        or Dryden spectrum, intensity sigma_w, scale length L) through the linear models of \
+        [linearize] about the static aeroelastic equilibrium at aero.flight.speed, driven by \
+        the uniform gust and its rate: per model and output the power spectrum \
+        Phi_y = |H_y(i w)|^2 Phi_w and the RMS, with the quadrature's error estimate and the \
+        tail above the grid. Writes turbulence_rms.csv, turbulence_psd.csv and status.txt; \
+        with --plot turbulence_psd.svg/.png (log-log spectra). A model past the flutter speed \
+        has no stationary response: it stops and the exit status is 1. See docs/control.md."
+    )]
+    Turbulence(CaseArgs),
     /// Regenerate every table and figure of the paper's results, beside the paper and references.
     #[command(
         long_about = "Regenerate the paper's section 5 (Tables 2, 3, 5–8, Figures 4–6) beside the \
@@ -259,6 +271,10 @@ fn main() -> ExitCode {
         Command::Gust(a) => (
             a.json,
             driver::run(Analysis::GustFamily, a, &Overrides::default()),
+        ),
+        Command::Turbulence(a) => (
+            a.json,
+            driver::run(Analysis::Turbulence, a, &Overrides::default()),
         ),
         Command::Reproduce(a) => (false, reproduce::run(a)),
         Command::Fmu(a) => (false, fmu::run(a)),

@@ -17,7 +17,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/case-file.md");
     let text = std::fs::read_to_string(path).expect("docs/case-file.md");
     // The key tables of each section, in the order they appear.
-    let sections: [(&str, &[&str]); 21] = [
+    let sections: [(&str, &[&str]); 22] = [
         ("### Top level", &[""]),
         ("### `[beam]`", &["beam"]),
         ("### `[beam.section]`", &["beam.section"]),
@@ -38,6 +38,7 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
         ("### `[flutter.study]`", &["flutter.study"]),
         ("### `[linearize]`", &["linearize"]),
         ("### `[gust_family]`", &["gust_family"]),
+        ("### `[turbulence]`", &["turbulence"]),
         ("### `[output]`", &["output"]),
     ];
     let mut tables = BTreeMap::new();
@@ -149,6 +150,9 @@ hinge = 0.75
 [gust_family]
 lengths = [10.0]
 reference_velocity = 1.0
+
+[turbulence]
+intensity = 1.0
 "#
     )
 }
@@ -182,7 +186,9 @@ fn schema_keys(table: &str) -> BTreeSet<String> {
             "[[aero.surfaces]]\n",
             &format!("[[aero.surfaces]]\n{bogus}"),
         ),
-        t if t.starts_with("aero") || ["flutter", "linearize", "gust_family"].contains(&t) => {
+        t if t.starts_with("aero")
+            || ["flutter", "linearize", "gust_family", "turbulence"].contains(&t) =>
+        {
             let header = format!("[{t}]\n");
             let base = base_aero();
             assert!(base.contains(&header), "{t}");
@@ -224,6 +230,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
                 "flutter",
                 "linearize",
                 "gust_family",
+                "turbulence",
                 "output",
             ],
             "beam" => &["section"],
@@ -247,7 +254,7 @@ fn the_documentation_lists_exactly_the_keys_of_the_schema() {
         let documented: BTreeSet<String> = keys.keys().cloned().collect();
         assert_eq!(documented, schema, "keys of [{table}]");
     }
-    assert_eq!(docs.len(), 23, "{:?}", docs.keys());
+    assert_eq!(docs.len(), 24, "{:?}", docs.keys());
 }
 
 /// The default the code uses for each key whose documented default is a literal.
@@ -597,6 +604,17 @@ fn aero_defaults(put: &mut impl FnMut(&'static str, &'static str, String)) {
         "gust_family",
         "penetration",
         format!("\"{}\"", family.penetration.name()),
+    );
+    let turbulence = case.turbulence_plan().unwrap();
+    put(
+        "turbulence",
+        "spectrum",
+        format!("\"{}\"", turbulence.turbulence.spectrum.name()),
+    );
+    put(
+        "turbulence",
+        "frequencies",
+        turbulence.grid().points.to_string(),
     );
 }
 

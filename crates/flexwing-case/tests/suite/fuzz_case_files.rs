@@ -57,6 +57,11 @@ fn mutated_example_case_files_give_plans_or_one_line_errors() {
                             .map(|_| ())
                             .map_err(|e| e.to_string()),
                     );
+                    results.push(
+                        case.turbulence_plan()
+                            .map(|_| ())
+                            .map_err(|e| e.to_string()),
+                    );
                 }
                 results
             }));

@@ -18,6 +18,7 @@ mod linearize;
 mod modes;
 mod statics;
 mod table;
+mod turbulence;
 pub mod vtk;
 
 use std::fmt::Write as _;
@@ -29,6 +30,7 @@ use flexwing::analysis::aero::gust_family::{GustFamilyOutcome, GustFamilyPlan};
 use flexwing::analysis::aero::linearize::{LinearizeOutcome, LinearizePlan};
 use flexwing::analysis::aero::response::{AeroDynamicOutcome, AeroDynamicPlan};
 use flexwing::analysis::aero::statics::{AeroPoint, AeroStaticOutcome, AeroStaticPlan};
+use flexwing::analysis::aero::turbulence::{TurbulenceOutcome, TurbulencePlan};
 use flexwing::analysis::chain3d::{Chain3dOutcome, Chain3dPlan};
 use flexwing::analysis::dynamics::{DynamicOutcome, DynamicPlan};
 use flexwing::analysis::modes::{ModesOutcome, ModesPlan};
@@ -110,6 +112,8 @@ pub enum View<'a> {
     GustFamily(&'a GustFamilyPlan, &'a GustFamilyOutcome),
     /// Linear state-space models.
     Linearize(&'a LinearizePlan, &'a LinearizeOutcome),
+    /// Output spectra and RMS in continuous turbulence.
+    Turbulence(&'a TurbulencePlan, &'a TurbulenceOutcome),
     /// The 3-D chain's analyses.
     Chain3d(&'a Chain3dPlan, &'a Chain3dOutcome),
 }
@@ -126,6 +130,7 @@ impl<'a> View<'a> {
             (Plan::AeroDynamic(p), Outcome::AeroDynamic(o)) => View::AeroDynamic(p, o),
             (Plan::GustFamily(p), Outcome::GustFamily(o)) => View::GustFamily(p, o),
             (Plan::Linearize(p), Outcome::Linearize(o)) => View::Linearize(p, o),
+            (Plan::Turbulence(p), Outcome::Turbulence(o)) => View::Turbulence(p, o),
             (Plan::Chain3d(p), Outcome::Chain3d(o)) => View::Chain3d(p, o),
             _ => return None,
         })
@@ -143,6 +148,7 @@ impl<'a> View<'a> {
             View::AeroDynamic(p, _) => &p.structure.model,
             View::GustFamily(p, _) => &p.response.structure.model,
             View::Linearize(p, _) => &p.model,
+            View::Turbulence(p, _) => &p.linearize.model,
         })
         .map_or_else(String::new, model_line)
     }
@@ -155,6 +161,7 @@ impl<'a> View<'a> {
             View::AeroDynamic(p, _) => &p.aero,
             View::GustFamily(p, _) => &p.response.aero,
             View::Linearize(p, _) => &p.aero,
+            View::Turbulence(p, _) => &p.linearize.aero,
             View::Chain3d(p, _) => return chain3d::aero(p),
             _ => return None,
         };
@@ -174,6 +181,7 @@ pub fn previous_files(plan: &Plan) -> &'static [&'static str] {
         Plan::AeroDynamic(_) => aero_dynamic::FILES,
         Plan::GustFamily(_) => gust_family::FILES,
         Plan::Linearize(_) => linearize::FILES,
+        Plan::Turbulence(_) => turbulence::FILES,
         Plan::Chain3d(p) => chain3d::previous_files(p),
         _ => &[],
     }
@@ -191,6 +199,7 @@ pub fn files(ctx: &Context, view: &View, dir: &Path, plot: bool) -> Result<Vec<P
         View::AeroDynamic(p, o) => aero_dynamic::files(ctx, p, o, dir, plot),
         View::GustFamily(p, o) => gust_family::files(ctx, p, o, dir, plot),
         View::Linearize(p, o) => linearize::files(ctx, p, o, dir),
+        View::Turbulence(p, o) => turbulence::files(ctx, p, o, dir, plot),
         View::Chain3d(p, o) => chain3d::files(ctx, p, o, dir, plot),
     }?;
     if ctx.case.output.vtk() {
@@ -218,6 +227,7 @@ pub fn text(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
         View::AeroDynamic(p, o) => aero_dynamic::text(ctx, &mut s, p, o),
         View::GustFamily(p, o) => gust_family::text(ctx, &mut s, p, o),
         View::Linearize(p, o) => linearize::text(&mut s, p, o),
+        View::Turbulence(_, o) => turbulence::text(ctx, &mut s, o),
         View::Chain3d(p, o) => chain3d::text(ctx, &mut s, p, o),
     }
     let _ = writeln!(s);
@@ -252,6 +262,7 @@ pub fn json(ctx: &Context, view: &View, files: &[PathBuf]) -> String {
         View::AeroDynamic(p, o) => document(ctx, aero_dynamic::json(ctx, p, o), files),
         View::GustFamily(p, o) => document(ctx, gust_family::json(ctx, p, o), files),
         View::Linearize(p, o) => document(ctx, linearize::json(ctx, p, o), files),
+        View::Turbulence(p, o) => document(ctx, turbulence::json(ctx, p, o), files),
         View::Chain3d(p, o) => document(ctx, chain3d::json(ctx, p, o), files),
     }
 }

@@ -38,7 +38,7 @@ fn step_times(scales: &[f64]) -> Vec<f64> {
 }
 
 /// Write the VTK files of `view` (nothing for the analyses without node shapes: flutter,
-/// static aeroelastic, linearize); the `.pvd` paths.
+/// static aeroelastic, linearize, turbulence); the `.pvd` paths.
 pub fn files(ctx: &super::Context, view: &View, dir: &Path) -> Result<Vec<PathBuf>> {
     let out = folder(dir);
     let mut written = Vec::new();
@@ -92,7 +92,11 @@ pub fn files(ctx: &super::Context, view: &View, dir: &Path) -> Result<Vec<PathBu
             }
         }
         View::Chain3d(p, o) => written.extend(chain3d_files(ctx, p, o, &out)?),
-        View::AeroStatic(..) | View::Flutter(..) | View::GustFamily(..) | View::Linearize(..) => {}
+        View::AeroStatic(..)
+        | View::Flutter(..)
+        | View::GustFamily(..)
+        | View::Linearize(..)
+        | View::Turbulence(..) => {}
     }
     Ok(written)
 }

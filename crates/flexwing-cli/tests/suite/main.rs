@@ -21,3 +21,4 @@ mod reproduce_cmd;
 mod section_example;
 mod static_cmd;
 mod surfaces_cmd;
+mod turbulence_cmd;
