@@ -68,6 +68,27 @@ impl Case {
     fn checked_aero_static_plan(&self) -> Result<AeroStaticPlan, InputError> {
         let (spec, model, aero) = self.aero_parts()?;
         let s = &self.statics;
+        let (flight, sweep) = self.aero_static_flight(spec)?;
+        let loads = self.aero_loads(&model)?;
+        let mut plan = AeroStaticPlan::new(model, aero, flight);
+        plan.sweep = sweep;
+        plan.loads = loads;
+        plan.full = s.full;
+        plan.reduced.clone_from(&s.reduced);
+        plan.reduced_modes.clone_from(&s.reduced_modes);
+        plan.options = self.static_options();
+        plan.validate(&fields("static"))?;
+        Ok(plan)
+    }
+
+    /// The flight and the speed sweep of a static aeroelastic run (the planar chain's and the 3-D
+    /// chain's): `[aero.sweep]`, or the speed of `[aero.flight]`; a load sweep and loaded modes
+    /// refused.
+    pub(crate) fn aero_static_flight(
+        &self,
+        spec: &AeroSpec,
+    ) -> Result<(FlightCondition, Option<SpeedSweep>), InputError> {
+        let s = &self.statics;
         if s.sweep.is_some() {
             return Err(InputError::new(
                 "static.sweep",
@@ -98,16 +119,7 @@ impl Case {
                 ))
             }
         };
-        let loads = self.aero_loads(&model)?;
-        let mut plan = AeroStaticPlan::new(model, aero, condition(&spec.flight, speed));
-        plan.sweep = sweep;
-        plan.loads = loads;
-        plan.full = s.full;
-        plan.reduced.clone_from(&s.reduced);
-        plan.reduced_modes.clone_from(&s.reduced_modes);
-        plan.options = self.static_options();
-        plan.validate(&fields("static"))?;
-        Ok(plan)
+        Ok((condition(&spec.flight, speed), sweep))
     }
 
     /// The flutter analysis of `[aero]` (speeds of `[aero.sweep]`), `[[loads]]`, `[flutter]`

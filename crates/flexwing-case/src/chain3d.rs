@@ -1,11 +1,12 @@
 //! `beam.model = "chain3d"`: `[beam]` into the library's 3-D chain ([`Chain3d`]), and the
-//! analyses a front end asks of such a case into one [`Chain3dPlan`] (modes, statics, flutter,
-//! the flutter study of `[flutter.study]`). The planar case files are unchanged: a 3-D key on a
+//! analyses a front end asks of such a case into one [`Chain3dPlan`] (modes, statics, static
+//! aeroelastic equilibria with `[aero]`, flutter, the flutter study of `[flutter.study]`). The planar case files are unchanged: a 3-D key on a
 //! planar case is a one-line error naming the key ([`BeamSpec::planar_only`]).
 
+use flexwing::analysis::aero::statics::DIVERGENCE_TOLERANCE;
 use flexwing::analysis::aero::SpeedSweep;
 use flexwing::analysis::chain3d::{
-    Analysis3d, Chain3dPlan, Dynamic3d, Flutter3d, Static3d, Study3d,
+    AeroStatic3d, Analysis3d, Chain3dPlan, Dynamic3d, Flutter3d, Static3d, Study3d,
 };
 use flexwing::analysis::modes::DEFAULT_COUNT;
 use flexwing::beam::{InertiaAxis, Profile};
@@ -13,6 +14,7 @@ use flexwing::model::chain3d::{
     Beam3d, Chain3d, ElementInertia, Geometry3d, JointCalibration, SectionInertia,
     SectionStiffness, SpatialDistributed, SpatialLoad, SpatialVector, StiffnessCoupling,
 };
+use flexwing::model::Load;
 use flexwing::solve::aeroelastic::StudyParameter;
 use flexwing::InputError;
 
@@ -182,8 +184,8 @@ impl Case {
     /// The plan of `analysis` on the 3-D chain, validated.
     ///
     /// # Errors
-    /// An analysis the 3-D chain cannot run yet (aeroelastic dynamics, linearization, static
-    /// aeroelastic equilibria without flutter), the keys' errors, the plan's checks.
+    /// An analysis the 3-D chain cannot run yet (aeroelastic dynamics, linearization, gust
+    /// families), the keys' errors, the plan's checks.
     pub fn chain3d_plan(&self, analysis: Analysis) -> Result<Chain3dPlan, CaseError> {
         self.checked_chain3d_plan(analysis)
             .map_err(|e| self.error(e))
@@ -196,7 +198,7 @@ impl Case {
                 "beam.model",
                 format!(
                     "the 3-D chain (\"chain3d\") has no {what} through the case file yet: run \
-                     modes, static or dynamic (without [aero]), flutter or study"
+                     modes, static, dynamic (without [aero]), flutter or study"
                 ),
             ))
         };
@@ -208,8 +210,9 @@ impl Case {
                     .unwrap_or(DEFAULT_COUNT.min(model.n_dofs()));
                 (Analysis3d::Modes { count }, "modes")
             }
-            Analysis::Static if self.is_aeroelastic() => return not_yet(
-                "static aeroelastic run (its equilibria and divergence are in flutter's output)",
+            Analysis::Static if self.is_aeroelastic() => (
+                Analysis3d::AeroStatic(self.aero_static3d(&model)?),
+                "static",
             ),
             Analysis::Static => (Analysis3d::Static(self.static3d(&model)?), "static"),
             Analysis::Flutter => (Analysis3d::Flutter(self.flutter3d(&model)?), "flutter"),
@@ -285,9 +288,10 @@ impl Case {
             .collect())
     }
 
-    fn static3d(&self, model: &Chain3d) -> Result<Static3d, InputError> {
+    /// `[static]`'s model choices: the 3-D chain solves its full chain only.
+    fn refuse_static_reduced(&self) -> Result<(), InputError> {
         let s = &self.statics;
-        if let Some(key) = [
+        match [
             ("static.full", !s.full),
             ("static.reduced", !s.reduced.is_empty()),
             ("static.reduced_modes", !s.reduced_modes.is_empty()),
@@ -295,12 +299,18 @@ impl Case {
         .iter()
         .find_map(|(k, given)| given.then_some(*k))
         {
-            return Err(InputError::new(
+            Some(key) => Err(InputError::new(
                 key,
                 "the 3-D chain's reduced models are not reachable from the case file yet: the \
                  full chain is solved",
-            ));
+            )),
+            None => Ok(()),
         }
+    }
+
+    fn static3d(&self, model: &Chain3d) -> Result<Static3d, InputError> {
+        let s = &self.statics;
+        self.refuse_static_reduced()?;
         Ok(Static3d {
             loads: self.spatial_loads(model)?,
             options: self.static_options(),
@@ -317,6 +327,38 @@ impl Case {
         Ok(plan)
     }
 
+    /// The planar loads of an aeroelastic run of the 3-D chain (in the x-y plane: no `fz`; no
+    /// gravity load, which is `aero.flight.gravity`).
+    fn aero_loads3d(&self, model: &Chain3d) -> Result<Vec<Load>, InputError> {
+        self.refuse_gravity_loads()?;
+        if let Some(i) = self.loads.iter().position(|l| l.fz.is_some()) {
+            return Err(InputError::new(
+                format!("loads[{i}].fz"),
+                "the aeroelastic runs of the 3-D chain take the loads in the x-y plane only",
+            ));
+        }
+        Ok(
+            crate::loads::loads_with_fz(&self.loads, model.beam().nodes())?
+                .into_iter()
+                .map(|(l, _)| l)
+                .collect(),
+        )
+    }
+
+    fn aero_static3d(&self, model: &Chain3d) -> Result<AeroStatic3d, InputError> {
+        let (spec, aero) = self.aero_of()?;
+        self.refuse_static_reduced()?;
+        let (flight, sweep) = self.aero_static_flight(spec)?;
+        Ok(AeroStatic3d {
+            aero,
+            flight,
+            sweep,
+            loads: self.aero_loads3d(model)?,
+            options: self.static_options(),
+            divergence_tolerance: DIVERGENCE_TOLERANCE,
+        })
+    }
+
     fn flutter3d(&self, model: &Chain3d) -> Result<Flutter3d, InputError> {
         let (spec, aero) = self.aero_of()?;
         let speeds =
@@ -328,17 +370,7 @@ impl Case {
                      with speeds = [...] or from, to and steps",
                 )),
             };
-        self.refuse_gravity_loads()?;
-        if let Some(i) = self.loads.iter().position(|l| l.fz.is_some()) {
-            return Err(InputError::new(
-                format!("loads[{i}].fz"),
-                "the aeroelastic runs of the 3-D chain take the loads in the x-y plane only",
-            ));
-        }
-        let loads = crate::loads::loads_with_fz(&self.loads, model.beam().nodes())?
-            .into_iter()
-            .map(|(l, _)| l)
-            .collect();
+        let loads = self.aero_loads3d(model)?;
         let f = self.flutter.clone().unwrap_or_default();
         if let Some(key) = [
             ("flutter.full", !f.full),

@@ -109,3 +109,48 @@ def test_bad_3d_values_name_the_key():
         flexwing.Case.from_toml(text.replace("EI_lag = 60.0", "EI_lag = -60.0")).modes()
     with pytest.raises(flexwing.InputError, match=r"beam\.model"):
         flexwing.Case.load(example("patil_3d_flutter.toml")).dynamics()
+
+
+def _steady_3d_case(tmp_path):
+    """Patil's 3-D wing without its tip force, steady strip theory, root angle 1e-3, at 5 and
+    10 m/s (the case of the CLI suite's closed-form test)."""
+    text = example("patil_3d_flutter.toml").read_text()
+    head = text.split("[flutter]")[0]
+    beam, rest = head.split("[[loads]]")
+    aero = rest.split("[aero]")[1]
+    text = (
+        (beam + "[aero]" + aero)
+        .replace('{ model = "peters", states = 6 }', '{ model = "steady" }')
+        .replace(
+            "[aero.sweep]\nfrom = 2.0                 # m/s\nto = 40.0\nsteps = 20 ",
+            "[aero.flight]\nroot_angle = 0.001\n\n[aero.sweep]\nfrom = 5.0\nto = 10.0\nsteps = 2 ",
+        )
+    )
+    assert "root_angle = 0.001" in text
+    path = tmp_path / "static3d.toml"
+    path.write_text(text)
+    return path
+
+
+def test_aero_statics_match_the_cli_and_strip_theory(cli, tmp_path):
+    case = _steady_3d_case(tmp_path)
+    expected = run_cli(cli, "static", case, tmp_path / "out")
+    result = flexwing.Case.load(case).statics()
+    assert isinstance(result, flexwing.Chain3dAeroStaticResult)
+    assert result.status["status"] == "complete"
+    close(result.speed, [e["speed"] for e in expected["equilibria"]])
+    close(result.tip, [e["tip"] for e in expected["equilibria"]])
+    close(result.tip_twist, [e["tip_twist"] for e in expected["equilibria"]])
+    close(result.lift, [e["lift"] for e in expected["equilibria"]])
+    close(result.strip_lift, [e["strip_lift"] for e in expected["equilibria"]])
+    close(result.strip_span, expected["strip_span"])
+    close(result.position, [e["shape"]["position"] for e in expected["equilibria"]])
+    assert result.strip_lift.shape == (2, 32) and result.position.shape == (2, 33, 3)
+    # The total lift against steady strip theory's closed form q c c_lα α_r tan(λL)/λ of the
+    # uniform wing in linear torsion: measured 2.9e-5 at 10 m/s, n = 32 (second order in n);
+    # the bound is the CLI suite's (chain3d_cmd), twice that.
+    q = 0.5 * 0.0889 * result.speed**2
+    lam = np.sqrt(q * 2 * np.pi * 0.25 / 1e4)
+    exact = q * 2 * np.pi * 1e-3 * np.tan(lam * 16.0) / lam
+    np.testing.assert_allclose(result.lift, exact, rtol=6e-5)
+    np.testing.assert_allclose(result.strip_lift.sum(axis=1), result.lift, rtol=1e-12)

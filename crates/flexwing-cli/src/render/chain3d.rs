@@ -1,5 +1,6 @@
 //! The 3-D chain's runs (`beam.model = "chain3d"`; `dynamic` in `chain3d_dynamic.rs`): `flexwing
-//! modes|static|flutter|study` write the node `x, y, z` and each element's section rotation (a
+//! modes|static|flutter|study` (`static` with `[aero]`: the static aeroelastic equilibria,
+//! `static_aero.csv`, `static_strips.csv`) write the node `x, y, z` and each element's section rotation (a
 //! rotation vector, written at the element's outboard node) in their CSV files, a table, and a
 //! JSON document that is the library's serialized outcome (`flexwing::analysis::chain3d`);
 //! `study` also plots the flutter speed against the tip deflection beside the undeformed wing's.
@@ -9,8 +10,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use flexwing::analysis::chain3d::{
-    Analysis3d, Chain3dOutcome, Chain3dPlan, Flutter3dOutcome, Mode3d, Shape3dData, Stability3d,
-    Static3dOutcome, Study3dOutcome,
+    AeroStatic3dOutcome, Analysis3d, Chain3dOutcome, Chain3dPlan, Equilibrium3d, Flutter3dOutcome,
+    Mode3d, Shape3dData, Stability3d, Static3dOutcome, Study3dOutcome,
 };
 use serde::Serialize;
 
@@ -32,6 +33,8 @@ pub const FILES: &[&str] = &[
     "mode_shapes.csv",
     "static_tip.csv",
     "static_nodes.csv",
+    "static_aero.csv",
+    "static_strips.csv",
     "loaded_frequencies.csv",
     "flutter_summary.csv",
     "flutter_vg.csv",
@@ -56,11 +59,12 @@ pub fn model_line(plan: &Chain3dPlan) -> String {
     )
 }
 
-/// The aerodynamics of a flutter or study plan.
+/// The aerodynamics of a static aeroelastic, flutter or study plan.
 pub fn aero(plan: &Chain3dPlan) -> Option<(flexwing::model::aero::Aerodynamics, f64)> {
     let f = match &plan.analysis {
         Analysis3d::Flutter(f) => f,
         Analysis3d::Study(s) => &s.flutter,
+        Analysis3d::AeroStatic(a) => return Some((a.aero.aerodynamics, a.aero.density)),
         _ => return None,
     };
     Some((f.aero.aerodynamics, f.aero.density))
@@ -175,6 +179,7 @@ pub fn files(
             files.push(f);
         }
         Chain3dOutcome::Static(o) => static_files(o, dir, &mut files)?,
+        Chain3dOutcome::AeroStatic(o) => aero_static_files(o, dir, &mut files)?,
         Chain3dOutcome::Flutter(o) => flutter_files(o, dir, &mut files)?,
         Chain3dOutcome::Dynamic(o) => {
             if let Analysis3d::Dynamic(d) = &plan.analysis {
@@ -270,6 +275,59 @@ struct EquilibriumRow {
     divergence_pressure_pa: Option<f64>,
 }
 
+fn equilibrium_rows(equilibria: &[Equilibrium3d]) -> impl Iterator<Item = EquilibriumRow> + '_ {
+    equilibria.iter().map(|e| EquilibriumRow {
+        speed_m_s: e.speed,
+        dynamic_pressure_pa: e.dynamic_pressure,
+        tip_dx_m: e.tip[0],
+        tip_dy_m: e.tip[1],
+        tip_dz_m: e.tip[2],
+        tip_twist_rad: e.tip_twist,
+        lift_n: e.lift,
+        divergence_pressure_pa: e.divergence_pressure,
+    })
+}
+
+#[derive(Serialize)]
+struct StripRow {
+    point: usize,
+    speed_m_s: f64,
+    strip: usize,
+    span_m: f64,
+    lift_n: f64,
+}
+
+/// `static_aero.csv` (the rows of `flutter_equilibria.csv`), `static_nodes.csv` (each
+/// equilibrium's nodes, `value` its speed) and `static_strips.csv` (each strip's lift).
+fn aero_static_files(o: &AeroStatic3dOutcome, dir: &Path, files: &mut Vec<PathBuf>) -> Result<()> {
+    equilibria_files(
+        &o.equilibria,
+        "static_aero.csv",
+        "static_nodes.csv",
+        dir,
+        files,
+    )?;
+    let f = dir.join("static_strips.csv");
+    output::write_csv(
+        &f,
+        o.equilibria.iter().enumerate().flat_map(|(i, e)| {
+            e.strip_lift
+                .iter()
+                .zip(&o.strip_span)
+                .enumerate()
+                .map(move |(k, (&lift, &span))| StripRow {
+                    point: i,
+                    speed_m_s: e.speed,
+                    strip: k,
+                    span_m: span,
+                    lift_n: lift,
+                })
+        }),
+    )?;
+    files.push(f);
+    Ok(())
+}
+
 fn stabilities(o: &Flutter3dOutcome) -> impl Iterator<Item = &Stability3d> {
     std::iter::once(&o.stability).chain(o.pk.as_ref())
 }
@@ -304,25 +362,30 @@ fn flutter_files(o: &Flutter3dOutcome, dir: &Path, files: &mut Vec<PathBuf>) -> 
         }),
     )?;
     files.push(f);
-    let f = dir.join("flutter_equilibria.csv");
-    output::write_csv(
-        &f,
-        o.equilibria.iter().map(|e| EquilibriumRow {
-            speed_m_s: e.speed,
-            dynamic_pressure_pa: e.dynamic_pressure,
-            tip_dx_m: e.tip[0],
-            tip_dy_m: e.tip[1],
-            tip_dz_m: e.tip[2],
-            tip_twist_rad: e.tip_twist,
-            lift_n: e.lift,
-            divergence_pressure_pa: e.divergence_pressure,
-        }),
-    )?;
+    equilibria_files(
+        &o.equilibria,
+        "flutter_equilibria.csv",
+        "flutter_nodes.csv",
+        dir,
+        files,
+    )
+}
+
+/// The equilibria's rows in `table` and their nodes in `nodes` (`value` the speed).
+fn equilibria_files(
+    equilibria: &[Equilibrium3d],
+    table: &str,
+    nodes: &str,
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+) -> Result<()> {
+    let f = dir.join(table);
+    output::write_csv(&f, equilibrium_rows(equilibria))?;
     files.push(f);
-    let f = dir.join("flutter_nodes.csv");
+    let f = dir.join(nodes);
     output::write_csv(
         &f,
-        o.equilibria
+        equilibria
             .iter()
             .enumerate()
             .flat_map(|(i, e)| node_rows(i, e.speed, &e.shape)),
@@ -477,6 +540,25 @@ pub fn text(ctx: &Context, s: &mut String, plan: &Chain3dPlan, outcome: &Chain3d
                     let _ = writeln!(s, "{:>4}  {:>13.4}", m.mode, m.omega);
                 }
             }
+            let _ = writeln!(s, "wall time: {:.3} s", o.wall_time_s);
+        }
+        Chain3dOutcome::AeroStatic(o) => {
+            let _ = writeln!(
+                s,
+                "{:>9}  {:>11}  {:>11}  {:>11}  {:>12}  {:>10}",
+                "U (m/s)", "tip dx (m)", "tip dy (m)", "tip dz (m)", "twist (rad)", "lift (N)"
+            );
+            for e in &o.equilibria {
+                let _ = writeln!(
+                    s,
+                    "{:>9.4}  {:>11.5}  {:>11.5}  {:>11.5}  {:>12.6}  {:>10.4}",
+                    e.speed, e.tip[0], e.tip[1], e.tip[2], e.tip_twist, e.lift
+                );
+            }
+            let _ = match o.divergence {
+                Some(d) => writeln!(s, "divergence: {:.4} m/s", d.speed),
+                None => writeln!(s, "divergence: none found"),
+            };
             let _ = writeln!(s, "wall time: {:.3} s", o.wall_time_s);
         }
         Chain3dOutcome::Flutter(o) => {

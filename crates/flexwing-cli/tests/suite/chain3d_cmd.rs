@@ -5,7 +5,9 @@
 //! exact to ~1e-11) for Patil's wing, and the closed forms of the uniform cantilever for its
 //! modes. The chain's error is its O(n⁻²) discretization error (n = 32 here); the library tests
 //! `aero3d_patil_deformed` and `chain3d_modes` show the second-order convergence, these check that
-//! the case file, the dispatcher and the renderers carry those numbers through unchanged.
+//! the case file, the dispatcher and the renderers carry those numbers through unchanged. The
+//! static aeroelastic run (`flexwing static` with `[aero]`) is checked against the closed form
+//! of a uniform wing in steady strip theory and against the rod's divergence.
 //! Bad input on a 3-D case: one line naming the key, exit status 2.
 
 use std::path::Path;
@@ -90,6 +92,119 @@ fn patil_3d_flutter_example_against_the_continuum_rod() {
     assert_eq!(shape["rotation"].as_array().unwrap().len(), 32);
     let nodes = std::fs::read_to_string(dir.path().join("out/flutter_nodes.csv")).unwrap();
     assert!(nodes.starts_with("point,value,node,span_m,x_m,y_m,z_m,rx_rad,ry_rad,rz_rad"));
+}
+
+/// `flexwing static` with `[aero]` on Patil's 3-D wing without the tip force, steady strip
+/// theory, root angle `α_r = 1e-3`, at 5 and 10 m/s: linear torsion `GJ ψ'' + q c c_lα e (α_r +
+/// ψ) = 0`, `ψ(0) = 0`, `ψ'(L) = 0` (e = c/4 ahead of the elastic axis) gives `ψ(y) = α_r (tan λL
+/// sin λy + cos λy − 1)`, `λ² = q c c_lα e / GJ`: the tip twist `α_r (1/cos λL − 1)`, each
+/// strip's lift `q c c_lα (α_r + ψ(y)) ℓ` and the total `q c c_lα α_r tan(λL)/λ`. The 3-D chain
+/// also bends and tilts its lift, effects of order `α_r²` here.
+#[test]
+fn patil_3d_static_aero_against_the_closed_form_of_a_uniform_wing() {
+    let dir = TempDir::new("aero-static3d");
+    let text = std::fs::read_to_string(example("patil_3d_flutter.toml")).unwrap();
+    let (head, _) = text.split_once("[flutter]").unwrap();
+    let (beam, rest) = head.split_once("[[loads]]").unwrap();
+    let (_, aero) = rest.split_once("[aero]").unwrap();
+    let case = format!("{beam}[aero]{aero}")
+        .replace(
+            "{ model = \"peters\", states = 6 }",
+            "{ model = \"steady\" }",
+        )
+        .replace(
+            "[aero.sweep]\nfrom = 2.0                 # m/s\nto = 40.0\nsteps = 20 ",
+            "[aero.flight]\nroot_angle = 0.001\n\n[aero.sweep]\nfrom = 5.0\nto = 10.0\nsteps = 2 ",
+        );
+    assert!(case.contains("root_angle = 0.001") && !case.contains("fy = 24.0"));
+    let doc = run_json("static", &dir.write("static.toml", &case), &dir);
+    assert_eq!(doc["status"], "complete", "{doc}");
+    let equilibria = doc["equilibria"].as_array().unwrap();
+    assert_eq!(equilibria.len(), 2);
+    let span: Vec<f64> = doc["strip_span"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(num)
+        .collect();
+    assert_eq!(span.len(), 32);
+    let (alpha, l, a) = (0.001, 16.0, 2.0 * std::f64::consts::PI);
+    for e in equilibria {
+        let u = num(&e["speed"]);
+        let q = 0.5 * 0.0889 * u * u;
+        let lambda = (q * a * 0.25 / 1e4).sqrt();
+        let twist = alpha * (1.0 / (lambda * l).cos() - 1.0);
+        let lift = q * a * alpha * (lambda * l).tan() / lambda;
+        let dt = num(&e["tip_twist"]) / twist - 1.0;
+        let dl = num(&e["lift"]) / lift - 1.0;
+        let strips: Vec<f64> = e["strip_lift"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(num)
+            .collect();
+        let width = l / 32.0;
+        let ds = strips
+            .iter()
+            .zip(&span)
+            .map(|(&f, &y)| {
+                let psi = alpha * ((lambda * l).tan() * (lambda * y).sin() + (lambda * y).cos());
+                f / (q * a * psi * width) - 1.0
+            })
+            .fold(0.0_f64, |m, d| m.max(d.abs()));
+        println!("U = {u}: tip twist {dt:+.2e}, lift {dl:+.2e}, strips {ds:.2e} (relative)");
+        // Measured at n = 32, 10 m/s: tip twist +6.8e-6, lift +2.9e-5, strips 2.2e-5 (5 m/s:
+        // 1.5e-6, 7.3e-6, 5.5e-6). The lift converges at second order (1.2e-4, 2.9e-5, 6.2e-6
+        // at n = 16, 32, 64); the tip twist goes 5.4e-5, 6.8e-6, −5.0e-6, a remainder of about
+        // −5e-6 that does not fall with n (not identified; the lift, from the same twists,
+        // shows no such floor). Bounds about twice the measured n = 32 gaps.
+        assert!(dt.abs() < 1.5e-5, "U = {u}: tip twist {dt}");
+        assert!(dl.abs() < 6e-5, "U = {u}: lift {dl}");
+        assert!(ds < 4.5e-5, "U = {u}: strip lift {ds}");
+    }
+    let strips = std::fs::read_to_string(dir.path().join("out/static_strips.csv")).unwrap();
+    assert!(strips.starts_with("point,speed_m_s,strip,span_m,lift_n"));
+    assert_eq!(strips.lines().count(), 1 + 2 * 32);
+    let nodes = std::fs::read_to_string(dir.path().join("out/static_nodes.csv")).unwrap();
+    assert!(nodes.starts_with("point,value,node,span_m,x_m,y_m,z_m,rx_rad,ry_rad,rz_rad"));
+}
+
+/// `flexwing static` on `examples/patil_3d_flutter.toml` (24 N tip force, sweep to 40 m/s):
+/// the divergence speed against the rod (the bound of the flutter test above: the n = 32
+/// error), the sweep stopped past it with its points kept; and, a regression check of the one
+/// path the two commands share, its equilibria are those of `flexwing flutter` on the same case.
+#[test]
+fn patil_3d_static_aero_diverges_where_the_rod_does() {
+    let dir = TempDir::new("aero-static3d-div");
+    let case = example("patil_3d_flutter.toml");
+    let out = dir.path().join("out");
+    let o = flexwing_in(
+        dir.path(),
+        &[
+            "static",
+            case.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ],
+    );
+    // Past the divergence (38 m/s) no equilibrium is stable: the run is incomplete.
+    assert!(!o.status.success(), "{}", stderr(&o));
+    let doc: Value = serde_json::from_str(&stdout(&o)).expect("one JSON document");
+    assert_eq!(doc["status"], "stopped", "{doc}");
+    let error = doc["error"].as_str().unwrap();
+    assert!(error.contains("(U = 38 m/s)"), "{error}");
+    let (_, u_div, _) = rod_at("steady", "divergence", 24.0);
+    let dd = num(&doc["divergence"]["speed"]) - u_div;
+    assert!(dd.abs() < 5.5e-3, "divergence error {dd}");
+    let flutter = run_json("flutter", &case, &TempDir::new("aero-static3d-fl"));
+    let (a, b) = (
+        doc["equilibria"].as_array().unwrap(),
+        flutter["equilibria"].as_array().unwrap(),
+    );
+    assert_eq!(a.len(), 18);
+    assert_eq!(a, b, "the static run's equilibria are the flutter run's");
+    assert_eq!(doc["divergence"], flutter["divergence"]);
 }
 
 /// `flexwing modes` on the same wing: the first two flap modes, the first lag and torsion modes

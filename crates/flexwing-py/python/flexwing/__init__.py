@@ -69,6 +69,7 @@ from ._aero_results import (
     Stability,
 )
 from ._chain3d_results import (
+    Chain3dAeroStaticResult,
     Chain3dDynamicResult,
     Chain3dDynamicRun,
     Chain3dFlutterResult,
@@ -117,6 +118,7 @@ __all__ = [
     "LinearizeResult",
     "Chain3dModesResult",
     "Chain3dStaticResult",
+    "Chain3dAeroStaticResult",
     "Chain3dFlutterResult",
     "Chain3dStudyResult",
     "Chain3dDynamicResult",

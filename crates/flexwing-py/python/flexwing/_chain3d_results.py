@@ -18,6 +18,7 @@ from ._base import _Result, _Run, _Runs, _summary
 __all__ = [
     "Chain3dModesResult",
     "Chain3dStaticResult",
+    "Chain3dAeroStaticResult",
     "Chain3dFlutterResult",
     "Chain3dStudyResult",
     "Chain3dDynamicRun",
@@ -158,14 +159,97 @@ class Chain3dStaticResult(_Result):
         return _summary(self, ["n_elements", "n_dofs"]) + f" with {len(self.points)} points"
 
 
+class _Equilibria:
+    """The arrays of a result's static aeroelastic ``equilibria`` and its ``divergence``."""
+
+    @property
+    def divergence_speed(self) -> float:
+        """The divergence speed (m/s), NaN if none."""
+        return _speed(self.divergence)
+
+    @property
+    def speed(self) -> np.ndarray:
+        """The speeds of the equilibria (m/s), ``(k,)``."""
+        return np.array([e["speed"] for e in self.equilibria], dtype=float)
+
+    @property
+    def tip(self) -> np.ndarray:
+        """Tip displacements of the equilibria (m), ``(k, 3)``."""
+        return np.array([e["tip"] for e in self.equilibria], dtype=float).reshape(-1, 3)
+
+    @property
+    def position(self) -> np.ndarray:
+        """Node positions of the equilibria (m), ``(k, n + 1, 3)``."""
+        return np.array([e["shape"]["position"] for e in self.equilibria], dtype=float)
+
+
 @dataclass(eq=False, repr=False)
-class Chain3dFlutterResult(_Result):
+class Chain3dAeroStaticResult(_Equilibria, _Result):
+    """Static aeroelastic equilibria of the 3-D chain (``[aero]``, steady strip theory on the
+    deformed geometry) at ``aero.flight.speed`` or along ``[aero.sweep]``, with the divergence
+    speed.
+
+    Attributes:
+        equilibria: one dict per speed reached, as ``Chain3dFlutterResult.equilibria``: ``speed``
+            (m/s), ``dynamic_pressure`` (Pa), ``tip`` (tip displacement, m), ``tip_twist``
+            (rad), ``lift`` (N), ``strip_lift`` (each strip's vertical force, N),
+            ``divergence_pressure`` (Pa), ``shape`` (``span``, ``position``, ``rotation``).
+        strip_span: each strip's mid-station along the reference axis (m).
+        divergence: the divergence point (``speed``, m/s) or ``None``.
+        status: whether every speed was reached (``status``, ``stop``, ``message``; past the
+            divergence speed the sweep stops).
+        dofs: coordinates of the chain; wall_time_s: wall time of the analysis (s).
+        n_elements, n_dofs: size of the chain.
+        rust_time_s: wall time of the analysis on the Rust side (s).
+
+    Properties ``divergence_speed`` (NaN when there is none), ``speed`` ``(k,)``, ``tip``
+    ``(k, 3)``, ``tip_twist`` and ``lift`` ``(k,)``, ``strip_lift`` ``(k, strips)`` and
+    ``position`` ``(k, n + 1, 3)``.
+    """
+
+    _kind = "chain3d-aero-static"
+
+    equilibria: List[Dict[str, Any]]
+    strip_span: List[float]
+    divergence: Optional[Dict[str, Any]]
+    status: Dict[str, Any]
+    dofs: int
+    wall_time_s: float
+    n_elements: int
+    n_dofs: int
+    rust_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def tip_twist(self) -> np.ndarray:
+        """Tip twists of the equilibria (rad, nose-up), ``(k,)``."""
+        return np.array([e["tip_twist"] for e in self.equilibria], dtype=float)
+
+    @property
+    def lift(self) -> np.ndarray:
+        """Total vertical aerodynamic force of the equilibria (N), ``(k,)``."""
+        return np.array([e["lift"] for e in self.equilibria], dtype=float)
+
+    @property
+    def strip_lift(self) -> np.ndarray:
+        """Each strip's vertical aerodynamic force (N), ``(k, strips)``."""
+        return np.array([e["strip_lift"] for e in self.equilibria], dtype=float).reshape(
+            len(self.equilibria), len(self.strip_span)
+        )
+
+    def __repr__(self) -> str:
+        return _summary(self, ["n_elements", "n_dofs"]) + f", divergence {self.divergence_speed:.4g} m/s"
+
+
+@dataclass(eq=False, repr=False)
+class Chain3dFlutterResult(_Equilibria, _Result):
     """Flutter and divergence of the 3-D chain about its deformed equilibria along the speeds.
 
     Attributes:
         equilibria: one dict per speed reached: ``speed`` (m/s), ``dynamic_pressure`` (Pa),
-            ``tip`` (tip displacement, m), ``tip_twist`` (rad), ``lift`` (N),
-            ``divergence_pressure`` (Pa), ``shape`` (``span``, ``position``, ``rotation``).
+            ``tip`` (tip displacement, m), ``tip_twist`` (rad), ``lift`` (N), ``strip_lift``
+            (each strip's vertical force, N), ``divergence_pressure`` (Pa), ``shape``
+            (``span``, ``position``, ``rotation``).
         divergence: the divergence point (``speed``, m/s) or ``None``.
         equilibria_status: how the equilibria ended (past divergence they stop).
         stability: the eigen-analysis: ``method``, ``speeds``, ``branches`` (``mode``,
@@ -205,26 +289,6 @@ class Chain3dFlutterResult(_Result):
     def flutter_frequency(self) -> float:
         """The flutter frequency (rad/s), NaN if none."""
         return _speed(self.stability["flutter"], "frequency")
-
-    @property
-    def divergence_speed(self) -> float:
-        """The divergence speed (m/s), NaN if none."""
-        return _speed(self.divergence)
-
-    @property
-    def speed(self) -> np.ndarray:
-        """The speeds of the equilibria (m/s), ``(k,)``."""
-        return np.array([e["speed"] for e in self.equilibria], dtype=float)
-
-    @property
-    def tip(self) -> np.ndarray:
-        """Tip displacements of the equilibria (m), ``(k, 3)``."""
-        return np.array([e["tip"] for e in self.equilibria], dtype=float).reshape(-1, 3)
-
-    @property
-    def position(self) -> np.ndarray:
-        """Node positions of the equilibria (m), ``(k, n + 1, 3)``."""
-        return np.array([e["shape"]["position"] for e in self.equilibria], dtype=float)
 
     def __repr__(self) -> str:
         return _summary(self, ["n_elements", "n_dofs"]) + f", flutter {self.flutter_speed:.4g} m/s"

@@ -17,6 +17,7 @@ import numpy.typing as npt
 
 from ._aero_results import AeroDynamicResult, AeroStaticResult, FlutterResult, GustFamilyResult
 from ._chain3d_results import (
+    Chain3dAeroStaticResult,
     Chain3dDynamicResult,
     Chain3dFlutterResult,
     Chain3dModesResult,
@@ -84,11 +85,12 @@ class Case:
         with the partial result as its ``result`` attribute."""
     def statics(
         self, *, progress: Optional[ProgressCallback] = None, check: bool = True
-    ) -> Union[StaticResult, AeroStaticResult]:
+    ) -> Union[StaticResult, AeroStaticResult, Chain3dStaticResult, Chain3dAeroStaticResult]:
         """The non-linear statics of ``[[loads]]`` and ``[static]`` (sweeps, reduced models,
         loaded modes); with ``[aero]``, the static aeroelastic equilibria at
         ``aero.flight.speed`` or along ``[aero.sweep]`` and the divergence speed
-        (``AeroStaticResult``). With ``check`` (default), a model that stopped raises
+        (``AeroStaticResult``; on the 3-D chain ``Chain3dStaticResult`` and
+        ``Chain3dAeroStaticResult``). With ``check`` (default), a model that stopped raises
         ``SolverError`` carrying the partial result; else each run's ``status`` says so."""
     def dynamics(
         self, *, progress: Optional[ProgressCallback] = None, check: bool = True
@@ -178,6 +180,7 @@ class Case:
         LinearizeResult,
         Chain3dModesResult,
         Chain3dStaticResult,
+        Chain3dAeroStaticResult,
         Chain3dFlutterResult,
         Chain3dStudyResult,
         Chain3dDynamicResult,

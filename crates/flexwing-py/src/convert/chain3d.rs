@@ -1,5 +1,6 @@
 //! The 3-D chain's outcomes (`flexwing::analysis::chain3d`) into `Chain3dModesResult`,
-//! `Chain3dStaticResult`, `Chain3dFlutterResult`, `Chain3dStudyResult` and `Chain3dDynamicResult`
+//! `Chain3dStaticResult`, `Chain3dAeroStaticResult`, `Chain3dFlutterResult`, `Chain3dStudyResult`
+//! and `Chain3dDynamicResult`
 //! (`python/flexwing/_chain3d_results.py`): the library's serialized outcome as a dict (the same
 //! names as the CLI's JSON), the model's size beside it; a dynamic run's columns as NumPy arrays. The result classes give the arrays
 //! (node `x, y, z`, section rotations, speeds) as NumPy views of these lists.
@@ -65,8 +66,8 @@ fn dynamic_runs(py: Python<'_>, d: &Bound<'_, PyDict>, o: &Dynamic3dOutcome) -> 
     d.set_item("status", overall(o.runs.iter().map(|r| &r.status)))
 }
 
-/// The result kind of `plan`: `chain3d-modes`, `chain3d-static`, `chain3d-flutter`,
-/// `chain3d-study`, `chain3d-dynamic`.
+/// The result kind of `plan`: `chain3d-modes`, `chain3d-static`, `chain3d-aero-static`,
+/// `chain3d-flutter`, `chain3d-study`, `chain3d-dynamic`.
 pub fn kind(plan: &Chain3dPlan) -> String {
     format!("chain3d-{}", plan.name())
 }

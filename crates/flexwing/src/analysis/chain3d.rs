@@ -1,6 +1,8 @@
 //! The analyses of the geometrically exact 3-D chain ([`crate::model::Chain3d`],
 //! docs/chain3d-model.md) as one plan of the one dispatcher: natural modes about the undeformed
-//! state, non-linear statics with load sweeps and the modes about the last equilibrium, flutter
+//! state, non-linear statics with load sweeps and the modes about the last equilibrium, static
+//! aeroelastic equilibria at the flight speed or along a sweep in speed with the divergence
+//! speed (steady strip aerodynamics on the deformed geometry), flutter
 //! and divergence about the deformed equilibria on the 3-D deformed geometry, and the flutter
 //! study against a load level ([`crate::solve::aeroelastic::deflection_study`]), and the
 //! non-linear dynamics ([`super::dynamics::chain3d`]).
@@ -17,6 +19,7 @@
 use std::time::Instant;
 
 use super::aero::flutter::{check_solver, check_sweep};
+use super::aero::statics::{check_divergence_tolerance, check_flight};
 use super::aero::{Aero, Fields, SpeedSweep};
 use super::dynamics::chain3d as dynamics;
 pub use super::dynamics::chain3d::{Dynamic3d, Dynamic3dOutcome, Dynamic3dRun, Snapshot3d};
@@ -54,6 +57,8 @@ pub enum Analysis3d {
     },
     /// Non-linear statics.
     Static(Static3d),
+    /// Static aeroelastic equilibria and the divergence speed.
+    AeroStatic(AeroStatic3d),
     /// Flutter and divergence along a sweep in speed.
     Flutter(Flutter3d),
     /// Flutter and divergence against a load level.
@@ -75,6 +80,49 @@ pub struct Static3d {
     pub modes: Option<usize>,
     /// How the caller names each load (a case file: its `name`).
     pub load_names: Vec<String>,
+}
+
+/// Static aeroelastic equilibria of the 3-D chain: the fields of the planar
+/// [`super::aero::statics::AeroStaticPlan`] that apply to it (no reduced models yet). The
+/// aerodynamics are steady whatever the model named: a static equilibrium has no motion to lag.
+#[derive(Debug, Clone)]
+pub struct AeroStatic3d {
+    /// Section data, air, aerodynamic model.
+    pub aero: Aero,
+    /// The flight: its speed is the one point solved without a sweep; root angle and gravity
+    /// hold at every point.
+    pub flight: FlightCondition,
+    /// A sweep in speed, in place of the flight's speed.
+    pub sweep: Option<SpeedSweep>,
+    /// Other loads (the planar loads, translated: `SpatialLoad::from_planar`), at every speed.
+    pub loads: Vec<Load>,
+    /// Newton's options.
+    pub options: StaticOptions,
+    /// Relative tolerance of the divergence dynamic pressure, in `(0, 1)`.
+    pub divergence_tolerance: f64,
+}
+
+impl AeroStatic3d {
+    /// The speeds solved: the sweep's, or the flight's speed.
+    pub fn speeds(&self) -> Vec<f64> {
+        self.sweep
+            .as_ref()
+            .map_or_else(|| vec![self.flight.speed], |s| s.speeds.clone())
+    }
+
+    fn validate(&self, model: &Chain3d, fields: &Fields) -> Result<(), InputError> {
+        Aeroelastic::spatial(
+            model,
+            &self.aero.section,
+            self.aero.density,
+            self.aero.aerodynamics,
+            fields.aero,
+        )?;
+        check_flight(&self.flight, self.sweep.as_ref(), fields)?;
+        model.apply_planar(&self.loads, fields.loads)?;
+        self.options.validate(fields.statics)?;
+        check_divergence_tolerance(self.divergence_tolerance, fields)
+    }
 }
 
 /// Flutter of the 3-D chain: the fields of the planar [`super::aero::flutter::FlutterPlan`]
@@ -113,11 +161,12 @@ pub struct Study3d {
 }
 
 impl Chain3dPlan {
-    /// `modes`, `static`, `flutter`, `study` or `dynamic`.
+    /// `modes`, `static`, `aero-static`, `flutter`, `study` or `dynamic`.
     pub fn name(&self) -> &'static str {
         match self.analysis {
             Analysis3d::Modes { .. } => "modes",
             Analysis3d::Static(_) => "static",
+            Analysis3d::AeroStatic(_) => "aero-static",
             Analysis3d::Flutter(_) => "flutter",
             Analysis3d::Study(_) => "study",
             Analysis3d::Dynamic(_) => "dynamic",
@@ -184,6 +233,7 @@ impl Chain3dPlan {
                 }
                 s.options.validate(fields.analysis)
             }
+            Analysis3d::AeroStatic(a) => a.validate(&self.model, fields),
             Analysis3d::Flutter(f) => f.validate(&self.model, fields).map(|_| ()),
             Analysis3d::Dynamic(d) => d.validate(&self.model, fields.loads, fields.analysis),
             Analysis3d::Study(s) => {
@@ -449,10 +499,33 @@ pub struct Equilibrium3d {
     pub tip_twist: f64,
     /// Total aerodynamic force along the vertical (N).
     pub lift: f64,
+    /// Each strip's aerodynamic force along the vertical (N), root to tip (the strips' stations
+    /// and widths: [`AeroStatic3dOutcome::strip_span`], one strip per element).
+    pub strip_lift: Vec<f64>,
     /// Divergence pressure of the frozen state (Pa).
     pub divergence_pressure: Option<f64>,
     /// The deformed shape.
     pub shape: Shape3dData,
+}
+
+/// What a static aeroelastic analysis of the 3-D chain found.
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct AeroStatic3dOutcome {
+    /// Number of coordinates.
+    pub dofs: usize,
+    /// Span station of each strip's midpoint along the reference axis (m).
+    pub strip_span: Vec<f64>,
+    /// The equilibria, one per speed reached.
+    pub equilibria: Vec<Equilibrium3d>,
+    /// The divergence speed, where the sweep finds it (bracketed between two speeds, or past
+    /// the last stable one; see [`crate::solve::aeroelastic::AeroStaticSolution::divergence`]).
+    pub divergence: Option<SpeedPoint>,
+    /// Whether every speed was reached, or where and why the sweep stopped (past the
+    /// divergence speed it does).
+    pub status: Status,
+    /// Wall time of the analysis (s).
+    pub wall_time_s: f64,
 }
 
 /// A flutter or divergence point.
@@ -582,6 +655,8 @@ pub enum Chain3dOutcome {
     },
     /// Statics.
     Static(Static3dOutcome),
+    /// Static aeroelastic equilibria.
+    AeroStatic(AeroStatic3dOutcome),
     /// Flutter.
     Flutter(Flutter3dOutcome),
     /// The study against a load level.
@@ -603,6 +678,7 @@ impl Chain3dOutcome {
                 }
                 v
             }
+            Chain3dOutcome::AeroStatic(o) => vec![("full".to_string(), o.status.clone())],
             Chain3dOutcome::Flutter(o) => {
                 let mut v = vec![("full".to_string(), o.stability.status.clone())];
                 if let Some(pk) = &o.pk {
@@ -649,6 +725,7 @@ pub fn run(plan: &Chain3dPlan, progress: &mut dyn Progress) -> Result<Chain3dOut
             }
         }
         Analysis3d::Static(s) => Chain3dOutcome::Static(statics(model, s, progress)?),
+        Analysis3d::AeroStatic(a) => Chain3dOutcome::AeroStatic(aero_statics(model, a, progress)?),
         Analysis3d::Flutter(f) => Chain3dOutcome::Flutter(flutter(model, f, progress)?),
         Analysis3d::Study(s) => Chain3dOutcome::Study(study(model, s, progress)?),
         Analysis3d::Dynamic(d) => Chain3dOutcome::Dynamic(dynamics::run(model, d, progress)?),
@@ -809,36 +886,11 @@ fn flutter(
         options: f.static_options.clone(),
         divergence_tolerance: f.tolerance,
     };
-    let eq = static_sweep_polled(&wing, &statics, "", &mut |x| {
-        progress.advance(x / parts);
-        !progress.cancelled()
-    })?;
-    let equilibria: Vec<Equilibrium3d> = eq
-        .points
-        .iter()
-        .map(|p| Equilibrium3d {
-            speed: p.speed,
-            dynamic_pressure: p.dynamic_pressure,
-            tip: unsigned3(p.tip),
-            tip_twist: p.tip_twist + 0.0,
-            lift: p.lift,
-            divergence_pressure: p.divergence_pressure,
-            shape: Shape3dData::of(model, &p.q),
-        })
-        .collect();
-    let equilibria_status = match eq.stopped {
-        None if eq.interrupted => Status::Stopped(Stop::SweepInterrupted {
-            done: equilibria.len(),
-            points: speeds.len(),
-        }),
-        None => Status::Complete,
-        Some((point, error)) => Status::Stopped(Stop::SpeedPoint {
-            point,
-            points: speeds.len(),
-            speed: speeds[point],
-            error,
-        }),
-    };
+    let (equilibria, divergence, equilibria_status) =
+        sweep_equilibria(model, &wing, &statics, &mut |x| {
+            progress.advance(x / parts);
+            !progress.cancelled()
+        })?;
     let eig = |method: FlutterMethod, k: f64, progress: &mut dyn Progress| {
         let t = Instant::now();
         let out = flutter_polled(&wing, &f.solver(dofs, method), "", &mut |x| {
@@ -883,12 +935,94 @@ fn flutter(
     Ok(Flutter3dOutcome {
         dofs,
         equilibria,
-        divergence: eq.divergence.as_ref().map(divergence_point),
+        divergence,
         equilibria_status,
         stability: main,
         pk,
         wall_time_s: start.elapsed().as_secs_f64(),
         notes,
+    })
+}
+
+/// The static aeroelastic sweep `statics` of `wing` as reported: the equilibria with their 3-D
+/// shapes, the divergence point, and how the sweep ended (flutter's equilibria and the static
+/// aeroelastic run share it). `step` hears the fraction done and stops the sweep with `false`.
+fn sweep_equilibria(
+    model: &Chain3d,
+    wing: &Aeroelastic<Chain3d>,
+    statics: &AeroStaticOptions,
+    step: &mut dyn FnMut(f64) -> bool,
+) -> Result<(Vec<Equilibrium3d>, Option<SpeedPoint>, Status), InputError> {
+    let eq = static_sweep_polled(wing, statics, "", step)?;
+    let speeds = &statics.speeds;
+    let equilibria: Vec<Equilibrium3d> = eq
+        .points
+        .iter()
+        .map(|p| Equilibrium3d {
+            speed: p.speed,
+            dynamic_pressure: p.dynamic_pressure,
+            tip: unsigned3(p.tip),
+            tip_twist: p.tip_twist + 0.0,
+            lift: p.lift,
+            strip_lift: p.strip_lift.clone(),
+            divergence_pressure: p.divergence_pressure,
+            shape: Shape3dData::of(model, &p.q),
+        })
+        .collect();
+    let status = match eq.stopped {
+        None if eq.interrupted => Status::Stopped(Stop::SweepInterrupted {
+            done: equilibria.len(),
+            points: speeds.len(),
+        }),
+        None => Status::Complete,
+        Some((point, error)) => Status::Stopped(Stop::SpeedPoint {
+            point,
+            points: speeds.len(),
+            speed: speeds[point],
+            error,
+        }),
+    };
+    Ok((
+        equilibria,
+        eq.divergence.as_ref().map(divergence_point),
+        status,
+    ))
+}
+
+fn aero_statics(
+    model: &Chain3d,
+    a: &AeroStatic3d,
+    progress: &mut dyn Progress,
+) -> Result<AeroStatic3dOutcome, Error> {
+    let start = Instant::now();
+    let wing = Aeroelastic::spatial(
+        model,
+        &a.aero.section,
+        a.aero.density,
+        a.aero.aerodynamics,
+        "aero",
+    )?;
+    let statics = AeroStaticOptions {
+        speeds: a.speeds(),
+        root_angle: a.flight.root_angle,
+        gravity: a.flight.gravity,
+        loads: a.loads.clone(),
+        options: a.options.clone(),
+        divergence_tolerance: a.divergence_tolerance,
+    };
+    progress.start(0, 1, "full");
+    let (equilibria, divergence, status) = sweep_equilibria(model, &wing, &statics, &mut |x| {
+        progress.advance(x);
+        !progress.cancelled()
+    })?;
+    progress.finish();
+    Ok(AeroStatic3dOutcome {
+        dofs: model.n_dofs(),
+        strip_span: wing.strips.iter().map(|s| s.station).collect(),
+        equilibria,
+        divergence,
+        status,
+        wall_time_s: start.elapsed().as_secs_f64(),
     })
 }
 

@@ -75,18 +75,10 @@ impl AeroStaticPlan {
     /// models on modes the model does not have, nothing to solve.
     pub fn validate(&self, fields: &Fields) -> Result<(), InputError> {
         let wing = self.aero.wing(&self.model, fields.aero)?;
-        self.check_flight(fields)?;
+        check_flight(&self.flight, self.sweep.as_ref(), fields)?;
         self.model.apply(&self.loads, fields.loads)?;
         self.options.validate(fields.statics)?;
-        if !(self.divergence_tolerance > 0.0 && self.divergence_tolerance < 1.0) {
-            return Err(InputError::new(
-                fields.analysis("divergence_tolerance"),
-                format!(
-                    "must be in (0, 1), got {}",
-                    crate::text::short(self.divergence_tolerance)
-                ),
-            ));
-        }
+        check_divergence_tolerance(self.divergence_tolerance, fields)?;
         let n = wing.structure().n_dofs();
         models(
             self.full,
@@ -96,21 +88,6 @@ impl AeroStaticPlan {
             fields.analysis,
         )?;
         Ok(())
-    }
-
-    fn check_flight(&self, fields: &Fields) -> Result<(), InputError> {
-        let flight = fields.flight();
-        match &self.sweep {
-            None => self.flight.validate(&flight),
-            Some(sweep) => {
-                sweep.validate(&format!("{}.sweep.speeds", fields.aero), false)?;
-                FlightCondition {
-                    speed: sweep.speeds[0],
-                    ..self.flight
-                }
-                .validate(&flight)
-            }
-        }
     }
 
     /// The models solved, in order: full (if asked), `reduced`, `reduced_modes`.
@@ -125,6 +102,42 @@ impl AeroStaticPlan {
             self.model.n_dofs(),
             "",
         )
+    }
+}
+
+/// The flight of a static aeroelastic plan: `flight` at its speed, or at each speed of `sweep`
+/// (the planar [`AeroStaticPlan`] and the 3-D chain's).
+pub(crate) fn check_flight(
+    flight: &FlightCondition,
+    sweep: Option<&SpeedSweep>,
+    fields: &Fields,
+) -> Result<(), InputError> {
+    let name = fields.flight();
+    match sweep {
+        None => flight.validate(&name),
+        Some(sweep) => {
+            sweep.validate(&format!("{}.sweep.speeds", fields.aero), false)?;
+            FlightCondition {
+                speed: sweep.speeds[0],
+                ..*flight
+            }
+            .validate(&name)
+        }
+    }
+}
+
+/// `{analysis}.divergence_tolerance` in `(0, 1)`.
+pub(crate) fn check_divergence_tolerance(
+    tolerance: f64,
+    fields: &Fields,
+) -> Result<(), InputError> {
+    if tolerance > 0.0 && tolerance < 1.0 {
+        Ok(())
+    } else {
+        Err(InputError::new(
+            fields.analysis("divergence_tolerance"),
+            format!("must be in (0, 1), got {}", crate::text::short(tolerance)),
+        ))
     }
 }
 

@@ -94,8 +94,11 @@ pub struct AeroEquilibrium {
     pub tip: [f64; 3],
     /// Tip twist (rad, nose-up).
     pub tip_twist: f64,
-    /// Total aerodynamic force along the ground's vertical (N).
+    /// Total aerodynamic force along the ground's vertical (N): the sum of `strip_lift`.
     pub lift: f64,
+    /// Each strip's aerodynamic force along the ground's vertical (N), in the order of the
+    /// strips (root to tip).
+    pub strip_lift: Vec<f64>,
     /// Root bending moment, the clamp spring's moment `K_θ,1 q_1` (N·m).
     pub root_bending_moment: f64,
     /// Hinge moment of each control surface (N·m, positive trailing edge down), in the order of
@@ -421,15 +424,15 @@ fn equilibrium_point<'a, M: AeroStructure>(
     let mut f = vec![0.0; x.len()];
     model.unit_load(x, ws, &mut f);
     let (sa, ca) = root_angle.sin_cos();
-    let lift: f64 = ws
+    let strip_lift: Vec<f64> = ws
         .eval
         .sc
         .force
         .iter()
         .zip(&model.aero.strips)
-        .map(|(f, s)| s.width * (ca * f[1] + sa * f[2]))
-        .sum::<f64>()
-        * pressure;
+        .map(|(f, s)| s.width * (ca * f[1] + sa * f[2]) * pressure)
+        .collect();
+    let lift = strip_lift.iter().sum();
     let hinge_moments = ws
         .eval
         .hinge_moments()
@@ -444,6 +447,7 @@ fn equilibrium_point<'a, M: AeroStructure>(
         tip,
         tip_twist,
         lift,
+        strip_lift,
         root_bending_moment: chain.root_bending_moment(&q),
         hinge_moments,
         q,
