@@ -122,10 +122,12 @@ fn gust_response_of_reduced_models() {
 /// Regression test (the model against its own earlier figures): the energy audit of the reduced
 /// gust (r = 6 on Patil's wing, Peters 6, the 1−cos gust of `benches/audit.rs`) at rtol 1e-3
 /// with Radau stays well under the default balance limit 0.1 (`1e3 rtol`, clamped). With one
-/// Newton iteration per step the audit's `W` and `D` kept the stages' Newton error and this
-/// balance error was 1.2e-1 (the run flagged suspect falsely); Radau now converges them
-/// (`radau_step.rs`): 4.1e-3 measured. The bound 2e-2 is 5× below the limit and 5× above the
-/// measured figure (it moves with the steps taken).
+/// Newton iteration per step and the quadratures stepped by one gradient (the last stage's
+/// `Q`, `ẋ`) the audit's `W` and `D` kept the stages' Newton error and this balance error was
+/// 1.2e-1 (the run flagged suspect falsely); a forced second iteration gave 4.1e-3. Radau now
+/// takes its quadrature of each stage's own rate moved by the Newton correction to second order
+/// (`radau_step.rs`, `aeroelastic/equations.rs`), in one iteration: 6.78e-3 measured. The bound
+/// 2e-2 is 5× below the limit and 3× above the measured figure (it moves with the steps taken).
 #[test]
 fn regression_reduced_gust_radau_audit_balance_at_rtol_1e_3() {
     use flexwing::model::AppliedLoads;

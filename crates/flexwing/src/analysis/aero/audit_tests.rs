@@ -88,10 +88,14 @@ fn slope(points: &[(f64, f64)]) -> f64 {
 /// patil_gust flight and on the manoeuvre (gravity, speed and root-angle ramps, damping).
 ///
 /// Radau IIA (order 5), rtol = atol = 1e-4 … 1e-8: measured largest relative errors, gust only,
-/// 2.1e-6, 3.8e-7, 9.0e-8, 1.3e-8, 2.5e-9 in 27, 37, 50, 70, 96 steps (fitted order against the
-/// step count 5.3); manoeuvre 4.6e-5, 3.8e-6, 3.4e-7, 5.5e-8, 1.4e-8 in 25, 36, 49, 73, 103
-/// steps (order 5.8): at most 1.4 rtol (bound 5 rtol), orders within [4, 7.5] (the per-pair
-/// orders range over 4.1–7.8: step-size control makes them noisy). BDF (orders ≤ 2): 6.0e-4 … 1.4e-6
+/// 1.1e-6, 1.5e-7, 1.5e-8, 1.2e-9, 1.3e-10 in 29, 45, 67, 107, 167 steps (fitted order against
+/// the step count 5.25); manoeuvre 9.2e-6, 1.1e-6, 9.0e-8, 7.2e-9, 6.0e-10 in 27, 43, 69, 111,
+/// 180 steps (order 5.12): at most 0.1 rtol (bound 5 rtol), orders within [4, 7.5] (step-size
+/// control makes the per-pair orders noisy). Changed when Radau's quadratures became its
+/// quadrature of the stage rates moved by the one Newton correction (`radau_step.rs`, no second
+/// iteration): before, with a second iteration forced while audited, 2.1e-6 … 2.5e-9 in 27 … 96
+/// steps (order 5.3) and 4.6e-5 … 1.4e-8 in 25 … 103 (5.8); the audited runs now take the
+/// unaudited runs' steps. BDF (orders ≤ 2): 6.0e-4 … 1.4e-6
 /// in 82 … 1542 steps, fitted order 2.1 (bound [1.7, 2.5]). Generalized-α (second order) with
 /// fixed steps 4, 2, 1, 0.5 ms: 1.47e-5, 3.66e-6, 9.13e-7, 2.28e-7, order 2.00 (bound
 /// [1.9, 2.1]). Every run complete (the default limit is 1000 rtol within [1e-5, 0.1], 1e-2 for a fixed step).
@@ -118,6 +122,9 @@ fn the_balance_closes_at_the_integrators_order() {
             radau.push((r.stats.steps as f64, e.max_error));
         }
         let order = -slope(&radau);
+        println!(
+            "Radau, manoeuvre {manoeuvre}: (steps, balance error) {radau:?}, order {order:.2}"
+        );
         assert!(
             (4.0..7.5).contains(&order),
             "Radau {manoeuvre}: {order} {radau:?}"

@@ -496,6 +496,12 @@ impl<M: AeroStructure> OdeSystem for Scaled<'_, M> {
     fn integrating_with(&mut self, method: Method, settings: &IntegratorSettings) {
         self.0.integrating_with(method, settings)
     }
+    fn keep_quadrature_point(&mut self, slot: usize) {
+        self.0.keep_quadrature_point(slot)
+    }
+    fn quadrature_gradient(&mut self, slot: usize, dy: &[f64], dy_rate: &[f64], out: &mut [f64]) {
+        self.0.quadrature_gradient(slot, dy, dy_rate, out)
+    }
 }
 
 /// Each model's largest tip distance from the first model's, over the times both reached.

@@ -28,7 +28,8 @@
 //! or the dense LU) and take `W`'s and `D`'s part from [`AeroelasticEquations`]'
 //! `quadrature_step_*`: their rows of the Jacobian, the gradients of their rates, applied to the
 //! solved step from the Jacobian's blocks, so that one Newton iteration converges them with the
-//! other stages (`equations.rs`).
+//! other stages (`equations.rs`); Radau IIA moves each stage's own rates by its correction
+//! instead (`quadrature_gradient`, `integrate/radau_step.rs`).
 
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -48,6 +49,9 @@ pub(super) struct AeroAudit {
     /// The forces on the structure other than its own `−K x + γ − C ẋ` (`Q_other + Q_grav +
     /// Q_aero`) at the last right-hand side (`n`), for the quadrature step.
     pub(super) force: Vec<f64>,
+    /// The power terms kept for the quadratures' gradient (`equations.rs`, `keep_power_point`):
+    /// Radau's three stages and the point of a quadrature step.
+    pub(super) points: [Vec<f64>; 4],
 }
 
 impl AeroAudit {
@@ -56,6 +60,7 @@ impl AeroAudit {
             balance: EnergyBalance::start(limits, 0.0),
             structural: vec![0.0; 2 * n + 2],
             force: vec![0.0; n],
+            points: Default::default(),
         }
     }
 

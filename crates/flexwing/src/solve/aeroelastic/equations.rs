@@ -561,60 +561,108 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         }
     }
 
-    /// `(∇Ẇ·Δy, ∇Ḋ·Δy)` of the audit's quadrature rates for the Newton step `Δy` (the leading
-    /// components `lead(i)` of `b` before the solve, `dy(i)` after it): with the first block
-    /// row's `δẋ = c Δx − b_x`, `∇Ẇ·Δy = F·δẋ + ẋ·(∂Q_other/∂x) Δx + ẋ·(∂F_ga/∂y) Δy`, `F` the
+    /// Keep the audit's power terms of the last right-hand side (`Q_other + Q_grav + Q_aero`,
+    /// `ẋ`, `C ẋ`, and the last linearization's `(∂Q_other/∂x)ᵀ ẋ`) as point `slot` (0–2:
+    /// Radau's stages, 3: the point of a quadrature step).
+    fn keep_power_point(&mut self, slot: usize) {
+        let n = self.n;
+        let (_, xdot, c_xdot, load_rate) = self.structural.last_power_terms();
+        let Some(audit) = self.audit.as_mut() else {
+            return;
+        };
+        let point = &mut audit.points[slot];
+        point.clear();
+        point.extend_from_slice(&audit.force);
+        point.extend_from_slice(xdot);
+        point.extend_from_slice(c_xdot);
+        point.extend((0..n).map(|i| load_rate.get(i).copied().unwrap_or(0.0)));
+    }
+
+    /// `(∇Ẇ·Δy, ∇Ḋ·Δy)` of the audit's quadrature rates (`audit.rs`) at the kept point `slot`
+    /// for a step `Δy = dy(i)` of the leading components that changes `ẋ` by
+    /// `δẋ = xdot_step(i)`: `∇Ẇ·Δy = F·δẋ + ẋ·(∂Q_other/∂x) Δx + ẋ·(∂F_ga/∂y) Δy`, `F` the
     /// forces on the structure other than `−K x + γ − C ẋ`, `F_ga` those of gravity and the
     /// aerodynamics, `(∂F_ga/∂y) Δy = (∂Q_grav/∂x + Q_x + G D̄ W_x) Δx + Q̃_v δẋ + G C̄ Δa` (the
-    /// blocks of the last structured Jacobian); `∇Ḋ·Δy = 2 (C ẋ)·δẋ`. `F`, `ẋ` and `C ẋ` are
-    /// those of the last right-hand side.
-    fn power_steps(
-        &mut self,
-        c: Complex<f64>,
-        lead: impl Fn(usize) -> Complex<f64>,
+    /// blocks of the last structured Jacobian: a simplified Newton's gradient, as `J`);
+    /// `∇Ḋ·Δy = 2 (C ẋ)·δẋ`. `F`, `ẋ` and `C ẋ` are the point's. With `second_order`, `Ẇ`'s
+    /// change along the step to second order, `F·δẋ + (ẋ + δẋ)·δF_ga + …`: the aerodynamic
+    /// power is quadratic in the velocities (`Q̃_v δẋ`), and Radau's one Newton correction of a
+    /// large step moves it by a second-order term that the gradient alone misses (at rtol 1e-3
+    /// the reduced gust's balance error 1.2e-1 with the gradient, 6.8e-3 with this term,
+    /// `benches/audit.rs`).
+    fn power_gradient(
+        &self,
+        slot: usize,
+        xdot_step: impl Fn(usize) -> Complex<f64>,
         dy: impl Fn(usize) -> Complex<f64>,
+        second_order: bool,
     ) -> (Complex<f64>, Complex<f64>) {
         let n = self.n;
         let z = Complex::new(0.0, 0.0);
         let Some(audit) = self.audit.as_ref() else {
             return (z, z);
         };
-        let (_, xdot, c_xdot, load_rate) = self.structural.last_power_terms();
-        let xd = DVector::from_column_slice(xdot);
-        // ẋᵀ (∂Q_grav/∂x + Q_x), ẋᵀ Q̃_v, ẋᵀ G, from the last structured Jacobian.
+        let point = &audit.points[slot];
+        let (force, rest) = point.split_at(n);
+        let (xdot, rest) = rest.split_at(n);
+        let (c_xdot, load_rate) = rest.split_at(n);
+        // δF = (∂Q_grav/∂x + Q_x) Δx + Q̃_v δẋ + G (D̄ W_x Δx + C̄ Δa), from the last structured
+        // Jacobian.
         let d = &self.derivatives;
-        let mut hx = d.qx.tr_mul(&xd);
-        if self.gravity.is_some() {
-            hx += self.gravity_jac.tr_mul(&xd);
-        }
-        let hv = self.qv.tr_mul(&xd);
-        let hg = d.g.tr_mul(&xd);
+        let mut delta_f: Vec<Complex<f64>> = (0..n)
+            .map(|i| {
+                let mut f = z;
+                for j in 0..n {
+                    let mut kx = d.qx[(i, j)];
+                    if self.gravity.is_some() {
+                        kx += self.gravity_jac[(i, j)];
+                    }
+                    f += dy(j) * kx + xdot_step(j) * self.qv[(i, j)];
+                }
+                f
+            })
+            .collect();
         let dbar = self.eval.feedthrough();
-        let (mut w, mut dd) = (z, z);
-        let mut vdot = vec![z; n];
-        for i in 0..n {
-            let dx = dy(i);
-            let v = c * dx - lead(i);
-            vdot[i] = v;
-            let h = hx[i] + load_rate.get(i).copied().unwrap_or(0.0);
-            w += v * (audit.force[i] + hv[i]) + dx * h;
-            dd += v * c_xdot[i];
-        }
-        // G D̄ W_x Δx and G C̄ Δa, strip by strip.
         let ns = self.eval.lag().map_or(0, |l| l.n_states());
-        for (s, &g) in hg.iter().enumerate() {
+        for s in 0..d.g.ncols() {
             let mut upwash = z;
             for i in 0..n {
                 upwash += dy(i) * d.wx[(s, i)];
             }
-            w += upwash * (g * dbar);
+            let mut strip = upwash * dbar;
             if let Some(lag) = self.eval.lag() {
                 for k in 0..ns {
-                    w += dy(2 * n + s * ns + k) * (g * lag.c[k]);
+                    strip += dy(2 * n + s * ns + k) * lag.c[k];
                 }
             }
+            for (i, f) in delta_f.iter_mut().enumerate() {
+                *f += strip * d.g[(i, s)];
+            }
+        }
+        let (mut w, mut dd) = (z, z);
+        for i in 0..n {
+            let v = xdot_step(i);
+            let velocity = if second_order {
+                v + xdot[i]
+            } else {
+                xdot[i].into()
+            };
+            w += v * force[i] + velocity * delta_f[i] + dy(i) * load_rate[i];
+            dd += v * c_xdot[i];
         }
         (w, dd * 2.0)
+    }
+
+    /// The quadratures' part of a Newton step `(c I − J) Δ = b` at the last right-hand side
+    /// (`OdeSystem::quadrature_step_*`): `δẋ = c Δx − b_x`, the first block row.
+    fn power_steps(
+        &mut self,
+        c: Complex<f64>,
+        lead: impl Fn(usize) -> Complex<f64>,
+        dy: impl Fn(usize) -> Complex<f64>,
+    ) -> (Complex<f64>, Complex<f64>) {
+        self.keep_power_point(3);
+        self.power_gradient(3, |i| c * dy(i) - lead(i), &dy, false)
     }
 
     fn set_air(&mut self, t: f64) {
@@ -817,6 +865,18 @@ impl<M: AeroStructure> OdeSystem for AeroelasticEquations<'_, M> {
                 let v = (Complex::new(*r, *i) + add) / c;
                 (*r, *i) = (v.re, v.im);
             }
+        }
+    }
+
+    fn keep_quadrature_point(&mut self, slot: usize) {
+        self.keep_power_point(slot);
+    }
+
+    fn quadrature_gradient(&mut self, slot: usize, dy: &[f64], dy_rate: &[f64], out: &mut [f64]) {
+        let (w, d) = self.power_gradient(slot, |i| dy_rate[i].into(), |i| dy[i].into(), true);
+        let second = self.structural.damping_power_of(&dy_rate[..self.n]);
+        if let [qw, qd] = out {
+            (*qw, *qd) = (w.re, d.re + second);
         }
     }
 

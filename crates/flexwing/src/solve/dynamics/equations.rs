@@ -69,6 +69,11 @@ pub struct EquationsOfMotion<'a, M: StructuralModel> {
     pub(super) load_rate: Vec<f64>,
     /// Scratch of the quadrature step.
     pub(super) load_rate_scratch: Vec<f64>,
+    /// `Q` and `C ẋ` of the right-hand sides kept for Radau's stages
+    /// (`OdeSystem::keep_quadrature_point`, `ode.rs`).
+    pub(super) quadrature_points: [Vec<f64>; 3],
+    /// `C δẋ` of a quadrature step's second-order term (`ode.rs`).
+    pub(super) c_step: Vec<f64>,
     /// Right-hand-side evaluations.
     pub rhs_evaluations: usize,
     /// Jacobian evaluations.
@@ -146,6 +151,8 @@ impl<'a, M: StructuralModel> EquationsOfMotion<'a, M> {
             halt: None,
             load_rate: Vec::new(),
             load_rate_scratch: Vec::new(),
+            quadrature_points: Default::default(),
+            c_step: Vec::new(),
             rhs_evaluations: 0,
             jacobian_evaluations: 0,
         })

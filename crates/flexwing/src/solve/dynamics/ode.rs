@@ -197,26 +197,21 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
     }
 
     /// The audit's `W` and `D` converged with the other stages in one Newton iteration: their
-    /// rows of `J`, the gradients of `Ẇ = ẋ·Q` and `Ḋ = ẋᵀ C ẋ`, applied to the step `Δy`
-    /// without forming them, `∇Ẇ·Δy = Q·δẋ + ẋ·(∂Q/∂x) Δx`, `∇Ḋ·Δy = 2 (C ẋ)·δẋ`, where
-    /// `δẋ = (∂ẋ/∂y) Δy = c Δx − b_x` is the Newton system's first block row (whatever solved
-    /// it). `Q`, `ẋ` and `C ẋ` are those of the last right-hand side (the latest stage), the load
-    /// stiffness term `(∂Q/∂x)ᵀ ẋ` that of the last linearization with its own `ẋ` (the dense
-    /// Jacobian's or the chain's, `newton_systems.rs`): a simplified Newton's gradient, as `J`.
+    /// rows of `J`, the gradients of `Ẇ = ẋ·Q` and `Ḋ = ẋᵀ C ẋ` ([`Self::power_gradient`]),
+    /// applied to the step `Δy` without forming them, with `δẋ = (∂ẋ/∂y) Δy = c Δx − b_x` the
+    /// Newton system's first block row (whatever solved it) and `Q`, `C ẋ` those of the last
+    /// right-hand side (the latest stage).
     fn quadrature_step_real(&mut self, c: f64, lead: &[f64], dy: &[f64], q: &mut [f64]) {
-        let n = self.n;
-        let load_rate = self.quadrature_load_rate();
-        let (mut w, mut d) = (0.0, 0.0);
-        for i in 0..n {
-            let v = c * dy[i] - lead[i];
-            w += self.force[i] * v + load_rate.get(i).map_or(0.0, |h| h * dy[i]);
-            d += self.c_xdot[i] * v;
-        }
+        let (w, d) = self.power_gradient(
+            &self.force.as_slice()[..self.n],
+            &self.c_xdot,
+            |i| (c * dy[i] - lead[i]).into(),
+            |i| dy[i].into(),
+        );
         if let [qw, qd] = q {
-            *qw = (*qw + w) / c;
-            *qd = (*qd + 2.0 * d) / c;
+            *qw = (*qw + w.re) / c;
+            *qd = (*qd + d.re) / c;
         }
-        self.load_rate_scratch = load_rate;
     }
 
     fn quadrature_step_complex(
@@ -226,23 +221,41 @@ impl<M: StructuralModel> OdeSystem for EquationsOfMotion<'_, M> {
         dy: (&[f64], &[f64]),
         q: (&mut [f64], &mut [f64]),
     ) {
-        let n = self.n;
-        let load_rate = self.quadrature_load_rate();
-        let (mut w, mut d) = (Complex::new(0.0, 0.0), Complex::new(0.0, 0.0));
-        for i in 0..n {
-            let dx = Complex::new(dy.0[i], dy.1[i]);
-            let v = c * dx - Complex::new(lead.0[i], lead.1[i]);
-            w += v * self.force[i] + dx * load_rate.get(i).copied().unwrap_or(0.0);
-            d += v * self.c_xdot[i];
-        }
+        let dx = |i: usize| Complex::new(dy.0[i], dy.1[i]);
+        let (w, d) = self.power_gradient(
+            &self.force.as_slice()[..self.n],
+            &self.c_xdot,
+            |i| c * dx(i) - Complex::new(lead.0[i], lead.1[i]),
+            dx,
+        );
         let (re, im) = q;
-        for (k, add) in [w, d * 2.0].into_iter().enumerate() {
+        for (k, add) in [w, d].into_iter().enumerate() {
             if let (Some(r), Some(i)) = (re.get_mut(k), im.get_mut(k)) {
                 let v = (Complex::new(*r, *i) + add) / c;
                 (*r, *i) = (v.re, v.im);
             }
         }
-        self.load_rate_scratch = load_rate;
+    }
+
+    /// `Q` and `C ẋ` of the last right-hand side, kept as stage `slot`'s.
+    fn keep_quadrature_point(&mut self, slot: usize) {
+        let n = self.n;
+        let point = &mut self.quadrature_points[slot];
+        point.clear();
+        point.extend_from_slice(&self.force.as_slice()[..n]);
+        point.extend_from_slice(&self.c_xdot);
+    }
+
+    /// The change of `Ẇ`, `Ḋ` from the kept point `slot` along `dy`, with `δẋ = dy_rate[..n]`:
+    /// their gradients ([`Self::power_gradient`]) and `Ḋ`'s term of second order `δẋᵀ C δẋ`.
+    fn quadrature_gradient(&mut self, slot: usize, dy: &[f64], dy_rate: &[f64], out: &mut [f64]) {
+        let point = &self.quadrature_points[slot];
+        let (force, c_xdot) = point.split_at(self.n);
+        let (w, d) = self.power_gradient(force, c_xdot, |i| dy_rate[i].into(), |i| dy[i].into());
+        let second = self.damping_power_of(&dy_rate[..self.n]);
+        if let [qw, qd] = out {
+            (*qw, *qd) = (w.re, d.re + second);
+        }
     }
 
     fn integrating_with(&mut self, method: Method, settings: &IntegratorSettings) {
@@ -273,6 +286,38 @@ impl<M: StructuralModel> EquationsOfMotion<'_, M> {
     pub(crate) fn last_power_terms(&mut self) -> (&[f64], &[f64], &[f64], Vec<f64>) {
         let load_rate = self.quadrature_load_rate();
         (self.force.as_slice(), &self.xdot, &self.c_xdot, load_rate)
+    }
+
+    /// The gradients of the audit's rates `Ẇ = ẋ·Q` and `Ḋ = ẋᵀ C ẋ` at a point with forces
+    /// `force` (`Q`) and damping forces `c_xdot` (`C ẋ`) applied to a step whose change of `ẋ`
+    /// is `xdot_step(i)` and of `x` is `x_step(i)`: `∇Ẇ·Δy = Q·δẋ + ẋ·(∂Q/∂x) Δx` and
+    /// `∇Ḋ·Δy = 2 (C ẋ)·δẋ`. The load stiffness term `(∂Q/∂x)ᵀ ẋ` is that of the last
+    /// linearization with its own `ẋ` (the dense Jacobian's or the chain's,
+    /// `newton_systems.rs`): a simplified Newton's gradient, as `J`.
+    fn power_gradient(
+        &self,
+        force: &[f64],
+        c_xdot: &[f64],
+        xdot_step: impl Fn(usize) -> Complex<f64>,
+        x_step: impl Fn(usize) -> Complex<f64>,
+    ) -> (Complex<f64>, Complex<f64>) {
+        let (mut w, mut d) = (Complex::new(0.0, 0.0), Complex::new(0.0, 0.0));
+        for i in 0..self.n {
+            let v = xdot_step(i);
+            w += v * force[i] + x_step(i) * self.load_rate.get(i).copied().unwrap_or(0.0);
+            d += v * c_xdot[i];
+        }
+        (w, d * 2.0)
+    }
+
+    /// `vᵀ C v`: the damping's power at the velocities `v` (zero without damping).
+    pub(crate) fn damping_power_of(&mut self, v: &[f64]) -> f64 {
+        if self.damping == crate::solve::Damping::None {
+            return 0.0;
+        }
+        self.c_step.resize(self.n, 0.0);
+        self.c.apply(self.model, v, &mut self.c_step);
+        v.iter().zip(&self.c_step).map(|(a, b)| a * b).sum()
     }
 
     /// `(∂Q/∂x)ᵀ ẋ` for the audit's quadrature step, at the last linearization (the dense

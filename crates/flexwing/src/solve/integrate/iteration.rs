@@ -25,6 +25,8 @@ pub(crate) struct IterationMatrices {
     shifts: (Vec<f64>, Vec<Complex<f64>>),
     /// The leading part of `b` before a solve (real, imaginary), for the quadratures' part.
     b_lead: (Vec<f64>, Vec<f64>),
+    /// The integrator steps the quadratures itself ([`Self::leave_quadratures`]).
+    quadratures_left: bool,
 }
 
 impl IterationMatrices {
@@ -52,7 +54,14 @@ impl IterationMatrices {
             lead,
             shifts: (Vec::new(), Vec::new()),
             b_lead: (buffer(), buffer()),
+            quadratures_left: false,
         }
+    }
+
+    /// Leave the quadratures' part of every solve as it was in `b`: the integrator steps them
+    /// itself (Radau IIA, from each stage's own point, `radau_step.rs`).
+    pub(crate) fn leave_quadratures(&mut self) {
+        self.quadratures_left = true;
     }
 
     /// Whether the system linearizes cheaply enough to do it at every step
@@ -155,7 +164,7 @@ impl IterationMatrices {
         slot: usize,
         b: &mut [f64],
     ) {
-        let quadratures = self.lead < b.len();
+        let quadratures = self.lead < b.len() && !self.quadratures_left;
         let (dy, q) = b.split_at_mut(self.lead);
         if quadratures {
             self.b_lead.0.copy_from_slice(dy);
@@ -178,7 +187,7 @@ impl IterationMatrices {
         re: &mut [f64],
         im: &mut [f64],
     ) {
-        let quadratures = self.lead < re.len();
+        let quadratures = self.lead < re.len() && !self.quadratures_left;
         let (dy_re, q_re) = re.split_at_mut(self.lead);
         let (dy_im, q_im) = im.split_at_mut(self.lead);
         if quadratures {
@@ -214,7 +223,7 @@ fn solver<S: OdeSystem + ?Sized>(system: &mut S) -> &mut dyn super::NewtonSolver
 
 /// Test support: the two quadrature rows `m`, `m + 1` of `system` (the energy audit's `W`, `D`
 /// after its `m` dynamic states) are stepped consistently by the iteration matrices' real and
-/// complex solves. Their gradients by central differences (h = 1e-6) give the expected rows:
+/// complex solves, and [`OdeSystem::quadrature_gradient`] (Radau's) agrees with their gradients. Their gradients by central differences (h = 1e-6) give the expected rows:
 /// `x_q = (b_q + g·x) / c` for the shift `c` (and its complex twin); the bound `1e-6` is the
 /// differences' relative error on the sum of the terms, `label` names the case in messages.
 #[cfg(test)]
@@ -242,6 +251,7 @@ pub(crate) fn assert_quadrature_rows<S: OdeSystem>(
     let mut mats = IterationMatrices::new(system);
     assert!(mats.linearize(system, t, y));
     system.rhs(t, y, &mut fp);
+    system.keep_quadrature_point(0);
     let (c, cc) = (40.0, Complex::new(35.0, 20.0));
     assert!(mats.factor_real(system, 0, c) && mats.factor_complex(system, 0, cc));
     let b: Vec<f64> = (0..dim).map(|i| (1.7 * i as f64 + 0.3).sin()).collect();
@@ -259,6 +269,20 @@ pub(crate) fn assert_quadrature_rows<S: OdeSystem>(
             (xr[m + k] - want).abs() <= bound,
             "{label} real, quadrature {k}: {} vs {want}",
             xr[m + k]
+        );
+        // Radau's rate change at the kept point along the small step `s x` (its rates moved by
+        // `s (c x − b)`, the real system's first block row): the gradient, to the differences'
+        // 1e-6 and the second-order terms' relative `s |x|` (1e-6 here): bound 1e-5.
+        let s = 1e-6;
+        let dy: Vec<f64> = (0..m).map(|j| s * xr[j]).collect();
+        let rate: Vec<f64> = (0..m).map(|j| s * (c * xr[j] - b[j])).collect();
+        let mut change = vec![0.0; dim - m];
+        system.quadrature_gradient(0, &dy, &rate, &mut change);
+        let want = dot(&dy);
+        assert!(
+            (change[k] - want).abs() <= 1e-5 * size(&dy) + 1e-18,
+            "{label} rate change, quadrature {k}: {} vs {want}",
+            change[k]
         );
         let want = (Complex::new(b[m + k], bi[m + k]) + Complex::new(dot(&zr), dot(&zi))) / cc;
         let got = Complex::new(zr[m + k], zi[m + k]);

@@ -85,7 +85,9 @@ pub trait OdeSystem {
     /// components alone (the Jacobian's leading block, or the system's [`NewtonSolver`] on the
     /// leading part) and take the quadratures' part from [`OdeSystem::quadrature_step_real`] and
     /// [`OdeSystem::quadrature_step_complex`], so that one Newton iteration converges them
-    /// with the other stages. Default 0.
+    /// with the other stages; Radau IIA takes its quadrature of each stage's own rate moved by
+    /// the Newton correction instead ([`OdeSystem::keep_quadrature_point`],
+    /// [`OdeSystem::quadrature_gradient`]). Default 0.
     fn quadrature_states(&self) -> usize {
         0
     }
@@ -115,6 +117,25 @@ pub trait OdeSystem {
             let v = Complex::new(*r, *i) / c;
             (*r, *i) = (v.re, v.im);
         }
+    }
+
+    /// Keep the terms of the last right-hand side that the quadratures' gradient needs (the
+    /// energy audit's `Q`, `ẋ`, `C ẋ`) as point `slot` (0, 1, 2) for
+    /// [`OdeSystem::quadrature_gradient`]: Radau IIA keeps one per stage. Default: nothing.
+    fn keep_quadrature_point(&mut self, slot: usize) {
+        let _ = slot;
+    }
+
+    /// `out_k = g_k·dy` for each quadrature `k`, with `g_k` the gradient of its rate with respect
+    /// to the leading components at the point kept in `slot`
+    /// ([`OdeSystem::keep_quadrature_point`]), `dy` a step of the leading components and
+    /// `dy_rate` the change of their rates `J̃ dy` by the Newton systems' linearization (what
+    /// the step moves `ẋ` by). Radau IIA moves each stage's quadrature rate by it, so that its
+    /// quadratures are the method's quadrature of the rates at the converged stages after one
+    /// Newton iteration. Default: zeros (`g = 0`).
+    fn quadrature_gradient(&mut self, slot: usize, dy: &[f64], dy_rate: &[f64], out: &mut [f64]) {
+        let _ = (slot, dy, dy_rate);
+        out.fill(0.0);
     }
 
     /// Told by [`integrate`] before it runs which method and settings will solve the system, so

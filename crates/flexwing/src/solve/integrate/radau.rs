@@ -369,6 +369,49 @@ mod tests {
 
     use crate::solve::integrate::tests::{Oscillator, Riccati};
 
+    /// The quadratures' coefficients `A` (`radau_step.rs`) against the method's definition:
+    /// the collocation conditions `Σ_j a_ij c_j^(k−1) = c_i^k / k` for k = 1, 2, 3 at the nodes
+    /// `c = (C1, C2, 1)` (Hairer & Wanner II, §IV.5, C(3)), and against `RADAU5`'s transformation:
+    /// `T⁻¹ A⁻¹ T = diag(γ, [[α, −β], [β, α]])`, checked as `A T Λ = T`. Bound 1e-14: round-off
+    /// of sums of a few terms of order 1 (the largest of `T⁻¹`'s entries is 4.3).
+    #[test]
+    fn quadrature_coefficients_are_radau_iia() {
+        use super::super::radau_step::A;
+        let c = [C1, C2, 1.0];
+        for (i, row) in A.iter().enumerate() {
+            for k in 1..=3 {
+                let sum: f64 = (0..3).map(|j| row[j] * c[j].powi(k - 1)).sum();
+                let want = c[i].powi(k) / k as f64;
+                assert!(
+                    (sum - want).abs() < 1e-14,
+                    "row {i}, k = {k}: {sum} vs {want}"
+                );
+            }
+        }
+        let t = [[T11, T12, T13], [T21, T22, T23], [T31, 1.0, 0.0]];
+        // T Λ: columns γ t₁, α t₂ + β t₃, −β t₂ + α t₃.
+        let tl: Vec<[f64; 3]> = (0..3)
+            .map(|i| {
+                let r = t[i];
+                [
+                    GAMMA * r[0],
+                    ALPHA * r[1] + BETA * r[2],
+                    -BETA * r[1] + ALPHA * r[2],
+                ]
+            })
+            .collect();
+        for i in 0..3 {
+            for k in 0..3 {
+                let atl: f64 = (0..3).map(|j| A[i][j] * tl[j][k]).sum();
+                assert!(
+                    (atl - t[i][k]).abs() < 1e-14,
+                    "(A T Λ)[{i}][{k}] = {atl} vs {}",
+                    t[i][k]
+                );
+            }
+        }
+    }
+
     /// Van der Pol, `ε` form (Hairer & Wanner II, §IV.1).
     struct VanDerPol(f64);
 

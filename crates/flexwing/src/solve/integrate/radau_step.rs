@@ -8,8 +8,8 @@
 use nalgebra::Complex;
 
 use super::radau::{
-    ALPHA, BETA, C1, C1M1, C1MC2, C2, C2M1, DD1, DD2, DD3, FACL, FACR, GAMMA, SAFE, T11, T12, T13,
-    T21, T22, T23, T31, TI11, TI12, TI13, TI21, TI22, TI23, TI31, TI32, TI33,
+    ALPHA, BETA, C1, C1M1, C1MC2, C2, C2M1, DD1, DD2, DD3, FACL, FACR, GAMMA, SAFE, SQ6, T11, T12,
+    T13, T21, T22, T23, T31, TI11, TI12, TI13, TI21, TI22, TI23, TI31, TI32, TI33,
 };
 use super::{IntegratorStats, IterationMatrices, OdeSystem, Trajectory};
 
@@ -151,10 +151,64 @@ pub(super) struct Scratch {
     tmp: Vec<f64>,
     f2: Vec<f64>,
     err: Vec<f64>,
+    /// The quadratures ([`Quadratures`]), if the system has any.
+    quadratures: Option<Quadratures>,
     /// `f(t, y)` at the start of the step.
     pub(super) f0: Vec<f64>,
     pub(super) scal: Vec<f64>,
 }
+
+/// Radau's own step of the quadrature states ([`OdeSystem::quadrature_states`]): their stages
+/// are the method's quadrature `Z_q = h A F_q` of their rates at the stages, each rate taken at
+/// the stage's own point and moved by the Newton correction to first order,
+/// `F_q,j = f_q(Y_j) + g_j·ΔZ_j` ([`OdeSystem::quadrature_gradient`], with `g_j` at stage `j`'s
+/// own `Q`, `ẋ`). So they are converged with the other stages after one Newton iteration, to
+/// the stages' convergence error and a term of second order in their correction.
+/// `ΔZ_j = Σ_k T_jk ΔW_k` and `J̃ ΔZ_j = Σ_k T_jk J̃ ΔW_k` with `J̃ ΔW_k = c_k ΔW_k − b_k` from
+/// the transformed systems `(c_k I − J̃) ΔW_k = b_k` (their first block row is what the step
+/// changes `ẋ` by).
+struct Quadratures {
+    /// Components solved by the Newton systems (`dim − quadrature_states`).
+    lead: usize,
+    /// The quadrature rates at each stage's point, then moved by the correction.
+    rates: [Vec<f64>; 3],
+    /// The transformed right-hand sides `b_k` of the last solve (leading part).
+    b: [Vec<f64>; 3],
+    /// `ΔZ_j` and `J̃ ΔZ_j` (leading part).
+    dz: [Vec<f64>; 3],
+    jdz: [Vec<f64>; 3],
+    gradient: Vec<f64>,
+}
+
+impl Quadratures {
+    fn new(dim: usize, states: usize) -> Option<Self> {
+        let lead = dim - states;
+        let v = |m: usize| [vec![0.0; m], vec![0.0; m], vec![0.0; m]];
+        (states > 0).then(|| Self {
+            lead,
+            rates: v(states),
+            b: v(lead),
+            dz: v(lead),
+            jdz: v(lead),
+            gradient: vec![0.0; states],
+        })
+    }
+}
+
+/// Radau IIA's coefficients `a_ij` (Hairer & Wanner II, Table IV.5.6), for the quadratures.
+pub(super) const A: [[f64; 3]; 3] = [
+    [
+        (88.0 - 7.0 * SQ6) / 360.0,
+        (296.0 - 169.0 * SQ6) / 1800.0,
+        (-2.0 + 3.0 * SQ6) / 225.0,
+    ],
+    [
+        (296.0 + 169.0 * SQ6) / 1800.0,
+        (88.0 + 7.0 * SQ6) / 360.0,
+        (-2.0 - 3.0 * SQ6) / 225.0,
+    ],
+    [(16.0 - SQ6) / 36.0, (16.0 + SQ6) / 36.0, 1.0 / 9.0],
+];
 
 /// RMS norm of `v / scal`.
 fn scaled_rms(v: &[f64], scal: &[f64]) -> f64 {
@@ -164,8 +218,14 @@ fn scaled_rms(v: &[f64], scal: &[f64]) -> f64 {
 impl Scratch {
     pub(super) fn new<S: OdeSystem>(system: &mut S) -> Self {
         let n = system.dim();
+        let quadratures = Quadratures::new(n, system.quadrature_states());
+        let mut mats = IterationMatrices::new(system);
+        if quadratures.is_some() {
+            mats.leave_quadratures();
+        }
         Self {
-            mats: IterationMatrices::new(system),
+            mats,
+            quadratures,
             z: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
             w: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
             cont: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
@@ -257,6 +317,11 @@ impl Scratch {
             z2[i] += s2 * alphn - s3 * betan;
             z3[i] += s3 * alphn + s2 * betan;
         }
+        if let Some(q) = &mut self.quadratures {
+            for (b, z) in q.b.iter_mut().zip([&*z1, &*z2, &*z3]) {
+                b.copy_from_slice(&z[..q.lead]);
+            }
+        }
         self.mats.solve_real(system, 0, z1);
         self.mats.solve_complex(system, 0, z2, z3);
     }
@@ -289,6 +354,10 @@ impl Scratch {
                 }
                 system.rhs(nodes[k], &self.tmp, &mut self.z[k]);
                 finite &= self.z[k].iter().all(|v| v.is_finite());
+                if let Some(q) = &mut self.quadratures {
+                    system.keep_quadrature_point(k);
+                    q.rates[k].copy_from_slice(&self.z[k][q.lead..]);
+                }
             }
             stats.rhs_evaluations += 3;
             if !finite {
@@ -339,6 +408,7 @@ impl Scratch {
                 }
             }
             dyno_old = dyno.max(f64::EPSILON);
+            self.quadrature_corrections(h);
             let [z1, z2, z3] = &mut self.z;
             let [w1, w2, w3] = &mut self.w;
             for i in 0..n {
@@ -350,18 +420,58 @@ impl Scratch {
                 z2[i] = T21 * f1 + T22 * f2 + T23 * f3;
                 z3[i] = T31 * f1 + f2;
             }
-            // The quadratures (out of `dyno`: infinite atol) are taken as converged after a
-            // second iteration. Their rates' gradient is a simplified Newton's
-            // (`OdeSystem::quadrature_step_real`: one stage's `Q` and `ẋ`, the last
-            // linearization's load stiffness), so a single iteration leaves in `W` and `D` an
-            // error the balance sums over the steps: at rtol 1e-3 the reduced gust's balance
-            // error was 1.2e-1 (over the default limit 0.1) and case (b)'s 1.0e-3
-            // (`benches/audit.rs`, docs/performance.md). A contraction test on the
-            // quadratures' correction instead starved the steps at tight tolerances.
-            let quadratures_converged = newt >= 2 || system.quadrature_states() == 0;
-            if st.faccon * dyno <= set.fnewt && (quadratures_converged || newt + 1 >= nit) {
+            // The quadratures (out of `dyno`: infinite atol) from the stages' own rates moved
+            // by the correction ([`Quadratures`]): converged with the other stages.
+            self.step_quadratures(system, h);
+            if st.faccon * dyno <= set.fnewt {
                 return Newton::Converged(newt);
             }
+        }
+    }
+
+    /// `ΔZ_j` and `J̃ ΔZ_j` of the leading components from the corrections `ΔW` (in `z`) and
+    /// the right-hand sides `b` of the transformed systems ([`Quadratures`]).
+    fn quadrature_corrections(&mut self, h: f64) {
+        let Some(q) = &mut self.quadratures else {
+            return;
+        };
+        let (fac1, alphn, betan) = (GAMMA / h, ALPHA / h, BETA / h);
+        let [z1, z2, z3] = &self.z;
+        for i in 0..q.lead {
+            let (d1, d2, d3) = (z1[i], z2[i], z3[i]);
+            let j1 = fac1 * d1 - q.b[0][i];
+            let j2 = alphn * d2 - betan * d3 - q.b[1][i];
+            let j3 = betan * d2 + alphn * d3 - q.b[2][i];
+            for (out, (a1, a2, a3)) in [(&mut q.dz, (d1, d2, d3)), (&mut q.jdz, (j1, j2, j3))] {
+                out[0][i] = T11 * a1 + T12 * a2 + T13 * a3;
+                out[1][i] = T21 * a1 + T22 * a2 + T23 * a3;
+                out[2][i] = T31 * a1 + a2;
+            }
+        }
+    }
+
+    /// The quadratures' stages `Z_q = h A F_q` with each stage's rate moved by its correction
+    /// ([`Quadratures`]), and their transformed `W_q = T⁻¹ Z_q`.
+    fn step_quadratures<S: OdeSystem>(&mut self, system: &mut S, h: f64) {
+        let Some(q) = &mut self.quadratures else {
+            return;
+        };
+        for j in 0..3 {
+            system.quadrature_gradient(j, &q.dz[j], &q.jdz[j], &mut q.gradient);
+            for (r, g) in q.rates[j].iter_mut().zip(&q.gradient) {
+                *r += g;
+            }
+        }
+        for k in 0..q.gradient.len() {
+            let i = q.lead + k;
+            let f = [q.rates[0][k], q.rates[1][k], q.rates[2][k]];
+            let z = A.map(|a| h * (a[0] * f[0] + a[1] * f[1] + a[2] * f[2]));
+            for (zj, v) in self.z.iter_mut().zip(z) {
+                zj[i] = v;
+            }
+            self.w[0][i] = TI11 * z[0] + TI12 * z[1] + TI13 * z[2];
+            self.w[1][i] = TI21 * z[0] + TI22 * z[1] + TI23 * z[2];
+            self.w[2][i] = TI31 * z[0] + TI32 * z[1] + TI33 * z[2];
         }
     }
 
