@@ -154,3 +154,20 @@ def test_aero_statics_match_the_cli_and_strip_theory(cli, tmp_path):
     exact = q * 2 * np.pi * 1e-3 * np.tan(lam * 16.0) / lam
     np.testing.assert_allclose(result.lift, exact, rtol=6e-5)
     np.testing.assert_allclose(result.strip_lift.sum(axis=1), result.lift, rtol=1e-12)
+
+
+def test_aero_statics_past_divergence_stop_with_the_rods_divergence():
+    """Patil's wing under 24 N swept to 40 m/s: the sweep stops at 38 m/s (no stable
+    equilibrium past the divergence), keeps the 18 equilibria before it, and gives the
+    divergence speed within the CLI suite's bound of the continuum rod's (37.4357 m/s,
+    chain3d_reference README §2; the chain's n = 32 error −3.6e-3 m/s); with check it raises
+    SolverError. The notebook view shows the stop."""
+    case = flexwing.Case.load(example("patil_3d_flutter.toml"))
+    result = case.statics(check=False)
+    assert isinstance(result, flexwing.Chain3dAeroStaticResult)
+    assert result.status["status"] == "stopped" and "U = 38 m/s" in result.status["message"]
+    assert len(result.equilibria) == 18 and result.speed[-1] == 36.0
+    assert abs(result.divergence_speed - 37.43576864346924) < 5.5e-3
+    assert "stopped" in result._repr_html_()
+    with pytest.raises(flexwing.SolverError):
+        case.statics()

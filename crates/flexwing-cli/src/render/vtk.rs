@@ -37,8 +37,8 @@ fn step_times(scales: &[f64]) -> Vec<f64> {
     }
 }
 
-/// Write the VTK files of `view` (nothing for the analyses without node shapes: flutter,
-/// static aeroelastic, linearize, turbulence); the `.pvd` paths.
+/// Write the VTK files of `view` (nothing for the analyses without node shapes: flutter, the
+/// planar static aeroelastic run, linearize, turbulence); the `.pvd` paths.
 pub fn files(ctx: &super::Context, view: &View, dir: &Path) -> Result<Vec<PathBuf>> {
     let out = folder(dir);
     let mut written = Vec::new();
@@ -107,8 +107,8 @@ fn spatial_frame(time: f64, shape: &Shape3dData, reference: &[[f64; 3]]) -> Fram
     vtk::spatial_frame(time, &shape.position, &shape.rotation, &frames, reference)
 }
 
-/// The 3-D chain's series: its modes, static points or dynamic snapshots (nothing for flutter
-/// and the study).
+/// The 3-D chain's series: its modes, static points, static aeroelastic equilibria or dynamic
+/// snapshots (nothing for flutter and the study).
 fn chain3d_files(
     ctx: &super::Context,
     plan: &Chain3dPlan,
@@ -136,6 +136,17 @@ fn chain3d_files(
                 .map(|(q, t)| spatial_frame(t, &q.shape, &reference))
                 .collect();
             written.push(vtk::write_series(out, "static_full", &frames)?);
+        }
+        (Chain3dOutcome::AeroStatic(o), _) => {
+            // One frame per equilibrium, its time the speed (m/s).
+            let speeds: Vec<f64> = o.equilibria.iter().map(|e| e.speed).collect();
+            let frames: Vec<Frame> = o
+                .equilibria
+                .iter()
+                .zip(step_times(&speeds))
+                .map(|(e, t)| spatial_frame(t, &e.shape, &reference))
+                .collect();
+            written.push(vtk::write_series(out, "static_aero", &frames)?);
         }
         (Chain3dOutcome::Dynamic(o), Analysis3d::Dynamic(d)) => {
             let times = dynamic::node_indices(&ctx.case.output, d.output_times.len());

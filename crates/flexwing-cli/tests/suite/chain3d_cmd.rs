@@ -117,6 +117,7 @@ fn patil_3d_static_aero_against_the_closed_form_of_a_uniform_wing() {
             "[aero.flight]\nroot_angle = 0.001\n\n[aero.sweep]\nfrom = 5.0\nto = 10.0\nsteps = 2 ",
         );
     assert!(case.contains("root_angle = 0.001") && !case.contains("fy = 24.0"));
+    let case = format!("{case}\n[output]\nvtk = true\n");
     let doc = run_json("static", &dir.write("static.toml", &case), &dir);
     assert_eq!(doc["status"], "complete", "{doc}");
     let equilibria = doc["equilibria"].as_array().unwrap();
@@ -167,6 +168,10 @@ fn patil_3d_static_aero_against_the_closed_form_of_a_uniform_wing() {
     assert_eq!(strips.lines().count(), 1 + 2 * 32);
     let nodes = std::fs::read_to_string(dir.path().join("out/static_nodes.csv")).unwrap();
     assert!(nodes.starts_with("point,value,node,span_m,x_m,y_m,z_m,rx_rad,ry_rad,rz_rad"));
+    // The VTK series: a frame per equilibrium, its time the speed.
+    let pvd = std::fs::read_to_string(dir.path().join("out/vtk/static_aero.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet").count(), 2, "{pvd}");
+    assert!(pvd.contains("timestep=\"10.0\""), "{pvd}");
 }
 
 /// `flexwing static` on `examples/patil_3d_flutter.toml` (24 N tip force, sweep to 40 m/s):

@@ -57,6 +57,9 @@ def _table(head: List[str], rows: List[List[str]]) -> str:
 
 def _title(obj, extra: str = "") -> str:
     status = getattr(obj, "status", None)
+    if isinstance(status, dict):
+        # The 3-D chain's results keep the library's status data: its word.
+        status = status.get("status")
     parts = [f"<b>{_e(type(obj).__name__)}</b>"]
     if status is not None:
         colour = {"complete": "green", "suspect": "darkorange"}.get(status, "firebrick")
