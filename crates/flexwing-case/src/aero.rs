@@ -192,7 +192,7 @@ impl Case {
                 "missing: an aeroelastic response needs the initial free-stream speed (m/s)",
             )
         })?;
-        let flight = history(&spec.flight, speed)?;
+        let flight = history(&spec.flight, &spec.surfaces, speed)?;
         let mut plan = AeroDynamicPlan::new(structure, aero, flight);
         plan.start = start;
         plan.static_options = self.static_options();
@@ -320,17 +320,39 @@ pub(crate) fn condition(f: &FlightSpec, speed: f64) -> FlightCondition {
 }
 
 /// The flight history of `[aero.flight]`: the initial condition, the changes of speed and root
-/// angle with their time histories, the gust.
-fn history(f: &FlightSpec, speed: f64) -> Result<FlightHistory, InputError> {
+/// angle with their time histories, the gust; and the changes of the `[[aero.surfaces]]`'
+/// deflections.
+fn history(
+    f: &FlightSpec,
+    surfaces: &[super::spec_aero::SurfaceSpec],
+    speed: f64,
+) -> Result<FlightHistory, InputError> {
+    let mut deflection_changes = surfaces
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            change(
+                &format!("aero.surfaces[{k}]"),
+                ("deflection_change", s.deflection_change),
+                ("deflection_function", s.deflection_function.as_ref()),
+                "rad",
+            )
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    while deflection_changes.last() == Some(&None) {
+        deflection_changes.pop();
+    }
     Ok(FlightHistory {
-        deflection_changes: Vec::new(),
+        deflection_changes,
         initial: condition(f, speed),
         speed_change: change(
+            "aero.flight",
             ("speed_change", f.speed_change),
             ("speed_function", f.speed_function.as_ref()),
             "m/s",
         )?,
         root_angle_change: change(
+            "aero.flight",
             ("root_angle_change", f.root_angle_change),
             ("root_angle_function", f.root_angle_function.as_ref()),
             "rad",
@@ -339,13 +361,14 @@ fn history(f: &FlightSpec, speed: f64) -> Result<FlightHistory, InputError> {
     })
 }
 
-/// A change and its time history: both or neither.
+/// A change and its time history under the table `table`: both or neither.
 fn change(
+    table: &str,
     (key, value): (&str, Option<f64>),
     (function_key, function): (&str, Option<&TimeSpec>),
     unit: &str,
 ) -> Result<Option<(f64, TimeFunction)>, InputError> {
-    let field = |k: &str| format!("aero.flight.{k}");
+    let field = |k: &str| format!("{table}.{k}");
     match (value, function) {
         (None, None) => Ok(None),
         (Some(v), Some(spec)) => Ok(Some((v, time_function(&field(function_key), spec)?))),

@@ -63,6 +63,12 @@ pub struct SurfaceSpec {
     /// Deflection of the equilibrium (rad, trailing edge down); default 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub deflection: Option<f64>,
+    /// Change of deflection `Δδ` (rad) in a dynamic run, times `deflection_function`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub deflection_change: Option<f64>,
+    /// Time history of the change of deflection.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub deflection_function: Option<TimeSpec>,
 }
 
 /// `aero.aerodynamics`: the model and its state count.

@@ -55,3 +55,17 @@ def sine_case() -> flexwing.Case:
 def static_case() -> flexwing.Case:
     """The paper's two-load sweep (Figure 4): examples/paper_static.toml."""
     return flexwing.Case.load(example("paper_static.toml"))
+
+
+def aileron_case(speed, deflection, dynamic=True, **section):
+    """examples/patil_aileron.toml as a dict at one speed, Wagner's lag, the aileron at
+    `deflection`; `section` overrides `[beam.section]` keys; with `[dynamic]` (rtol 1e-8)."""
+    d = flexwing.Case.load(example("patil_aileron.toml")).to_dict()
+    d["aero"].pop("sweep")
+    d["beam"]["section"].update(section)
+    d["aero"]["aerodynamics"] = {"model": "wagner"}
+    d["aero"]["surfaces"][1]["deflection"] = deflection
+    d["aero"]["flight"] = {"speed": speed}
+    if dynamic:
+        d["dynamic"] = {"end_time": 1.0, "output_step": 0.01, "rtol": 1e-8, "atol": 1e-10}
+    return d

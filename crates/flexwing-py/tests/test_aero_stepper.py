@@ -12,7 +12,7 @@ import pytest
 
 import flexwing
 
-from conftest import example, run_cli
+from conftest import aileron_case, example, run_cli
 
 
 @pytest.fixture(scope="module")
@@ -85,18 +85,6 @@ def test_inputs_move_the_wing_and_errors_name_what_is_wrong(gust_case):
         assert message in str(e.value), str(e.value)
     # A failed call leaves the stepper as it was.
     assert stepper.t == t and stepper.inputs == {"gust": 1.0, "force[16]": 10.0}
-
-
-def aileron_case(speed, deflection, dynamic=True):
-    """examples/patil_aileron.toml at one speed, Wagner's lag, the aileron at `deflection`."""
-    d = flexwing.Case.load(example("patil_aileron.toml")).to_dict()
-    d["aero"].pop("sweep")
-    d["aero"]["aerodynamics"] = {"model": "wagner"}
-    d["aero"]["surfaces"][1]["deflection"] = deflection
-    d["aero"]["flight"] = {"speed": speed}
-    if dynamic:
-        d["dynamic"] = {"end_time": 1.0, "output_step": 0.01, "rtol": 1e-8, "atol": 1e-10}
-    return d
 
 
 def test_a_stepped_deflection_settles_at_the_static_equilibrium_of_flexwing_static(cli, tmp_path):

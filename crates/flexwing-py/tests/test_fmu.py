@@ -17,7 +17,7 @@ import pytest
 
 import flexwing
 
-from conftest import ROOT, example, run_cli
+from conftest import ROOT, aileron_case, example, run_cli
 
 fmpy = pytest.importorskip("fmpy")
 import fmpy.validation  # noqa: E402
@@ -295,11 +295,7 @@ def test_a_control_surface_is_an_fmu_input_and_its_hinge_moment_an_output(librar
     the Python stepper's fed the same samples (a regression test of the FMI path: the same core,
     the same steps, so to 1e-9 of each output's scale). The physics of the stepped deflection is
     tested in test_aero_stepper.py (it settles at `flexwing static`'s equilibrium)."""
-    d = flexwing.Case.load(example("patil_aileron.toml")).to_dict()
-    d["aero"].pop("sweep")
-    d["aero"]["aerodynamics"] = {"model": "wagner"}
-    d["aero"]["surfaces"][1]["deflection"] = 0.0
-    d["aero"]["flight"] = {"speed": 10.0}
+    d = aileron_case(10.0, 0.0)
     d["dynamic"] = {"end_time": 1.0, "output_step": 0.05}
     case = flexwing.Case(d)
     inputs, outputs = ["delta[aileron]"], ["tip_y", "lift", "hinge_moment[aileron]"]

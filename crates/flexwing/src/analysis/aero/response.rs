@@ -103,6 +103,19 @@ impl AeroDynamicPlan {
         self.aero.wing(&s.model, fields.aero)?;
         self.flight
             .validate(&fields.flight(), s.model.beam().length(), 0.0, s.end_time)?;
+        let rest: Vec<f64> = self
+            .aero
+            .section
+            .surfaces
+            .iter()
+            .map(|sf| sf.deflection)
+            .collect();
+        self.flight.validate_deflection_changes(
+            &crate::field(fields.aero, "surfaces"),
+            &rest,
+            0.0,
+            s.end_time,
+        )?;
         self.static_options.validate(fields.statics)
     }
 
