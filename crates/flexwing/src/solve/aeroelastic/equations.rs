@@ -584,18 +584,12 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
     /// forces on the structure other than `−K x + γ − C ẋ`, `F_ga` those of gravity and the
     /// aerodynamics, `(∂F_ga/∂y) Δy = (∂Q_grav/∂x + Q_x + G D̄ W_x) Δx + Q̃_v δẋ + G C̄ Δa` (the
     /// blocks of the last structured Jacobian: a simplified Newton's gradient, as `J`);
-    /// `∇Ḋ·Δy = 2 (C ẋ)·δẋ`. `F`, `ẋ` and `C ẋ` are the point's. With `second_order`, `Ẇ`'s
-    /// change along the step to second order, `F·δẋ + (ẋ + δẋ)·δF_ga + …`: the aerodynamic
-    /// power is quadratic in the velocities (`Q̃_v δẋ`), and Radau's one Newton correction of a
-    /// large step moves it by a second-order term that the gradient alone misses (at rtol 1e-3
-    /// the reduced gust's balance error 1.2e-1 with the gradient, 6.8e-3 with this term,
-    /// `benches/audit.rs`).
+    /// `∇Ḋ·Δy = 2 (C ẋ)·δẋ`. `F`, `ẋ` and `C ẋ` are the point's.
     fn power_gradient(
         &self,
         slot: usize,
         xdot_step: impl Fn(usize) -> Complex<f64>,
         dy: impl Fn(usize) -> Complex<f64>,
-        second_order: bool,
     ) -> (Complex<f64>, Complex<f64>) {
         let n = self.n;
         let z = Complex::new(0.0, 0.0);
@@ -606,51 +600,60 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         let (force, rest) = point.split_at(n);
         let (xdot, rest) = rest.split_at(n);
         let (c_xdot, load_rate) = rest.split_at(n);
-        // δF = (∂Q_grav/∂x + Q_x) Δx + Q̃_v δẋ + G (D̄ W_x Δx + C̄ Δa), from the last structured
-        // Jacobian.
+        let xd = DVector::from_column_slice(xdot);
+        // ẋᵀ (∂Q_grav/∂x + Q_x), ẋᵀ Q̃_v, ẋᵀ G, from the last structured Jacobian.
         let d = &self.derivatives;
-        let mut delta_f: Vec<Complex<f64>> = (0..n)
-            .map(|i| {
-                let mut f = z;
-                for j in 0..n {
-                    let mut kx = d.qx[(i, j)];
-                    if self.gravity.is_some() {
-                        kx += self.gravity_jac[(i, j)];
-                    }
-                    f += dy(j) * kx + xdot_step(j) * self.qv[(i, j)];
-                }
-                f
-            })
-            .collect();
+        let mut hx = d.qx.tr_mul(&xd);
+        if self.gravity.is_some() {
+            hx += self.gravity_jac.tr_mul(&xd);
+        }
+        let hv = self.qv.tr_mul(&xd);
+        let hg = d.g.tr_mul(&xd);
         let dbar = self.eval.feedthrough();
+        let (mut w, mut dd) = (z, z);
+        for i in 0..n {
+            let v = xdot_step(i);
+            w += v * (force[i] + hv[i]) + dy(i) * (hx[i] + load_rate[i]);
+            dd += v * c_xdot[i];
+        }
+        // G D̄ W_x Δx and G C̄ Δa, strip by strip.
         let ns = self.eval.lag().map_or(0, |l| l.n_states());
-        for s in 0..d.g.ncols() {
+        for (s, &g) in hg.iter().enumerate() {
             let mut upwash = z;
             for i in 0..n {
                 upwash += dy(i) * d.wx[(s, i)];
             }
-            let mut strip = upwash * dbar;
+            w += upwash * (g * dbar);
             if let Some(lag) = self.eval.lag() {
                 for k in 0..ns {
-                    strip += dy(2 * n + s * ns + k) * lag.c[k];
+                    w += dy(2 * n + s * ns + k) * (g * lag.c[k]);
                 }
             }
-            for (i, f) in delta_f.iter_mut().enumerate() {
-                *f += strip * d.g[(i, s)];
-            }
-        }
-        let (mut w, mut dd) = (z, z);
-        for i in 0..n {
-            let v = xdot_step(i);
-            let velocity = if second_order {
-                v + xdot[i]
-            } else {
-                xdot[i].into()
-            };
-            w += v * force[i] + velocity * delta_f[i] + dy(i) * load_rate[i];
-            dd += v * c_xdot[i];
         }
         (w, dd * 2.0)
+    }
+
+    /// `δF = (∂Q_grav/∂x + Q_x) Δx + Q̃_v δẋ + G (D̄ W_x Δx + C̄ Δa)`: the change of the
+    /// gravity and aerodynamic forces along the step `dy` (leading components) with
+    /// `δẋ = xdot_step`, from the last structured Jacobian's blocks ([`Self::power_gradient`]).
+    fn force_step(&self, dy: &[f64], xdot_step: &[f64]) -> DVector<f64> {
+        let n = self.n;
+        let d = &self.derivatives;
+        let dx = DVector::from_column_slice(&dy[..n]);
+        let mut f = &d.qx * &dx + &self.qv * DVector::from_column_slice(xdot_step);
+        if self.gravity.is_some() {
+            f += &self.gravity_jac * &dx;
+        }
+        let mut strip = &d.wx * &dx * self.eval.feedthrough();
+        if let Some(lag) = self.eval.lag() {
+            let ns = lag.n_states();
+            for (s, v) in strip.iter_mut().enumerate() {
+                *v += (0..ns)
+                    .map(|k| dy[2 * n + s * ns + k] * lag.c[k])
+                    .sum::<f64>();
+            }
+        }
+        f + &d.g * strip
     }
 
     /// The quadratures' part of a Newton step `(c I − J) Δ = b` at the last right-hand side
@@ -662,7 +665,7 @@ impl<'a, M: AeroStructure> AeroelasticEquations<'a, M> {
         dy: impl Fn(usize) -> Complex<f64>,
     ) -> (Complex<f64>, Complex<f64>) {
         self.keep_power_point(3);
-        self.power_gradient(3, |i| c * dy(i) - lead(i), &dy, false)
+        self.power_gradient(3, |i| c * dy(i) - lead(i), &dy)
     }
 
     fn set_air(&mut self, t: f64) {
@@ -872,11 +875,19 @@ impl<M: AeroStructure> OdeSystem for AeroelasticEquations<'_, M> {
         self.keep_power_point(slot);
     }
 
+    /// The change of `Ẇ`, `Ḋ` from the kept point `slot` along `dy` to second order in the
+    /// velocities: the gradients ([`Self::power_gradient`]) and `δẋ·δF_ga` ([`Self::force_step`]),
+    /// `δẋᵀ C δẋ`. The aerodynamic power is quadratic in the velocities (`Q̃_v δẋ`), and Radau's
+    /// one Newton correction of a large step moves it by a second-order term that the gradient
+    /// alone misses (at rtol 1e-3 the reduced gust's balance error 1.2e-1 with the gradient,
+    /// 6.8e-3 with this term, `benches/audit.rs`).
     fn quadrature_gradient(&mut self, slot: usize, dy: &[f64], dy_rate: &[f64], out: &mut [f64]) {
-        let (w, d) = self.power_gradient(slot, |i| dy_rate[i].into(), |i| dy[i].into(), true);
-        let second = self.structural.damping_power_of(&dy_rate[..self.n]);
+        let (w, d) = self.power_gradient(slot, |i| dy_rate[i].into(), |i| dy[i].into());
+        let n = self.n;
+        let damping = self.structural.damping_power_of(&dy_rate[..n]);
+        let aero = dot(&dy_rate[..n], self.force_step(dy, &dy_rate[..n]).as_slice());
         if let [qw, qd] = out {
-            (*qw, *qd) = (w.re, d.re + second);
+            (*qw, *qd) = (w.re + aero, d.re + damping);
         }
     }
 
