@@ -375,6 +375,88 @@ impl PyCase {
         })
     }
 
+    /// The power spectra and RMS of the outputs in continuous turbulence (``[turbulence]``
+    /// through the linear models of ``[linearize]``), as a ``TurbulenceResult`` (as
+    /// ``flexwing turbulence``; spectra and conventions: docs/control.md).
+    ///
+    /// Keyword arguments: ``spectrum`` (``"von-karman"`` or ``"dryden"``), ``intensity``
+    /// (m/s), ``scale_length`` (m), ``frequencies``, ``min_frequency``, ``max_frequency``
+    /// (rad/s) override the keys of ``[turbulence]`` (which ``intensity`` can replace);
+    /// ``progress`` and ``check`` as ``statics`` (``check`` raises ``SolverError`` if a model
+    /// is past the flutter speed).
+    #[pyo3(signature = (**kwargs))]
+    fn turbulence<'py>(
+        &self,
+        py: Python<'py>,
+        kwargs: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        errors::guard(py, || {
+            let kw = Kwargs::new(
+                py,
+                kwargs,
+                &[
+                    "spectrum",
+                    "intensity",
+                    "scale_length",
+                    "frequencies",
+                    "min_frequency",
+                    "max_frequency",
+                    "progress",
+                    "check",
+                ],
+                "turbulence",
+            )?;
+            let mut case = self.case.clone();
+            let intensity = match kw.get("intensity")? {
+                Some(v) => Some(crate::arrays::number(&v, "intensity")?),
+                None => None,
+            };
+            let mut spec = match (case.turbulence.clone(), intensity) {
+                (Some(spec), _) => spec,
+                (None, Some(intensity)) => flexwing_case::TurbulenceSpec {
+                    spectrum: None,
+                    intensity,
+                    scale_length: None,
+                    frequencies: None,
+                    min_frequency: None,
+                    max_frequency: None,
+                },
+                // The case's own error: `turbulence: missing`.
+                (None, None) => return run_with(py, &kw, &case, Analysis::Turbulence),
+            };
+            if let Some(i) = intensity {
+                spec.intensity = i;
+            }
+            if let Some(v) = kw.get("spectrum")? {
+                spec.spectrum = Some(match crate::arrays::text(&v, "spectrum")?.as_str() {
+                    "von-karman" => flexwing_case::SpectrumSpec::VonKarman,
+                    "dryden" => flexwing_case::SpectrumSpec::Dryden,
+                    other => {
+                        return Err(errors::input(
+                            py,
+                            "spectrum",
+                            &format!("expected \"von-karman\" or \"dryden\", got {other:?}"),
+                        ))
+                    }
+                });
+            }
+            for (key, slot) in [
+                ("scale_length", &mut spec.scale_length),
+                ("min_frequency", &mut spec.min_frequency),
+                ("max_frequency", &mut spec.max_frequency),
+            ] {
+                if let Some(v) = kw.get(key)? {
+                    *slot = Some(crate::arrays::number(&v, key)?);
+                }
+            }
+            if let Some(v) = kw.get("frequencies")? {
+                spec.frequencies = Some(crate::arrays::count(&v, "frequencies")?);
+            }
+            case.turbulence = Some(spec);
+            run_with(py, &kw, &case, Analysis::Turbulence)
+        })
+    }
+
     /// Flutter and divergence against a load level on the 3-D chain (``beam.model =
     /// "chain3d"``, ``[flutter.study]``): at every level of a tip force, gravity factor or root
     /// angle, the tip deflection at rest, the flutter speed and frequency and the divergence
@@ -490,8 +572,8 @@ impl PyCase {
     }
 
     /// Run the analysis ``"modes"``, ``"static"``, ``"dynamic"``, ``"flutter"``, ``"linearize"``,
-    /// ``"study"`` or ``"gust"`` (as the methods of the same names; ``"gust"`` is
-    /// ``gust_family``).
+    /// ``"study"``, ``"gust"`` or ``"turbulence"`` (as the methods of the same names; ``"gust"``
+    /// is ``gust_family``).
     #[pyo3(signature = (analysis, **kwargs))]
     fn run<'py>(
         &self,

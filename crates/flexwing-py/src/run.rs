@@ -137,6 +137,7 @@ pub fn to_python<'py>(
         (Plan::Flutter(p), Outcome::Flutter(o)) => flutter::raw(py, p, o)?,
         (Plan::GustFamily(p), Outcome::GustFamily(o)) => gust_family::raw(py, p, o)?,
         (Plan::Linearize(p), Outcome::Linearize(o)) => linearize::raw(py, p, o)?,
+        (Plan::Turbulence(p), Outcome::Turbulence(o)) => turbulence::raw(py, p, o)?,
         (Plan::Chain3d(p), Outcome::Chain3d(o)) => chain3d::raw(py, p, o)?,
         (plan, _) => {
             let what = format!("the outcome of a {} plan is of another kind", plan.name());

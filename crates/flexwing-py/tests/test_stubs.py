@@ -97,7 +97,7 @@ def test_the_analysis_names_of_the_stub_are_the_extensions():
         flexwing.solve_many([], "no-such-analysis")
     except flexwing.InputError as e:
         names = set(re.findall(r'"([a-z-]+)"', e.reason)) - {"no-such-analysis"}
-    assert stub_names == names == {"modes", "static", "dynamic", "flutter", "linearize", "study", "gust"}
+    assert stub_names == names == {"modes", "static", "dynamic", "flutter", "linearize", "study", "gust", "turbulence"}
 
 
 def test_every_result_field_is_documented():

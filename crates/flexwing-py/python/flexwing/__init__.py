@@ -78,7 +78,7 @@ from ._chain3d_results import (
     Chain3dStudyResult,
 )
 from ._files import load_npz
-from ._linear import LinearizeResult, LinearModel
+from ._linear import LinearizeResult, LinearModel, TurbulenceResult, TurbulenceRun
 from ._progress import tqdm_progress
 from ._results import (
     Batch,
@@ -116,6 +116,8 @@ __all__ = [
     "AeroDynamicResult",
     "LinearModel",
     "LinearizeResult",
+    "TurbulenceRun",
+    "TurbulenceResult",
     "Chain3dModesResult",
     "Chain3dStaticResult",
     "Chain3dAeroStaticResult",

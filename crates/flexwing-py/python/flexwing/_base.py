@@ -87,6 +87,9 @@ class _Result:
     _coord: ClassVar[Optional[str]] = None
     _columns: ClassVar[tuple] = ()
     _grids: ClassVar[Dict[str, str]] = {}
+    # The field naming the entries of a grid's second dimension (``{"output": "outputs"}``):
+    # its coordinate in xarray, and one data frame column ``name[label]`` per entry.
+    _grid_labels: ClassVar[Dict[str, str]] = {}
     _delegate: ClassVar[Optional[str]] = None
 
     def __init_subclass__(cls, **kwargs):

@@ -69,6 +69,8 @@ UNITS: Dict[str, str] = {
     "omega": "rad/s",
     "unloaded_omega": "rad/s",
     "frequency_hz": "Hz",
+    "frequency": "rad/s",
+    "gust_psd": "m2 s-2 / (rad/s)",
     "bending_energy_fraction": "1",
     "wet_frequency": "rad/s",
     "real": "1/s",
@@ -223,6 +225,13 @@ def run_frame(run):
         if values is None:
             continue
         columns[name] = _column(values, n)
+    for name, second in run._grids.items():
+        labels = getattr(run, run._grid_labels.get(second, ""), None)
+        values = getattr(run, name)
+        if labels is None or values is None:
+            continue
+        for j, label in enumerate(labels):
+            columns[f"{name}[{label}]"] = np.asarray(values)[:, j]
     index = pd.Index(_axis_values(run), name=run._axis)
     table = pd.DataFrame(columns, index=index)
     table.attrs["units"] = _units_of([run._axis, *columns])
@@ -255,6 +264,10 @@ def run_dataset(run):
         if values is not None:
             data[name] = _variable(xr, (run._axis, second), np.asarray(values), name)
     coords = {run._axis: _variable(xr, (run._axis,), _axis_values(run), run._coord or run._axis)}
+    for second, field_name in run._grid_labels.items():
+        labels = getattr(run, field_name, None)
+        if labels is not None:
+            coords[second] = xr.Variable((second,), np.array(labels, dtype=str))
     return xr.Dataset(data, coords=coords, attrs=_attrs(_scalars(run)))
 
 

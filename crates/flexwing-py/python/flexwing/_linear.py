@@ -158,3 +158,90 @@ class LinearizeResult(_Runs):
     status: str
     rust_time_s: float
     extra: Dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass(eq=False, repr=False)
+class TurbulenceRun(_Run):
+    """The response of one model's outputs to continuous turbulence, through its linear model
+    (docs/control.md, "Continuous turbulence").
+
+    Attributes:
+        label, kind, modes: as :class:`LinearModel`.
+        status, stop, message, notes: as every run; a model past the flutter speed stops (no
+            stationary response) and has empty arrays; ``notes`` name the outputs whose
+            variance diverges with the cut-off.
+        outputs, output_units: the outputs' names and units (``[linearize] outputs``).
+        frequency: the frequencies ω (rad/s), ``(F,)``.
+        gust_psd: the gust velocity's one-sided spectrum Φ_w(ω) (m²/s² per rad/s), ``(F,)``.
+        psd: the outputs' spectra Φ_y(ω) = |H_y(iω)|² Φ_w(ω) (unit² per rad/s), ``(F, O)``.
+        rms: each output's RMS (its unit), ``(O,)``: the variance below, on and above the grid;
+            where it diverges, the part below ``max_frequency``.
+        variance_error: the estimated error of each variance (unit²), ``(O,)``.
+        tail_variance: the variance above ``max_frequency`` included (unit²; NaN where it
+            diverges), ``(O,)``.
+        tail_slope: the exponent p of Φ_y ∝ ω^p beyond every pole, ``(O,)``.
+        diverges: per output, whether its variance diverges (p ≥ −1).
+        gust_rms: the gust's RMS over the same grid and tails (m/s; σ_w up to the quadrature).
+        wall_time_s: wall time of the spectra, the linearization apart (s).
+    """
+
+    _axis = "frequency"
+    _coord = "frequency"
+    _columns = ("frequency", "gust_psd")
+    _grids = {"psd": "output"}
+    _grid_labels = {"output": "outputs"}
+
+    label: str
+    kind: str
+    modes: Optional[List[int]]
+    status: str
+    stop: Optional[Dict[str, Any]]
+    message: Optional[str]
+    notes: List[Dict[str, Any]]
+    outputs: List[str]
+    output_units: List[str]
+    frequency: np.ndarray
+    gust_psd: np.ndarray
+    psd: np.ndarray
+    rms: np.ndarray
+    variance_error: np.ndarray
+    tail_variance: np.ndarray
+    tail_slope: np.ndarray
+    diverges: List[bool]
+    gust_rms: Optional[float]
+    wall_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        return _summary(self, ["label", "status"]) + f" [{len(self.frequency)} frequencies]"
+
+
+@dataclass(eq=False, repr=False)
+class TurbulenceResult(_Runs):
+    """What a turbulence analysis produced (``Case.turbulence()``, as ``flexwing turbulence``).
+
+    Attributes:
+        runs: one :class:`TurbulenceRun` per model, full model first.
+        spectrum: ``"von-karman"`` or ``"dryden"``; intensity: σ_w (m/s); scale_length: L (m).
+        speed: the free-stream speed (m/s).
+        frequencies, min_frequency, max_frequency: the grid (count, rad/s).
+        aerodynamics: as ``AeroStaticResult.aerodynamics``.
+        status: the worst of the runs' statuses.
+        rust_time_s: wall time of the analysis on the Rust side (s).
+    """
+
+    _kind = "turbulence"
+    _nested = {"runs": TurbulenceRun}
+
+    runs: List[TurbulenceRun]
+    spectrum: str
+    intensity: float
+    scale_length: float
+    speed: float
+    frequencies: int
+    min_frequency: float
+    max_frequency: float
+    aerodynamics: Dict[str, Any]
+    status: str
+    rust_time_s: float
+    extra: Dict[str, Any] = field(default_factory=dict)

@@ -24,7 +24,7 @@ from ._chain3d_results import (
     Chain3dStaticResult,
     Chain3dStudyResult,
 )
-from ._linear import LinearizeResult
+from ._linear import LinearizeResult, TurbulenceResult
 from ._results import Batch, DynamicResult, ModesResult, StaticResult
 
 __version__: str
@@ -38,7 +38,7 @@ Load = Mapping[str, Any]
 #: ``callback(done, label)``: ``done`` the fraction of the analysis (0 to 1), ``label`` the model
 #: running (``"full"``, ``"reduced-r2"``, …).
 ProgressCallback = Callable[[float, str], Any]
-AnalysisName = Literal["modes", "static", "dynamic", "flutter", "linearize", "study", "gust"]
+AnalysisName = Literal["modes", "static", "dynamic", "flutter", "linearize", "study", "gust", "turbulence"]
 
 class Case:
     """A flexwing case: the beam, the loads and the settings of its analyses, with the keys of
@@ -163,6 +163,22 @@ class Case:
         aeroelastic equilibrium at ``speed`` (m/s, default ``aero.flight.speed``) for the full
         and reduced models of ``[linearize]``; ``inputs``, ``outputs``, ``states`` override
         its keys. ``check`` raises ``SolverError`` past the divergence speed."""
+    def turbulence(
+        self,
+        *,
+        spectrum: Optional[Literal["von-karman", "dryden"]] = None,
+        intensity: Optional[float] = None,
+        scale_length: Optional[float] = None,
+        frequencies: Optional[int] = None,
+        min_frequency: Optional[float] = None,
+        max_frequency: Optional[float] = None,
+        progress: Optional[ProgressCallback] = None,
+        check: bool = True,
+    ) -> TurbulenceResult:
+        """The power spectra (unit² per rad/s) and RMS of the outputs of the linear models of
+        ``[linearize]`` in continuous turbulence (``[turbulence]``; the keywords override its
+        keys, ``intensity`` in m/s, ``scale_length`` in m, frequencies in rad/s). ``check``
+        raises ``SolverError`` if a model is past the flutter speed."""
     def run(
         self,
         analysis: AnalysisName,
@@ -178,6 +194,7 @@ class Case:
         FlutterResult,
         GustFamilyResult,
         LinearizeResult,
+        TurbulenceResult,
         Chain3dModesResult,
         Chain3dStaticResult,
         Chain3dAeroStaticResult,

@@ -149,6 +149,17 @@ def _runs(plt, result, ax, model: Optional[str] = None, **_):
             a.set_ylabel(f"peak change of {_label(o)}")
         axes[-1].set_xlabel("gust gradient distance H (m)")
         axes[0].set_title("discrete gusts (CS 25.341(a))")
+    elif axis == "frequency":
+        names = next((r.outputs for r in runs if len(r.frequency)), [])
+        fig, axes = _axes(plt, ax, max(len(names), 1))
+        for r in runs:
+            for j, a in enumerate(axes[: len(names)]):
+                if len(r.frequency):
+                    a.loglog(r.frequency, r.psd[:, j], label=f"{r.label}: RMS {r.rms[j]:.4g}")
+        for a, name, unit in zip(axes, names, next((r.output_units for r in runs if len(r.frequency)), [])):
+            a.set_ylabel(f"Φ of {name} ({unit}²/(rad/s))")
+        axes[-1].set_xlabel("ω (rad/s)")
+        axes[0].set_title("output spectra in turbulence")
     else:
         raise TypeError(f"{type(first).__name__} has no plot")
     for a in set(axes):

@@ -15,6 +15,7 @@ pub mod linearize;
 pub mod modes;
 pub mod statics;
 pub mod status;
+pub mod turbulence;
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;

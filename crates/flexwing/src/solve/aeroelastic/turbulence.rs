@@ -21,13 +21,15 @@
 //!
 //! **RMS.** The variance `∫₀^∞ Φ_y dω` by the trapezoidal rule in the variable of
 //! [`FrequencyGrid::nodes`] (a logarithmic grid with a cluster per lightly damped pole), plus `ω_min Φ_y(ω_min)` below the grid (both spectra are flat there) and
-//! the tail above `ω_max` from the asymptotic slope `Φ_y ∝ ω^p`, measured between `ω_f` and
-//! `2 ω_f` beyond every pole (`ω_f = max(2 ω_max, 4 max |λ|)`, so that a resonance just above
-//! the cut-off does not pass for a divergence): `ω_max Φ_y(ω_max)/(−p − 1)` if `p < −1`, else
+//! the tail above `ω_max`: the band up to `ω_f = max(2 ω_max, 4 max |λ|)` (beyond every pole)
+//! by the same rule on [`TAIL_POINTS`] nodes of its own (clustered at the poles there: a
+//! resonance above the cut-off carries variance), and beyond `ω_f` from the asymptotic slope
+//! `Φ_y ∝ ω^p` measured between `ω_f` and `2 ω_f`: `ω_f Φ_y(ω_f)/(−p − 1)` if `p < −1`, else
 //! the variance diverges (an output with a direct feed-through of the gust rate, whose variance
 //! is infinite for both spectra) and only the part below `ω_max` is given, flagged. The
-//! quadrature error is estimated as `|T_h − T_2h|/3` (the trapezoidal rule on every other node),
-//! plus the low-end rectangle's `ω_min |ΔΦ_y|`, plus the whole tail (a model, not a quadrature).
+//! quadrature error is estimated as `|T_h − T_2h|/3` (the trapezoidal rule on every other node)
+//! on the grid and on the band, plus the low-end rectangle's `ω_min |ΔΦ_y|`, plus the whole
+//! piece beyond `ω_f` (a model, not a quadrature).
 //!
 //! **Realizations.** A stationary Gaussian process of period `T` with the spectrum sampled at
 //! the lines `ω_k = 2πk/T ≤ ω_max`: `w(t) = Σ_k a_k cos ω_k t + b_k sin ω_k t` with `a_k, b_k`
@@ -505,20 +507,48 @@ pub fn gust_spectra(
         .zip(&at_far)
         .map(|(hk, &f)| local_slope(f, hk.norm_sqr() * turbulence.psd(2.0 * far, speed)))
         .collect();
+    // The band above ω_max up to ω_far, on a grid of its own clustered at the poles there (a
+    // resonance above the cut-off carries variance that no slope at ω_max sees).
+    let band = FrequencyGrid {
+        points: TAIL_POINTS,
+        min_frequency: top,
+        max_frequency: far,
+    };
+    let (tail_w, tail_jacobian) = band.nodes(poles);
+    let mut tail_psd = vec![Vec::with_capacity(TAIL_POINTS); p];
+    for &w in &tail_w {
+        response.at(w, &mut h);
+        let pw = turbulence.psd(w, speed);
+        for (k, hk) in h.iter().enumerate() {
+            tail_psd[k].push(hk.norm_sqr() * pw);
+        }
+    }
     let (mut rms, mut variance_error, mut tail, mut tail_slope) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for (k, phi) in psd.iter().enumerate() {
-        let v = variance(&frequencies, &jacobian, phi, slopes[k]);
+        let above = Tail {
+            jacobian: &tail_jacobian,
+            phi: &tail_psd[k],
+            far,
+            slope: slopes[k],
+        };
+        let v = variance(&frequencies, &jacobian, phi, &above);
         rms.push(v.variance.max(0.0).sqrt());
         variance_error.push(v.error);
         tail.push(v.tail);
-        tail_slope.push(v.slope);
+        tail_slope.push(slopes[k]);
     }
+    let gust_tail: Vec<f64> = tail_w.iter().map(|&w| turbulence.psd(w, speed)).collect();
     let gust = variance(
         &frequencies,
         &jacobian,
         &gust_psd,
-        local_slope(turbulence.psd(far, speed), turbulence.psd(2.0 * far, speed)),
+        &Tail {
+            jacobian: &tail_jacobian,
+            phi: &gust_tail,
+            far,
+            slope: local_slope(turbulence.psd(far, speed), turbulence.psd(2.0 * far, speed)),
+        },
     );
     Ok(GustSpectra {
         frequencies,
@@ -532,14 +562,6 @@ pub fn gust_spectra(
     })
 }
 
-/// A variance by quadrature (module documentation).
-struct Variance {
-    variance: f64,
-    error: f64,
-    tail: Option<f64>,
-    slope: f64,
-}
-
 /// The exponent `p` of `Φ ∝ ω^p` from `Φ` at `ω` and `2ω` (`−∞` where either is zero).
 fn local_slope(at: f64, above: f64) -> f64 {
     if at > 0.0 && above > 0.0 {
@@ -549,12 +571,29 @@ fn local_slope(at: f64, above: f64) -> f64 {
     }
 }
 
-/// `∫₀^∞ Φ dω` from `Φ` at the nodes `w` (evenly spaced in `s`, `dω/ds` = `jacobian`) and the
-/// asymptotic exponent `slope` of `Φ ∝ ω^slope`.
-fn variance(w: &[f64], jacobian: &[f64], phi: &[f64], slope: f64) -> Variance {
-    let n = w.len();
-    // The trapezoidal rule in s with spacing `step` (the last interval shorter if need be).
-    let trapezoid = |step: usize| -> f64 {
+/// Frequencies of the band between `ω_max` and `ω_f` that the tail is integrated on.
+pub const TAIL_POINTS: usize = 64;
+
+/// A variance by quadrature (module documentation).
+struct Variance {
+    variance: f64,
+    error: f64,
+    tail: Option<f64>,
+}
+
+/// The spectrum above the grid: on the band `ω_max … ω_f` (nodes evenly spaced in `s`,
+/// `dω/ds` = `jacobian`), then `∝ ω^slope` beyond `far`.
+struct Tail<'a> {
+    jacobian: &'a [f64],
+    phi: &'a [f64],
+    far: f64,
+    slope: f64,
+}
+
+/// The trapezoidal rule in `s` on unit spacing and on every other node, of `phi · jacobian`.
+fn trapezoids(jacobian: &[f64], phi: &[f64]) -> (f64, f64) {
+    let n = phi.len();
+    let rule = |step: usize| -> f64 {
         let mut idx: Vec<usize> = (0..n).step_by(step).collect();
         if *idx.last().unwrap_or(&0) != n - 1 {
             idx.push(n - 1);
@@ -566,24 +605,32 @@ fn variance(w: &[f64], jacobian: &[f64], phi: &[f64], slope: f64) -> Variance {
             })
             .sum()
     };
-    let fine = trapezoid(1);
-    let coarse = trapezoid(2);
+    (rule(1), rule(2))
+}
+
+/// `∫₀^∞ Φ dω` from `Φ` at the nodes `w` (evenly spaced in `s`, `dω/ds` = `jacobian`) and
+/// the spectrum above them.
+fn variance(w: &[f64], jacobian: &[f64], phi: &[f64], above: &Tail) -> Variance {
+    let (fine, coarse) = trapezoids(jacobian, phi);
     let low = w[0] * phi[0];
     let low_error = w[0] * (phi[1] - phi[0]).abs();
-    let last = phi[n - 1];
-    let tail = if last == 0.0 {
-        Some(0.0)
-    } else if slope < -1.0 {
-        Some(w[n - 1] * last / (-slope - 1.0))
+    let last = above.phi[above.phi.len() - 1];
+    let tail = if above.slope < -1.0 || last == 0.0 {
+        let (band, band_coarse) = trapezoids(above.jacobian, above.phi);
+        let beyond = if last == 0.0 {
+            0.0
+        } else {
+            above.far * last / (-above.slope - 1.0)
+        };
+        // The band's quadrature error and the asymptotic piece beyond ω_f, whole.
+        Some((band + beyond, (band - band_coarse).abs() / 3.0 + beyond))
     } else {
         None
     };
     Variance {
-        variance: low + fine + tail.unwrap_or(0.0),
-        // The tail is a model (the asymptotic slope from ω_max on): counted whole as error.
-        error: (fine - coarse).abs() / 3.0 + low_error + tail.unwrap_or(0.0),
-        tail,
-        slope,
+        variance: low + fine + tail.map_or(0.0, |t| t.0),
+        error: (fine - coarse).abs() / 3.0 + low_error + tail.map_or(0.0, |t| t.1),
+        tail: tail.map(|t| t.0),
     }
 }
 
