@@ -150,15 +150,20 @@ fn ctrl_c_and_kill_stop_a_flutter_analysis_and_keep_what_it_found() {
 
 #[test]
 fn ctrl_c_and_kill_stop_a_gust_response_and_keep_its_samples() {
-    // patil_gust.toml on 96 elements over 1000 s: about 25 s in full (200 s took 5 s on the
-    // shared machine; 48 elements over 20 s, this test's case until the lag states' elimination
-    // reached the CLI's runs, now takes 0.7 s and ended before the signal), interrupted after
-    // 2 s; the aeroelastic response checks after every integrator step.
+    // patil_gust.toml on 96 elements over 1000 s, output every 0.1 s: about 25 s in full
+    // (200 s took 5 s on the shared machine; 48 elements over 20 s, this test's case until the
+    // lag states' elimination reached the CLI's runs, now takes 0.7 s and ended before the
+    // signal), interrupted after 2 s; the response checks after every integrator step.
     let text = std::fs::read_to_string(example("patil_gust.toml"))
         .unwrap()
         .replacen("elements = 16", "elements = 96", 1)
-        .replacen("end_time = 2.0 ", "end_time = 1000.0 ", 1);
+        .replacen("end_time = 2.0 ", "end_time = 1000.0 ", 1)
+        .replacen("output_step = 0.01", "output_step = 0.1", 1);
     assert!(text.contains("elements = 96") && text.contains("end_time = 1000.0 "));
+    assert!(
+        text.contains("output_step = 0.1\n"),
+        "10 001 output times, under the cap"
+    );
     let dir = TempDir::new("interrupt-gust");
     let case = dir.write("case.toml", &text);
     for signal in ["-INT", "-TERM"] {
