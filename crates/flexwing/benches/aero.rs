@@ -7,7 +7,8 @@
 //!
 //! Run: `cargo bench -p flexwing --bench aero` (add `-- --quick` for a short run; name sections
 //! to run only those: `-- flutter`, `-- sweep`, `-- gust`, `-- audit`: the cost of the energy
-//! audit on the gust response, `-- family`: the gust family).
+//! audit on the gust response, `-- family`: the gust family, `-- turbulence`: the output
+//! spectra and RMS of 500 frequencies in von Kármán turbulence).
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -101,6 +102,7 @@ fn main() {
                 "gust",
                 "audit",
                 "family",
+                "turbulence",
                 "pk",
                 "pk-once",
                 "eigen-once",
@@ -144,6 +146,81 @@ fn main() {
     }
     if want("family") {
         family_table();
+    }
+    if want("turbulence") {
+        turbulence_table(batches);
+    }
+}
+
+/// The output spectra and RMS (`gust_spectra`, the linearization apart) of Patil's wing at
+/// 25 m/s, 2°, in von Kármán turbulence (σ_w = 1 m/s, L = 2500 ft) on the default grid of 500
+/// frequencies, full and reduced (r = 6), n = 16 and 32: the best of `batches` runs, CPU and
+/// wall.
+fn turbulence_table(batches: usize) {
+    use flexwing::solve::aeroelastic::turbulence::{
+        gust_spectra, FrequencyGrid, Spectrum, Turbulence,
+    };
+    use flexwing::solve::aeroelastic::{
+        linearize, poles, Input, LinearizeOptions, Output, StateBasis,
+    };
+    println!("\nTurbulence: 500 frequencies, tip deflection, twist, root moment, lift; Patil's wing, Peters 6, 25 m/s\n");
+    println!("| n | model | states | CPU (best of {batches}) | wall |");
+    println!("|---|---|---|---|---|");
+    let turbulence = Turbulence::new(Spectrum::VonKarman, 1.0);
+    let grid = FrequencyGrid::default_for(25.0, turbulence.scale_length, 0.5);
+    for n in [16, 32] {
+        let wing = patil(n);
+        for reduced in [false, true] {
+            let options = LinearizeOptions {
+                flight: FlightCondition {
+                    speed: 25.0,
+                    root_angle: 0.0349,
+                    gravity: None,
+                },
+                loads: vec![],
+                damping: Damping::None,
+                static_options: Default::default(),
+                inputs: vec![Input::Gust, Input::GustRate],
+                outputs: vec![
+                    Output::TipY,
+                    Output::TipTwist,
+                    Output::RootBendingMoment,
+                    Output::Lift,
+                ],
+                basis: StateBasis::Velocities,
+                mode_numbers: reduced.then(|| (1..=6).collect()),
+            };
+            let ss = if reduced {
+                let rom = wing.reduced(&(0..6).collect::<Vec<_>>()).expect("rom");
+                linearize(&rom, &options, "linearize")
+            } else {
+                linearize(&wing, &options, "linearize")
+            }
+            .expect("linear model");
+            let Some(p) = poles(&ss.a) else {
+                println!(
+                    "| {n} | {} | {} | poles not computed (Schur form) | |",
+                    if reduced { "reduced r = 6" } else { "full" },
+                    ss.a.nrows()
+                );
+                continue;
+            };
+            let (mut cpu, mut wall) = (f64::INFINITY, f64::INFINITY);
+            for _ in 0..batches {
+                let (c0, w0) = (cpu_time(), std::time::Instant::now());
+                let s = gust_spectra(&ss, &p, &turbulence, 25.0, &grid, "").expect("spectra");
+                black_box(s);
+                cpu = cpu.min(cpu_time() - c0);
+                wall = wall.min(w0.elapsed().as_secs_f64());
+            }
+            println!(
+                "| {n} | {} | {} | {} | {} |",
+                if reduced { "reduced r = 6" } else { "full" },
+                ss.a.nrows(),
+                fmt_time(cpu),
+                fmt_time(wall)
+            );
+        }
     }
 }
 

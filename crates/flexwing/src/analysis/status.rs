@@ -207,6 +207,13 @@ pub enum Stop {
         /// The speed (m/s).
         speed: f64,
     },
+    /// The poles of the linear model of a turbulence analysis at `speed` (m/s) were not
+    /// computed (the real Schur form did not converge): its stability is unknown, so its
+    /// spectra are not computed.
+    TurbulencePolesUnknown {
+        /// The speed (m/s).
+        speed: f64,
+    },
     /// The flutter analysis lost a branch between `from` and `speed` (m/s), or (`branch:
     /// None`) needed more sub-steps than its cap there
     /// ([`crate::solve::aeroelastic::FlutterStop::BranchLost`]); its data up to there are kept.
@@ -328,6 +335,13 @@ impl fmt::Display for Stop {
                 if *count == 1 { "" } else { "s" },
                 short(*real),
                 short(*frequency)
+            ),
+            Stop::TurbulencePolesUnknown { speed } => write!(
+                f,
+                "the poles of the linear model at {} m/s were not computed (the Schur form did \
+                 not converge): its stability is unknown, and its response to turbulence is not \
+                 computed",
+                short(*speed)
             ),
             Stop::FlutterBranchLost {
                 branch,
