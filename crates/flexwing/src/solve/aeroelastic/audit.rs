@@ -135,7 +135,7 @@ impl<M: AeroStructure> AeroelasticEquations<'_, M> {
         let Some(limits) = self.audit.as_ref().map(|a| a.balance.limits) else {
             return;
         };
-        let (kinetic, strain) = self.structural.energies(&y[..2 * self.n]);
+        let (kinetic, strain) = self.energies(y);
         if let Some(audit) = self.audit.as_mut() {
             audit.balance = EnergyBalance::start(limits, kinetic + strain);
         }
@@ -173,7 +173,7 @@ impl<M: AeroStructure> AeroelasticEquations<'_, M> {
         let Some((w, d)) = self.work_and_dissipation(y) else {
             return ControlFlow::Continue(());
         };
-        let (kinetic, strain) = self.structural.energies(&y[..2 * self.n]);
+        let (kinetic, strain) = self.energies(y);
         match self.audit.as_mut() {
             Some(audit) => audit.balance.check(t, kinetic + strain, w, d),
             None => ControlFlow::Continue(()),
