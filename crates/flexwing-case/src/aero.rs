@@ -88,6 +88,7 @@ impl Case {
         &self,
         spec: &AeroSpec,
     ) -> Result<(FlightCondition, Option<SpeedSweep>), InputError> {
+        refuse_histories(spec, STATIC_RUN)?;
         let s = &self.statics;
         if s.sweep.is_some() {
             return Err(InputError::new(
@@ -134,6 +135,7 @@ impl Case {
 
     fn checked_flutter_plan(&self) -> Result<FlutterPlan, InputError> {
         let (spec, model, aero) = self.aero_parts()?;
+        refuse_histories(spec, FLUTTER_RUN)?;
         let speeds =
             match &spec.sweep {
                 Some(sw) => speed_sweep(sw, "aero.sweep")?.speeds,
@@ -309,6 +311,78 @@ fn surface(s: &super::spec_aero::SurfaceSpec) -> ControlSurface {
 fn or_zero(p: Option<&crate::Property>) -> Profile {
     p.map_or(Profile::Uniform(0.0), |p| p.0.clone())
 }
+
+/// The first time history of a dynamic run in `spec` (a surface's `deflection_change` or
+/// `deflection_function`, the flight's `speed_change`, `root_angle_change` or their functions),
+/// as an error naming its key: `run` ("flexwing static", …) solves the equilibria of the flight
+/// at its start values and would not apply it. A run about an equilibrium with a change of the
+/// operating point in the file is most likely a mistake (which point was meant: the start, the
+/// end?), so it is refused rather than ignored (docs/case-file.md). The gust is a disturbance of
+/// a dynamic run, not a change of the operating point: it is left to the dynamic runs.
+pub(crate) fn refuse_histories(spec: &AeroSpec, run: &str) -> Result<(), InputError> {
+    let surface = spec.surfaces.iter().enumerate().find_map(|(k, s)| {
+        let key = match (
+            s.deflection_change.is_some(),
+            s.deflection_function.is_some(),
+        ) {
+            (true, _) => "deflection_change",
+            (false, true) => "deflection_function",
+            (false, false) => return None,
+        };
+        Some(InputError::new(
+            format!("aero.surfaces[{k}].{key}"),
+            format!(
+                "is the deflection's time history in a dynamic run (flexwing dynamic, gust, the \
+                 stepper, the FMU); {run} holds the surface {:?} at its deflection: set \
+                 deflection, or remove deflection_change and deflection_function{}",
+                s.name,
+                if run == LINEAR_RUN {
+                    format!(" (the input delta[{}] takes a history)", s.name)
+                } else {
+                    String::new()
+                }
+            ),
+        ))
+    });
+    if let Some(e) = surface {
+        return Err(e);
+    }
+    let f = &spec.flight;
+    let flight = [
+        (
+            "speed",
+            f.speed_change.is_some(),
+            f.speed_function.is_some(),
+        ),
+        (
+            "root_angle",
+            f.root_angle_change.is_some(),
+            f.root_angle_function.is_some(),
+        ),
+    ];
+    match flight.iter().find(|(_, c, f)| *c || *f) {
+        Some((name, change, _)) => {
+            let key = if *change { "change" } else { "function" };
+            Err(InputError::new(
+                format!("aero.flight.{name}_{key}"),
+                format!(
+                    "is the {}'s time history in a dynamic run (flexwing dynamic, gust, the \
+                     stepper, the FMU); {run} holds the flight at its start: remove \
+                     {name}_change and {name}_function",
+                    name.replace('_', " ")
+                ),
+            ))
+        }
+        None => Ok(()),
+    }
+}
+
+/// The static equilibria, as [`refuse_histories`] names them.
+pub(crate) const STATIC_RUN: &str = "flexwing static";
+/// The flutter analysis' equilibria.
+pub(crate) const FLUTTER_RUN: &str = "flexwing flutter";
+/// The linear model's equilibrium (and the turbulence response's, through it).
+pub(crate) const LINEAR_RUN: &str = "the linear model (linearize, turbulence)";
 
 /// The flight condition of `[aero.flight]` at speed `speed`.
 pub(crate) fn condition(f: &FlightSpec, speed: f64) -> FlightCondition {

@@ -361,6 +361,7 @@ impl Case {
 
     fn flutter3d(&self, model: &Chain3d) -> Result<Flutter3d, InputError> {
         let (spec, aero) = self.aero_of()?;
+        crate::aero::refuse_histories(spec, crate::aero::FLUTTER_RUN)?;
         let speeds =
             match &spec.sweep {
                 Some(sw) => speed_sweep(sw, "aero.sweep")?.speeds,

@@ -7,7 +7,7 @@ use flexwing::analysis::aero::linearize::LinearizePlan;
 use flexwing::solve::aeroelastic::StateBasis;
 use flexwing::InputError;
 
-use super::aero::{condition, fields};
+use super::aero::{condition, fields, refuse_histories, LINEAR_RUN};
 use super::spec::Case;
 use super::spec_aero::StatesSpec;
 use crate::CaseError;
@@ -26,6 +26,7 @@ impl Case {
 
     pub(crate) fn checked_linearize_plan(&self) -> Result<LinearizePlan, InputError> {
         let (spec, model, aero) = self.aero_parts()?;
+        refuse_histories(spec, LINEAR_RUN)?;
         let speed = spec.flight.speed.ok_or_else(|| {
             InputError::new(
                 "aero.flight.speed",

@@ -168,7 +168,11 @@ def harmonic_error(amplitude, omega, keys=("tip_y", "tip_twist", "lift")):
     run = case.dynamics().runs[0]
     assert run.status == "complete"
     names = ["delta[aileron]", "delta_rate[aileron]", "delta_acceleration[aileron]"]
-    lin = case.linearize(inputs=names, outputs=list(keys)).runs[0]
+    # The linear model is about the equilibrium at `deflection`: the history is its input.
+    held = copy.deepcopy(d)
+    for key in ("deflection_change", "deflection_function"):
+        del held["aero"]["surfaces"][1][key]
+    lin = flexwing.Case(held).linearize(inputs=names, outputs=list(keys)).runs[0]
     g = lin.frequency_response([omega], names, list(keys))[0]  # (outputs, inputs)
     t = np.asarray(run.t)
     lag = [i for i, n in enumerate(lin.state_names) if n.startswith("lag")]
@@ -234,3 +238,21 @@ def test_bad_deflection_histories_name_the_key(keys, field):
         flexwing.Case(d).dynamics()
     assert info.value.field == field, str(info.value)
     assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("run", ["statics", "flutter", "linearize"])
+def test_runs_about_an_equilibrium_refuse_a_deflection_history(run):
+    """A deflection's time history is a dynamic run's: the static, flutter and linear runs hold
+    the surface at its `deflection` and refuse the history with an error naming the key (not
+    ignore it); the dynamic run of the same case takes it."""
+    d = aileron_case(10.0, 0.0)
+    d["aero"]["surfaces"][1]["deflection_change"] = 0.01
+    d["aero"]["surfaces"][1]["deflection_function"] = {"type": "ramp", "start": 0.0, "end": 0.5}
+    d["aero"]["sweep"] = {"speeds": [10.0]}
+    case = flexwing.Case(d)
+    with pytest.raises(CaseFileError) as info:
+        getattr(case, run)()
+    assert info.value.field == "aero.surfaces[1].deflection_change", str(info.value)
+    assert "holds the surface" in str(info.value) and "\n" not in str(info.value)
+    d["dynamic"]["end_time"] = 0.05
+    assert flexwing.Case(d).dynamics().runs[0].status == "complete"

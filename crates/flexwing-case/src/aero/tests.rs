@@ -61,12 +61,26 @@ fn case(text: &str) -> Case {
     Case::from_toml_str(text).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The flight's time histories of [`CASE`]: a dynamic run's, refused by the runs about an
+/// equilibrium.
+const CHANGES: &str = "speed_change = 5
+speed_function = { type = \"ramp\", start = 0.1, end = 0.5 }
+root_angle_change = 0.01
+root_angle_function = { type = \"step\", time = 0.2 }
+";
+
+/// `text` without [`CHANGES`]: a case for the runs about an equilibrium (static, flutter).
+fn held(text: &str) -> Case {
+    assert!(text.contains(CHANGES));
+    case(&text.replacen(CHANGES, "", 1))
+}
+
 /// Every key ends in the library field of the same name.
 #[test]
 fn every_key_reaches_its_field() {
     let c = case(CASE);
     assert!(c.is_aeroelastic());
-    let f = c.flutter_plan().unwrap();
+    let f = held(CASE).flutter_plan().unwrap();
     let s = &f.aero.section;
     assert_eq!(s.chord, Profile::Uniform(1.0));
     assert_eq!(
@@ -113,9 +127,9 @@ fn every_key_reaches_its_field() {
     assert_eq!(d.structure.reduced, [4]);
 
     // The static run sweeps the speeds of [aero.sweep]; without it, the flight's speed.
-    let st = c.aero_static_plan().unwrap();
+    let st = held(CASE).aero_static_plan().unwrap();
     assert_eq!(st.speeds().len(), 10);
-    let single = case(&CASE.replace("[aero.sweep]\nfrom = 4\nto = 40\nsteps = 10\n", ""));
+    let single = held(&CASE.replace("[aero.sweep]\nfrom = 4\nto = 40\nsteps = 10\n", ""));
     assert_eq!(single.aero_static_plan().unwrap().speeds(), [20.0]);
 }
 
@@ -130,7 +144,7 @@ fn defaults() {
             "[flutter]\nreduced = [4]\nmodes = 3\ntolerance = 1e-7\npk = true\n",
             "",
         );
-    let c = case(&text);
+    let c = held(&text);
     let f = c.flutter_plan().unwrap();
     let s = &f.aero.section;
     assert_eq!(s.lift_slope, Profile::Uniform(2.0 * std::f64::consts::PI));
@@ -249,10 +263,10 @@ fn errors_name_the_case_files_keys() {
     ];
     for ((from, to), analysis, expected) in cases {
         assert!(CASE.contains(from), "{from}");
-        let c = case(&CASE.replacen(from, to, 1));
+        let text = CASE.replacen(from, to, 1);
         let e = match analysis {
-            "flutter" => c.flutter_plan().map(|_| ()),
-            _ => c.aero_dynamic_plan().map(|_| ()),
+            "flutter" => held(&text).flutter_plan().map(|_| ()),
+            _ => case(&text).aero_dynamic_plan().map(|_| ()),
         }
         .unwrap_err();
         assert!(e.to_string().starts_with(expected), "{to}: {e}");
@@ -262,7 +276,7 @@ fn errors_name_the_case_files_keys() {
 #[test]
 fn key_combinations_of_the_runs() {
     let gravity = "\n[[loads]]\ntype = \"gravity\"\n";
-    let c = case(&format!("{CASE}{gravity}"));
+    let c = held(&format!("{CASE}{gravity}"));
     let e = c.flutter_plan().unwrap_err().to_string();
     assert!(
         e.starts_with("loads[0].type: with [aero], give gravity as aero.flight.gravity"),
@@ -279,17 +293,17 @@ fn key_combinations_of_the_runs() {
     let e = c.static_plan().unwrap_err().to_string();
     assert!(e.starts_with("aero: the case is aeroelastic"), "{e}");
     assert!(c.dynamic_plan().is_err());
-    let no_sweep = case(&CASE.replace("[aero.sweep]\nfrom = 4\nto = 40\nsteps = 10\n", ""));
+    let no_sweep = held(&CASE.replace("[aero.sweep]\nfrom = 4\nto = 40\nsteps = 10\n", ""));
     let e = no_sweep.flutter_plan().unwrap_err().to_string();
     assert!(e.starts_with("aero.sweep: missing"), "{e}");
-    let bare = case(
+    let bare = held(
         &CASE
             .replace("[aero.sweep]\nfrom = 4\nto = 40\nsteps = 10\n", "")
             .replace("speed = 20\n", ""),
     );
     let e = bare.aero_static_plan().unwrap_err().to_string();
     assert!(e.starts_with("aero.flight.speed: missing"), "{e}");
-    let e = case(&format!("{CASE}\n[static]\nmodes = 2\n"))
+    let e = held(&format!("{CASE}\n[static]\nmodes = 2\n"))
         .aero_static_plan()
         .unwrap_err()
         .to_string();
@@ -297,7 +311,7 @@ fn key_combinations_of_the_runs() {
         e.starts_with("static.modes: loaded modes are not available"),
         "{e}"
     );
-    let e = case(&CASE.replace("steps = 10", "steps = 10\nspeeds = [1, 2]"))
+    let e = held(&CASE.replace("steps = 10", "steps = 10\nspeeds = [1, 2]"))
         .aero_static_plan()
         .unwrap_err()
         .to_string();
@@ -310,4 +324,52 @@ fn key_combinations_of_the_runs() {
     .unwrap_err()
     .to_string();
     assert!(e.starts_with("aero: missing"), "{e}");
+}
+
+/// A dynamic run's time histories are refused by the runs about an equilibrium (static, flutter,
+/// linearize and so turbulence), naming the key given, rather than ignored; the dynamic run takes
+/// them (`every_key_reaches_its_field`).
+#[test]
+fn runs_about_an_equilibrium_refuse_the_time_histories() {
+    let surface = "\n[[aero.surfaces]]\nname = \"aileron\"\nfrom = 12\nto = 16\nhinge = 0.8\n";
+    let ramp = "{ type = \"ramp\", start = 0, end = 1 }";
+    let base = CASE.replacen(CHANGES, "", 1);
+    let cases = [
+        (
+            format!("{base}{surface}deflection_change = 0.01\ndeflection_function = {ramp}\n"),
+            "aero.surfaces[0].deflection_change: ",
+        ),
+        (
+            format!("{base}{surface}deflection_function = {ramp}\n"),
+            "aero.surfaces[0].deflection_function: ",
+        ),
+        (CASE.to_string(), "aero.flight.speed_change: "),
+        (
+            base.replacen(
+                "gravity = 9.8\n",
+                &format!("gravity = 9.8\nroot_angle_function = {ramp}\n"),
+                1,
+            ),
+            "aero.flight.root_angle_function: ",
+        ),
+    ];
+    let linearize = "\n[linearize]\ninputs = [\"gust\"]\n";
+    for (text, key) in &cases {
+        let text = format!("{text}{linearize}");
+        let c = case(&text);
+        for (run, e) in [
+            ("flexwing static", c.aero_static_plan().map(|_| ())),
+            ("flexwing flutter", c.flutter_plan().map(|_| ())),
+            ("the linear model", c.linearize_plan().map(|_| ())),
+        ] {
+            let e = e.unwrap_err().to_string();
+            assert!(e.starts_with(key), "{key}: {e}");
+            assert!(e.contains(run) && !e.contains('\n'), "{e}");
+        }
+        // The dynamic run takes a change with its function (alone, each is an error of its own).
+        if !key.ends_with("function: ") {
+            assert!(c.aero_dynamic_plan().is_ok(), "{key}");
+        }
+    }
+    assert!(held(CASE).flutter_plan().is_ok());
 }

@@ -187,3 +187,43 @@ fn bad_surfaces_are_one_line_errors_naming_the_key() {
         assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     }
 }
+
+/// A deflection's time history (`deflection_change`, `deflection_function`) is a dynamic run's:
+/// `flexwing static`, `flutter` and `linearize` (which hold the surface at its `deflection`)
+/// refuse it with exit status 2 and one line naming the key, rather than ignore it.
+#[test]
+fn runs_about_an_equilibrium_refuse_a_deflection_history() {
+    let base = fs::read_to_string(example("patil_aileron.toml")).unwrap();
+    let from = "deflection = 0.02";
+    assert!(base.contains(from));
+    let text = base.replacen(
+        from,
+        "deflection = 0.02\ndeflection_change = 0.01\ndeflection_function = { type = \"ramp\", \
+         start = 0.0, end = 1.0 }",
+        1,
+    );
+    // patil_aileron.toml has no [aero.flight] speed; linearize needs one.
+    let text = format!("{text}\n[aero.flight]\nspeed = 10.0\n");
+    let key = "aero.surfaces[1].deflection_change";
+    for command in ["static", "flutter", "linearize"] {
+        let dir = TempDir::new("surfaces-history");
+        let path = dir.write("case.toml", &text);
+        let out = dir.path().join("out");
+        let o = flexwing_in(
+            dir.path(),
+            &[
+                command,
+                path.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ],
+        );
+        assert_eq!(o.status.code(), Some(2), "{command}: {}", stderr(&o));
+        let err = stderr(&o);
+        assert!(
+            err.contains(key) && err.contains("holds the surface"),
+            "{command}: {err}"
+        );
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    }
+}
