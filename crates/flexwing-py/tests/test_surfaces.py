@@ -120,7 +120,8 @@ STIFF = {"EI": 2.0e5}
 
 def test_a_slow_ramp_of_the_aileron_ends_at_the_static_equilibrium(cli, tmp_path):
     """δ ramped from 0 to 0.02 rad over 1 s, then held to 8 s: the last sample is `flexwing
-    static`'s equilibrium with `deflection = 0.02` (the CLI, steady aerodynamics). What is left
+    static`'s equilibrium with `deflection = 0.02` (the CLI, steady aerodynamics), the aileron's
+    hinge moment (`hinge_moments`, against the static run's) included. What is left
     of the transient after 7 s of hold is below 1e-3 of each output's change (measured 2.7e-4 on
     the tip: the wing's slowest poles decay at 0.43/s) and it shrinks: at 8 s it is below half
     of what it is at 4 s."""
@@ -129,22 +130,38 @@ def test_a_slow_ramp_of_the_aileron_ends_at_the_static_equilibrium(cli, tmp_path
     static["aero"]["sweep"] = {"speeds": [speed]}
     path = tmp_path / "static.toml"
     path.write_text(flexwing.Case(static).to_toml())
-    point = run_cli(cli, "static", path, tmp_path / "out")["models"][0]["points"][0]
+    static_model = run_cli(cli, "static", path, tmp_path / "out")["models"][0]
+    point = static_model["points"][0]
+    point["hinge_moment_n_m"] = next(
+        h["hinge_moment_n_m"] for h in static_model["hinge_moments"] if h["surface"] == "aileron"
+    )
     d = aileron_case(speed, 0.0, **STIFF)
     d["aero"]["surfaces"][1]["deflection_change"] = delta
     d["aero"]["surfaces"][1]["deflection_function"] = {"type": "ramp", "start": 0.0, "end": 1.0}
     d["dynamic"].update({"end_time": 8.0, "output_step": 0.1, "rtol": 1e-8, "reduced": []})
     run = flexwing.Case(d).dynamics().runs[0]
     assert run.status == "complete"
-    for key, cli_key in [("tip_y", "tip_y_m"), ("tip_twist", "tip_twist_rad"), ("lift", "lift_n")]:
-        y = np.asarray(getattr(run, key))
+    assert run.hinge_moments.shape == (len(run.t), 2)
+    keys = [("tip_y", "tip_y_m"), ("tip_twist", "tip_twist_rad"), ("lift", "lift_n")]
+    for key, cli_key in keys + [(HINGE, "hinge_moment_n_m")]:
+        y = output(run, key)
         change = abs(point[cli_key] - y[0])
         late, mid = abs(y[-1] - point[cli_key]), abs(y[len(y) // 2] - point[cli_key])
         assert late < 1e-3 * change and late < 0.5 * mid, (key, late, mid, change)
     assert run.lift[-1] > run.lift[0]  # TE down raises the lift
 
 
-def harmonic_error(amplitude, omega, keys=("tip_y", "tip_twist", "lift")):
+HINGE = "hinge_moment[aileron]"
+
+
+def output(run, key):
+    """The history of the output `key` (a linear model's output name) of a dynamic run."""
+    if key == HINGE:
+        return np.asarray(run.hinge_moments)[:, 1]  # the surfaces: flap, aileron
+    return np.asarray(getattr(run, key))
+
+
+def harmonic_error(amplitude, omega, keys=("tip_y", "tip_twist", "lift", HINGE)):
     """The steady-state response to δ = amplitude · sin(ωt) from the equilibrium against the
     linear model's `G_δ + iω G_δ̇ − ω² G_δ̈`: per output, the distance of the two phasors
     relative to the linear one's size. The start's transient (linear in the amplitude, and slow
@@ -193,7 +210,7 @@ def harmonic_error(amplitude, omega, keys=("tip_y", "tip_twist", "lift")):
     for j, key in enumerate(keys):
         linear = amplitude * (g[j, 0] + 1j * omega * g[j, 1] - omega**2 * g[j, 2])
         # δ = A sin ωt = Im(A e^{iωt}): y = Im(G A e^{iωt}) = Re(GA) sin ωt + Im(GA) cos ωt.
-        y = np.asarray(getattr(run, key)) - transients[:, j]
+        y = output(run, key) - transients[:, j]
         c, *_ = np.linalg.lstsq(basis, y[window], rcond=None)
         errors[key] = abs(complex(c[0], c[1]) - linear) / abs(linear)
     return errors
@@ -205,7 +222,9 @@ def test_a_harmonic_deflection_follows_the_linear_frequency_response(omega):
     model's frequency response at the same speed. The difference is the linearization error
     (second order in δ: the lift's tilt by the deflection's own angle, the wing's geometric
     non-linearity): below 2e-4 of the phasor at δ = 0.01 rad (measured ≤ 5e-5 in the time
-    domain), and at least 1.5 times smaller at half the amplitude (2 for an error of second
+    domain; the aileron's hinge moment, the dynamic run's `hinge_moments` against the linear
+    model's `hinge_moment[aileron]`: 1.5e-6 at ω = 2 and 4.3e-7 at ω = 8, four times less at
+    half the amplitude), and at least 1.5 times smaller at half the amplitude (2 for an error of second
     order; 1.5 leaves room for the integration's own error, rtol 1e-9, which does not shrink
     with the amplitude)."""
     big = harmonic_error(0.01, omega)

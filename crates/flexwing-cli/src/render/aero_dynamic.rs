@@ -1,8 +1,9 @@
 //! `flexwing dynamic` on a case with `[aero]`: the aeroelastic response of every model (a gust,
 //! changes of speed or root angle); `dynamic_aero.csv` (tip, twist, root bending moment, lift,
 //! speed, energies, the work of the loads, the dissipated energy, the energy balance per output
-//! time), `dynamic_nodes.csv` or `.npz` (as `flexwing dynamic`'s), `dynamic_summary.csv` and the
-//! tip-history plot. Non-finite numbers (none expected) are
+//! time), `dynamic_hinges.csv` (each control surface's hinge moment per output time, with
+//! `[[aero.surfaces]]`), `dynamic_nodes.csv` or `.npz` (as `flexwing dynamic`'s),
+//! `dynamic_summary.csv` and the tip-history plot. Non-finite numbers (none expected) are
 //! written as empty fields (CSV) or `null` (JSON).
 
 use std::fmt::Write as _;
@@ -22,6 +23,7 @@ use crate::plot::{self, HistoryPlot};
 
 pub const FILES: &[&str] = &[
     "dynamic_aero.csv",
+    "dynamic_hinges.csv",
     "dynamic_nodes.csv",
     "dynamic_nodes.npz",
     "dynamic_summary.csv",
@@ -72,6 +74,39 @@ fn samples(r: &AeroDynamicRun) -> impl Iterator<Item = SampleRow> + '_ {
     })
 }
 
+/// A row of `dynamic_hinges.csv` (written when the wing has control surfaces): the hinge moment
+/// of one surface at one output time.
+#[derive(Serialize)]
+struct HingeRow {
+    model: String,
+    t_s: Option<f64>,
+    surface: String,
+    hinge_moment_n_m: Option<f64>,
+}
+
+/// The hinge rows of `r`, for the surfaces of `plan`.
+fn hinge_rows<'a>(
+    plan: &'a AeroDynamicPlan,
+    r: &'a AeroDynamicRun,
+) -> impl Iterator<Item = HingeRow> + 'a {
+    r.samples
+        .iter()
+        .zip(&r.hinge_moments)
+        .flat_map(move |(s, row)| {
+            plan.aero
+                .section
+                .surfaces
+                .iter()
+                .zip(row)
+                .map(move |(sf, &h)| HingeRow {
+                    model: r.kind.label(),
+                    t_s: finite(s.t),
+                    surface: sf.name.clone(),
+                    hinge_moment_n_m: finite(h),
+                })
+        })
+}
+
 fn summary(ctx: &Context, r: &AeroDynamicRun) -> SummaryRow {
     let label = r.kind.label();
     let mut row = SummaryRow::new(
@@ -109,6 +144,11 @@ pub fn files(
     let sum = dir.join("dynamic_summary.csv");
     output::write_csv(&sum, runs.iter().map(|r| summary(ctx, r)))?;
     let mut files = vec![tip, nodes, sum];
+    if !plan.aero.section.surfaces.is_empty() {
+        let hinges = dir.join("dynamic_hinges.csv");
+        output::write_csv(&hinges, runs.iter().flat_map(|r| hinge_rows(plan, r)))?;
+        files.push(hinges);
+    }
     if with_plot {
         let s = &plan.structure;
         let plot = HistoryPlot {
@@ -221,6 +261,8 @@ struct JsonModel {
     summary: SummaryRow,
     energy_audit: Option<EnergyAudit>,
     samples: Vec<SampleRow>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    hinge_moments: Vec<HingeRow>,
 }
 
 pub fn json(ctx: &Context, plan: &AeroDynamicPlan, outcome: &AeroDynamicOutcome) -> Json {
@@ -236,6 +278,7 @@ pub fn json(ctx: &Context, plan: &AeroDynamicPlan, outcome: &AeroDynamicOutcome)
                 summary: summary(ctx, r),
                 energy_audit: r.energy_audit,
                 samples: samples(r).collect(),
+                hinge_moments: hinge_rows(plan, r).collect(),
             })
             .collect(),
     }

@@ -227,3 +227,64 @@ fn runs_about_an_equilibrium_refuse_a_deflection_history() {
         assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     }
 }
+
+/// `flexwing dynamic` writes each surface's hinge moment per output time (`dynamic_hinges.csv`,
+/// `hinge_moments` in the JSON). The response starts at the static aeroelastic equilibrium
+/// and, with nothing changing, stays there: its hinge moments equal those of `flexwing static`
+/// at the same speed (the static solver's equilibrium, an independent path) at every output
+/// time, within 1e-6 relative (the static Newton tolerance and the integration's, rtol 1e-8).
+#[test]
+fn dynamic_hinge_moments_of_a_wing_at_rest_are_the_static_ones() {
+    let base = fs::read_to_string(example("patil_aileron.toml")).unwrap();
+    let sweep = "[aero.sweep]\nspeeds = [5.0, 10.0, 15.0, 20.0, 25.0, 30.0, 35.0]";
+    assert!(base.contains(sweep));
+    let text = base.replacen(
+        sweep,
+        "[aero.flight]\nspeed = 10.0\n\n[dynamic]\nend_time = 0.1\noutput_step = 0.05\n\
+         rtol = 1e-8\natol = 1e-10\nreduced = []\n",
+        1,
+    );
+    let dir = TempDir::new("surfaces-dynamic-hinges");
+    let path = dir.write("case.toml", &text);
+    let json = |command: &str| -> Value {
+        let out = dir.path().join(command);
+        let o = flexwing_in(
+            dir.path(),
+            &[
+                command,
+                path.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+                "--json",
+            ],
+        );
+        assert_success(&o);
+        serde_json::from_str(&stdout(&o)).unwrap()
+    };
+    let statics = json("static");
+    let dynamic = json("dynamic");
+    let csv = fs::read_to_string(dir.path().join("dynamic/dynamic_hinges.csv")).unwrap();
+    assert!(
+        csv.starts_with("model,t_s,surface,hinge_moment_n_m\n"),
+        "{csv}"
+    );
+    // 3 output times × 2 surfaces.
+    assert_eq!(csv.lines().count(), 1 + 3 * 2, "{csv}");
+    let rows = |doc: &Value| {
+        doc["models"][0]["hinge_moments"]
+            .as_array()
+            .unwrap()
+            .clone()
+    };
+    let reference = rows(&statics);
+    let hinges = rows(&dynamic);
+    assert_eq!(hinges.len(), 6);
+    for h in &hinges {
+        let surface = h["surface"].as_str().unwrap();
+        let r = reference.iter().find(|r| r["surface"] == surface).unwrap()["hinge_moment_n_m"]
+            .as_f64()
+            .unwrap();
+        let v = h["hinge_moment_n_m"].as_f64().unwrap();
+        assert!((v - r).abs() <= 1e-6 * r.abs(), "{surface}: {v} vs {r}");
+    }
+}

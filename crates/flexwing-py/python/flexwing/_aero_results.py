@@ -324,6 +324,10 @@ class AeroDynamicRun(_Run):
             stopped (``stop["reason"] == "energy-runaway"``).
         snapshots: as ``DynamicRun.snapshots``.
         max_tip_difference: largest tip distance from the first model's (m), or ``None``.
+        hinge_moments: hinge moment of each control surface (N m, positive trailing edge down:
+            the deflection, flap-rate and circulatory terms, as the linear model's
+            ``hinge_moment[NAME]``), ``(T, surfaces)`` in the order of
+            ``aerodynamics["surfaces"]`` (``(T, 0)`` without surfaces).
     """
 
     _axis = "time"
@@ -332,7 +336,7 @@ class AeroDynamicRun(_Run):
         "t", "tip_x", "tip_y", "tip_twist", "root_bending_moment", "lift", "speed", "kinetic",
         "strain", "total", "work", "dissipated", "balance_error",
     )
-    _grids = {}
+    _grids = {"hinge_moments": "surface"}
 
     label: str
     kind: str
@@ -362,6 +366,7 @@ class AeroDynamicRun(_Run):
     energy_audit: Optional[Dict[str, Any]]
     snapshots: Dict[str, np.ndarray]
     max_tip_difference: Optional[float]
+    hinge_moments: np.ndarray
     extra: Dict[str, Any] = field(default_factory=dict)
 
     def __repr__(self) -> str:

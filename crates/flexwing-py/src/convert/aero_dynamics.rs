@@ -11,7 +11,7 @@ use super::aero_statics::aerodynamics;
 use super::dynamics::snapshots;
 use super::statics::kind_name;
 use super::status::{data, overall, set_status};
-use crate::arrays::out1;
+use crate::arrays::{out1, out_rows};
 
 /// The aeroelastic response as the dict of `AeroDynamicResult`.
 pub fn raw<'py>(
@@ -75,6 +75,9 @@ fn run<'py>(
     d.set_item("work", column(|s| s.work))?;
     d.set_item("dissipated", column(|s| s.dissipated))?;
     d.set_item("balance_error", column(|s| s.balance_error))?;
+    let surfaces = r.hinge_moments.first().map_or(0, Vec::len);
+    let hinges: Vec<&[f64]> = r.hinge_moments.iter().map(Vec::as_slice).collect();
+    d.set_item("hinge_moments", out_rows(py, &hinges, surfaces))?;
     d.set_item(
         "energy_audit",
         r.energy_audit.as_ref().map(|e| data(py, e)).transpose()?,

@@ -179,6 +179,11 @@ pub struct AeroDynamicRun {
     pub wall_time_s: f64,
     /// One sample per output time reached.
     pub samples: Vec<AeroSample>,
+    /// Each control surface's hinge moment (N·m, positive trailing edge down: the deflection,
+    /// flap-rate and circulatory terms, as the linear model's `hinge_moment[NAME]` and the
+    /// stepper's) at each sample: one row per sample, the surfaces in the order of
+    /// `[[aero.surfaces]]`; empty rows without surfaces.
+    pub hinge_moments: Vec<Vec<f64>>,
     /// The deformed shape at the plan's snapshot times reached.
     pub snapshots: Vec<Snapshot>,
     /// Whether every output time was reached and the energy balance held, or where and why the
@@ -293,6 +298,7 @@ impl Simulator<'_> {
             status: Status::Complete,
             energy_audit: None,
             max_tip_difference: None,
+            hinge_moments: Vec::new(),
         };
         let x0 = match self.initial_state(aero) {
             Ok(x) => x,
@@ -379,6 +385,7 @@ impl Simulator<'_> {
             let shape = full.shape(&q);
             let (tip_x, tip_y, tip_twist) = shape.tip();
             let lift = eqs.vertical_aerodynamic_force_at(t, y);
+            run.hinge_moments.push(eqs.hinge_moments_at(t, y));
             let (kinetic, strain) = eqs.energies(y);
             let (work, dissipated) = eqs.work_and_dissipation(y).unwrap_or((0.0, 0.0));
             run.samples.push(AeroSample {
