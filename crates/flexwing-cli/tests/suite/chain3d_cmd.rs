@@ -12,24 +12,12 @@
 
 use std::path::Path;
 
-use crate::common::{assert_success, example, flexwing_in, stderr, stdout, TempDir};
+use crate::common::{example, flexwing_in, run_json_case, stderr, stdout, TempDir};
 use serde_json::Value;
 
-/// Run `flexwing COMMAND CASE --json` and parse the document.
+/// Run `flexwing COMMAND CASE --json` (files in `out`) and parse the document.
 fn run_json(command: &str, case: &Path, dir: &TempDir) -> Value {
-    let out = dir.path().join("out");
-    let o = flexwing_in(
-        dir.path(),
-        &[
-            command,
-            case.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--json",
-        ],
-    );
-    assert_success(&o);
-    serde_json::from_str(&stdout(&o)).expect("one JSON document")
+    run_json_case(dir, command, case, "out")
 }
 
 fn num(v: &Value) -> f64 {

@@ -5,21 +5,13 @@
 
 use std::fs;
 
-use crate::common::{assert_success, example, flexwing_in, stderr, stdout, TempDir};
+use crate::common::{assert_success, example, run_case, run_json_case, stderr, stdout, TempDir};
 use serde_json::Value;
 use std::f64::consts::PI;
 
 fn run(dir: &TempDir, case: &str, extra: &[&str]) -> std::process::Output {
     let path = dir.write("case.toml", case);
-    let out = dir.path().join("out");
-    let mut args = vec![
-        "static",
-        path.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
-    flexwing_in(dir.path(), &args)
+    run_case(dir, "static", &path, "out", extra)
 }
 
 /// A stiff wing (EI and GJ × 1e6) barely twists: the aileron's lift is `q c c_lδ δ` over its
@@ -181,11 +173,23 @@ fn bad_surfaces_are_one_line_errors_naming_the_key() {
         assert!(base.contains(from), "{from}");
         let dir = TempDir::new("surfaces-bad");
         let o = run(&dir, &base.replacen(from, to, 1), &[]);
-        assert_eq!(o.status.code(), Some(2), "{from} → {to}: {}", stderr(&o));
-        let err = stderr(&o);
-        assert!(err.contains(key), "{key}: {err}");
-        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert_refused(&o, key, "");
     }
+}
+
+/// examples/patil_aileron.toml with its first `from` replaced by `to`.
+fn aileron_with(from: &str, to: &str) -> String {
+    let base = fs::read_to_string(example("patil_aileron.toml")).unwrap();
+    assert!(base.contains(from), "{from}");
+    base.replacen(from, to, 1)
+}
+
+/// `o` exited with status 2 and one line naming `key` and saying `what`.
+fn assert_refused(o: &std::process::Output, key: &str, what: &str) {
+    assert_eq!(o.status.code(), Some(2), "{key}: {}", stderr(o));
+    let err = stderr(o);
+    assert!(err.contains(key) && err.contains(what), "{key}: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
 }
 
 /// A deflection's time history (`deflection_change`, `deflection_function`) is a dynamic run's:
@@ -193,14 +197,10 @@ fn bad_surfaces_are_one_line_errors_naming_the_key() {
 /// refuse it with exit status 2 and one line naming the key, rather than ignore it.
 #[test]
 fn runs_about_an_equilibrium_refuse_a_deflection_history() {
-    let base = fs::read_to_string(example("patil_aileron.toml")).unwrap();
-    let from = "deflection = 0.02";
-    assert!(base.contains(from));
-    let text = base.replacen(
-        from,
+    let text = aileron_with(
+        "deflection = 0.02",
         "deflection = 0.02\ndeflection_change = 0.01\ndeflection_function = { type = \"ramp\", \
          start = 0.0, end = 1.0 }",
-        1,
     );
     // patil_aileron.toml has no [aero.flight] speed; linearize needs one.
     let text = format!("{text}\n[aero.flight]\nspeed = 10.0\n");
@@ -208,23 +208,8 @@ fn runs_about_an_equilibrium_refuse_a_deflection_history() {
     for command in ["static", "flutter", "linearize"] {
         let dir = TempDir::new("surfaces-history");
         let path = dir.write("case.toml", &text);
-        let out = dir.path().join("out");
-        let o = flexwing_in(
-            dir.path(),
-            &[
-                command,
-                path.to_str().unwrap(),
-                "--out",
-                out.to_str().unwrap(),
-            ],
-        );
-        assert_eq!(o.status.code(), Some(2), "{command}: {}", stderr(&o));
-        let err = stderr(&o);
-        assert!(
-            err.contains(key) && err.contains("holds the surface"),
-            "{command}: {err}"
-        );
-        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        let o = run_case(&dir, command, &path, "out", &[]);
+        assert_refused(&o, key, "holds the surface");
     }
 }
 
@@ -235,32 +220,14 @@ fn runs_about_an_equilibrium_refuse_a_deflection_history() {
 /// time, within 1e-6 relative (the static Newton tolerance and the integration's, rtol 1e-8).
 #[test]
 fn dynamic_hinge_moments_of_a_wing_at_rest_are_the_static_ones() {
-    let base = fs::read_to_string(example("patil_aileron.toml")).unwrap();
-    let sweep = "[aero.sweep]\nspeeds = [5.0, 10.0, 15.0, 20.0, 25.0, 30.0, 35.0]";
-    assert!(base.contains(sweep));
-    let text = base.replacen(
-        sweep,
+    let text = aileron_with(
+        "[aero.sweep]\nspeeds = [5.0, 10.0, 15.0, 20.0, 25.0, 30.0, 35.0]",
         "[aero.flight]\nspeed = 10.0\n\n[dynamic]\nend_time = 0.1\noutput_step = 0.05\n\
          rtol = 1e-8\natol = 1e-10\nreduced = []\n",
-        1,
     );
     let dir = TempDir::new("surfaces-dynamic-hinges");
     let path = dir.write("case.toml", &text);
-    let json = |command: &str| -> Value {
-        let out = dir.path().join(command);
-        let o = flexwing_in(
-            dir.path(),
-            &[
-                command,
-                path.to_str().unwrap(),
-                "--out",
-                out.to_str().unwrap(),
-                "--json",
-            ],
-        );
-        assert_success(&o);
-        serde_json::from_str(&stdout(&o)).unwrap()
-    };
+    let json = |command: &str| run_json_case(&dir, command, &path, command);
     let statics = json("static");
     let dynamic = json("dynamic");
     let csv = fs::read_to_string(dir.path().join("dynamic/dynamic_hinges.csv")).unwrap();

@@ -15,6 +15,26 @@ pub fn flexwing_in(cwd: &Path, args: &[&str]) -> Output {
         .expect("the flexwing binary runs")
 }
 
+/// Run `flexwing COMMAND CASE --out DIR/OUT EXTRA…` in `dir`.
+pub fn run_case(dir: &TempDir, command: &str, case: &Path, out: &str, extra: &[&str]) -> Output {
+    let out = dir.path().join(out);
+    let mut args = vec![
+        command,
+        case.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    flexwing_in(dir.path(), &args)
+}
+
+/// [`run_case`] with `--json`, asserted successful: its document.
+pub fn run_json_case(dir: &TempDir, command: &str, case: &Path, out: &str) -> serde_json::Value {
+    let o = run_case(dir, command, case, out, &["--json"]);
+    assert_success(&o);
+    serde_json::from_str(&stdout(&o)).expect("one JSON document")
+}
+
 /// Path of a case file in the workspace's `examples/`.
 pub fn example(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
