@@ -18,7 +18,7 @@
 //! stepper. Peaks are over the plan's output times: their spacing bounds how well a peak's
 //! value and time are resolved.
 
-use super::response::{run as response_run, AeroDynamicPlan, AeroSample};
+use super::response::{AeroDynamicPlan, AeroSample, Prepared, Samples};
 use super::Fields;
 use crate::analysis::{ModelKind, Progress, Status};
 use crate::beam::Profile;
@@ -398,10 +398,13 @@ pub fn run(plan: &GustFamilyPlan, progress: &mut dyn Progress) -> Result<GustFam
         analysis: "dynamic",
     };
     let gusts = plan.validate("gust_family", &fields)?;
+    // The models and their initial equilibrium are the same for every member (the gusts start
+    // from the one initial flight condition): built and solved once.
+    let prepared = Prepared::new(&plan.response)?;
     let mut members = Vec::with_capacity(gusts.len());
     for (m, &(h, u_ds)) in gusts.iter().enumerate() {
-        let mut p = plan.response.clone();
-        p.flight.gust = Some(Gust {
+        let mut flight = plan.response.flight.clone();
+        flight.gust = Some(Gust {
             shape: GustShape::OneMinusCosine { length: 2.0 * h },
             amplitude: u_ds,
             start: plan.start,
@@ -414,7 +417,7 @@ pub fn run(plan: &GustFamilyPlan, progress: &mut dyn Progress) -> Result<GustFam
             members: gusts.len(),
             gradient: h,
         };
-        let out = response_run(&p, &mut member_progress)?;
+        let out = prepared.run(&flight, Samples::Outputs, &mut member_progress);
         let runs: Vec<MemberRun> = out
             .runs
             .iter()

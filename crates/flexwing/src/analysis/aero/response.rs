@@ -228,48 +228,121 @@ pub fn run(
     plan: &AeroDynamicPlan,
     progress: &mut dyn Progress,
 ) -> Result<AeroDynamicOutcome, Error> {
-    let fields = Fields::RELATIVE;
-    plan.validate(&fields)?;
-    let s = &plan.structure;
-    let full = plan.aero.wing(&s.model, fields.aero)?;
-    let active = s.active();
-    let active_loads: Vec<Load> = active.iter().map(|&i| s.loads[i].clone()).collect();
-    let time_functions: Vec<TimeFunction> =
-        active.iter().filter_map(|&i| s.time[i].clone()).collect();
-    let applied = full.full().apply(&active_loads, fields.loads)?;
-    let mut snapshots = s.snapshots.clone();
-    snapshots.sort_unstable();
-    snapshots.dedup();
-    let simulator = Simulator {
-        plan,
-        active_loads: &active_loads,
-        applied: &applied,
-        time_functions: &time_functions,
-        snapshots: &snapshots,
-    };
-    let kinds = plan.models()?;
-    let mut runs = Vec::with_capacity(kinds.len());
-    for (k, kind) in kinds.iter().enumerate() {
-        let built = build(&full, kind)?;
-        progress.start(k, kinds.len(), &kind.label());
-        let run = match &built {
-            Built::Full => simulator.run(kind, &full, &s.damping, progress),
-            Built::Reduced(rom) => {
-                let damping = rom.structure().project_damping(&s.damping);
-                simulator.run(kind, rom.as_ref(), &damping, progress)
-            }
-        };
-        progress.finish();
-        runs.push(run);
+    let prepared = Prepared::new(plan)?;
+    Ok(prepared.run(&plan.flight, Samples::All, progress))
+}
+
+/// What the output times of a run compute.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Samples {
+    /// Every field of [`AeroSample`].
+    All,
+    /// The outputs of a gust family ([`super::gust_family::OUTPUTS`]: the tip, the root moments,
+    /// the lift); the energies, work, dissipation and balance are NaN (not computed: the family
+    /// reports peaks, and its energy audit is the run's own, over the accepted steps).
+    Outputs,
+}
+
+/// A model's coordinates at `t = 0`, or why they were not found.
+type InitialCoordinates = Result<Vec<f64>, SolveError>;
+
+/// A validated plan with what every flight flown on it shares: the wing, the applied loads,
+/// each model built (the wet modes of a reduced one found) and its initial equilibrium (which
+/// depends on the initial flight condition and the loads at `t = 0` only, not on the gust or the
+/// changes of the flight). A gust family flies its members on one.
+pub(super) struct Prepared<'p> {
+    plan: &'p AeroDynamicPlan,
+    full: Aeroelastic,
+    applied: AppliedLoads,
+    time_functions: Vec<TimeFunction>,
+    /// Sorted, without repeats.
+    snapshots: Vec<usize>,
+    /// Per model of [`AeroDynamicPlan::models`]: its kind, the model, its damping and its
+    /// coordinates at `t = 0`.
+    models: Vec<(ModelKind, Built, Damping, InitialCoordinates)>,
+}
+
+impl<'p> Prepared<'p> {
+    /// Check `plan` (fields named relative to it, [`Fields::RELATIVE`]), build its models and
+    /// their initial states.
+    ///
+    /// # Errors
+    /// An invalid plan, or the wet modes of a reduced model not found.
+    pub(super) fn new(plan: &'p AeroDynamicPlan) -> Result<Self, Error> {
+        let fields = Fields::RELATIVE;
+        plan.validate(&fields)?;
+        let s = &plan.structure;
+        let full = plan.aero.wing(&s.model, fields.aero)?;
+        let active = s.active();
+        let active_loads: Vec<Load> = active.iter().map(|&i| s.loads[i].clone()).collect();
+        let time_functions: Vec<TimeFunction> =
+            active.iter().filter_map(|&i| s.time[i].clone()).collect();
+        let applied = full.full().apply(&active_loads, fields.loads)?;
+        let mut snapshots = s.snapshots.clone();
+        snapshots.sort_unstable();
+        snapshots.dedup();
+        let mut models = Vec::new();
+        for kind in plan.models()? {
+            let built = build(&full, &kind)?;
+            let (damping, x0) = match &built {
+                Built::Full => (
+                    s.damping.clone(),
+                    initial_coordinates(plan, &active_loads, &time_functions, &full),
+                ),
+                Built::Reduced(rom) => (
+                    rom.structure().project_damping(&s.damping),
+                    initial_coordinates(plan, &active_loads, &time_functions, rom.as_ref()),
+                ),
+            };
+            models.push((kind, built, damping, x0));
+        }
+        Ok(Self {
+            plan,
+            full,
+            applied,
+            time_functions,
+            snapshots,
+            models,
+        })
     }
-    compare_with_first(&mut runs);
-    Ok(AeroDynamicOutcome { runs })
+
+    /// Fly `flight` (the plan's, or one with the same initial condition) on every model:
+    /// `progress` hears each model's start and the fraction of its simulated time.
+    pub(super) fn run(
+        &self,
+        flight: &FlightHistory,
+        samples: Samples,
+        progress: &mut dyn Progress,
+    ) -> AeroDynamicOutcome {
+        debug_assert_eq!(flight.initial, self.plan.flight.initial);
+        let simulator = Simulator {
+            plan: self.plan,
+            flight,
+            samples,
+            applied: &self.applied,
+            time_functions: &self.time_functions,
+            snapshots: &self.snapshots,
+        };
+        let mut runs = Vec::with_capacity(self.models.len());
+        for (k, (kind, built, damping, x0)) in self.models.iter().enumerate() {
+            progress.start(k, self.models.len(), &kind.label());
+            let run = match built {
+                Built::Full => simulator.run(kind, &self.full, damping, x0, progress),
+                Built::Reduced(rom) => simulator.run(kind, rom.as_ref(), damping, x0, progress),
+            };
+            progress.finish();
+            runs.push(run);
+        }
+        compare_with_first(&mut runs);
+        AeroDynamicOutcome { runs }
+    }
 }
 
 /// What every model's simulation shares.
 struct Simulator<'a> {
     plan: &'a AeroDynamicPlan,
-    active_loads: &'a [Load],
+    flight: &'a FlightHistory,
+    samples: Samples,
     applied: &'a AppliedLoads,
     time_functions: &'a [TimeFunction],
     /// Sorted, without repeats.
@@ -282,6 +355,7 @@ impl Simulator<'_> {
         kind: &ModelKind,
         aero: &Aeroelastic<M>,
         damping: &Damping,
+        x0: &InitialCoordinates,
         progress: &mut dyn Progress,
     ) -> AeroDynamicRun {
         let s = &self.plan.structure;
@@ -300,12 +374,12 @@ impl Simulator<'_> {
             max_tip_difference: None,
             hinge_moments: Vec::new(),
         };
-        let x0 = match self.initial_state(aero) {
+        let x0 = match x0 {
             Ok(x) => x,
             Err(e) => {
                 run.status = Status::Stopped(Stop::InitialState {
                     loads: Vec::new(),
-                    error: e,
+                    error: e.clone(),
                 });
                 return run;
             }
@@ -314,7 +388,7 @@ impl Simulator<'_> {
             aero,
             self.applied,
             self.time_functions.to_vec(),
-            self.plan.flight.clone(),
+            self.flight.clone(),
             damping,
             "flight",
         );
@@ -338,8 +412,8 @@ impl Simulator<'_> {
         // equations' halt flag.
         let halt = Arc::new(AtomicBool::new(false));
         eqs.set_halt(Some(Arc::clone(&halt)));
-        let a0 = eqs.steady_states(0.0, &x0);
-        let y0 = eqs.state(&x0, &vec![0.0; n], &a0);
+        let a0 = eqs.steady_states(0.0, x0);
+        let y0 = eqs.state(x0, &vec![0.0; n], &a0);
         let end = s.end_time;
         let start = Instant::now();
         let result = integrate(
@@ -386,8 +460,15 @@ impl Simulator<'_> {
             let (tip_x, tip_y, tip_twist) = shape.tip();
             let lift = eqs.vertical_aerodynamic_force_at(t, y);
             run.hinge_moments.push(eqs.hinge_moments_at(t, y));
-            let (kinetic, strain) = eqs.energies(y);
-            let (work, dissipated) = eqs.work_and_dissipation(y).unwrap_or((0.0, 0.0));
+            let (kinetic, strain, work, dissipated, balance_error) = match self.samples {
+                Samples::All => {
+                    let (kinetic, strain) = eqs.energies(y);
+                    let (work, dissipated) = eqs.work_and_dissipation(y).unwrap_or((0.0, 0.0));
+                    let error = balance.relative(kinetic + strain, work, dissipated);
+                    (kinetic, strain, work, dissipated, error)
+                }
+                Samples::Outputs => (f64::NAN, f64::NAN, f64::NAN, f64::NAN, f64::NAN),
+            };
             run.samples.push(AeroSample {
                 t,
                 tip_x,
@@ -401,7 +482,7 @@ impl Simulator<'_> {
                 strain,
                 work,
                 dissipated,
-                balance_error: balance.relative(kinetic + strain, work, dissipated),
+                balance_error,
             });
             if next_snapshot.peek() == Some(&&index) {
                 next_snapshot.next();
@@ -410,13 +491,6 @@ impl Simulator<'_> {
         }
         run.energy_audit = Some(EnergyAudit::of(&balance));
         run
-    }
-    /// The model's coordinates at `t = 0`.
-    fn initial_state<M: AeroStructure>(
-        &self,
-        aero: &Aeroelastic<M>,
-    ) -> Result<Vec<f64>, SolveError> {
-        initial_coordinates(self.plan, self.active_loads, self.time_functions, aero)
     }
 }
 
