@@ -5,8 +5,8 @@
 //! (Table 8's 1e-2 at n = 20, scaled by the joint's share of the span so that the tolerance on the
 //! tip angle stays the same as n grows). For n = 20, 80 and 320 and r = 1, 2, 3, 4, 6: steps,
 //! right-hand sides, Jacobians, LU factorizations, the CPU time of the thread (`common::cpu_time`,
-//! the fastest of several batches: the machine is shared) and its ratio to the full model's, the
-//! slope of the time against n, and the breakdown of a reduced run into its right-hand sides,
+//! the fastest of several batches: the machine is shared) and its ratio to the full model's
+//! (beside the ratio measured before issue 22's change, `RATIO_BEFORE`), the slope of the time against n, and the breakdown of a reduced run into its right-hand sides,
 //! Jacobians and the rest (the integrator's linear algebra), from the cost of one evaluation of
 //! each times the counters.
 //!
@@ -30,6 +30,25 @@ use nalgebra::DMatrix;
 
 /// The modes of Table 8 (and r = 6, the largest of the issue's goal).
 const MODES: [usize; 5] = [1, 2, 3, 4, 6];
+
+/// The reduced/full ratios of this bench's `--quick` run of `31a2e37` (before the reduced model's
+/// one-reduction trigonometry, issue 22), at n = 20, 80, 320 and r as [`MODES`]: load average
+/// 2.4, the run right before that of the change (docs/performance.md, "Reduced models at the
+/// paper's size"). Printed beside the ratios measured, as the issue asks.
+const RATIO_BEFORE: [(usize, [f64; 5]); 3] = [
+    (20, [0.229, 0.286, 0.375, 0.442, 0.554]),
+    (80, [0.138, 0.168, 0.217, 0.354, 0.491]),
+    (320, [0.142, 0.183, 0.218, 0.270, 0.368]),
+];
+
+/// The ratio of [`RATIO_BEFORE`] for `n` elements and `r` modes, if measured.
+fn ratio_before(n: usize, r: usize) -> Option<f64> {
+    let k = MODES.iter().position(|&m| m == r)?;
+    RATIO_BEFORE
+        .iter()
+        .find(|(m, _)| *m == n)
+        .map(|(_, v)| v[k])
+}
 
 /// Case (b) with `n` elements: the model, its loads applied, their time functions, the output
 /// times.
@@ -149,6 +168,8 @@ struct Row {
     t_full: f64,
     previous: Option<(usize, f64)>,
     costs: (f64, Option<f64>),
+    /// The ratio to full of `31a2e37` ([`RATIO_BEFORE`]; none for the full model).
+    before: Option<f64>,
 }
 
 impl Row {
@@ -161,7 +182,7 @@ impl Row {
             .map(|j| j * stats.jacobian_evaluations as f64 / t);
         let percent = |v: Option<f64>| v.map_or("–".into(), |v| format!("{:.0} %", 100.0 * v));
         println!(
-            "| {n} | {} | {} | {} | {} | {} | {} | {} | {:.3} | {} | {} | {} | {} | {} | {} |",
+            "| {n} | {} | {} | {} | {} | {} | {} | {} | {:.3} | {} | {} | {} | {} | {} | {} | {} |",
             self.label,
             stats.steps,
             stats.rhs_evaluations,
@@ -170,6 +191,7 @@ impl Row {
             fmt_time(t),
             fmt_time(t / stats.steps as f64),
             t / self.t_full,
+            self.before.map_or("–".into(), |b| format!("{b:.3}")),
             slope(self.previous, n, t),
             fmt_time(self.costs.0),
             self.costs.1.map_or("–".into(), fmt_time),
@@ -225,10 +247,10 @@ fn main() {
         budget.as_millis()
     );
     println!(
-        "| n | model | steps | RHS | Jacobians | LU | CPU time | per step | ratio to full | slope \
-         | one RHS | one Jacobian | RHS share | Jacobian share | rest |"
+        "| n | model | steps | RHS | Jacobians | LU | CPU time | per step | ratio to full \
+         | ratio at 31a2e37 | slope | one RHS | one Jacobian | RHS share | Jacobian share | rest |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let mut previous: Vec<Option<(usize, f64)>> = vec![None; MODES.len() + 1];
     for n in [20, 80, 320] {
         let (full, loads, time, t_out) = sine_case(n);
@@ -243,7 +265,7 @@ fn main() {
         // chain's O(n) sweeps, and its dense Jacobian is never formed.
         let dense = full.n_dofs() < chain_newton_min_dofs(Method::Radau, &settings);
         let costs = evaluation_costs(&full, case, dense, batches, budget);
-        let row = |label, previous, stats, t, costs| Row {
+        let row = |label, previous, stats, t, costs, before| Row {
             n,
             label,
             stats,
@@ -251,8 +273,9 @@ fn main() {
             t_full,
             previous,
             costs,
+            before,
         };
-        row("full".to_string(), previous[0], stats, t_full, costs).print();
+        row("full".to_string(), previous[0], stats, t_full, costs, None).print();
         previous[0] = Some((n, t_full));
         for (k, &r) in MODES.iter().enumerate() {
             let rom = ReducedModel::first(&full, modes.shapes(), r).expect("rom");
@@ -262,7 +285,8 @@ fn main() {
             });
             let costs = evaluation_costs(&rom, case, true, batches, budget);
             let label = format!("reduced r = {r}");
-            row(label, previous[k + 1], stats, t, costs).print();
+            let before = ratio_before(n, r);
+            row(label, previous[k + 1], stats, t, costs, before).print();
             previous[k + 1] = Some((n, t));
         }
     }

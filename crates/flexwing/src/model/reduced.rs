@@ -3,14 +3,16 @@
 //! Evaluation. Everything is done in absolute angles with the constant absolute mode shapes
 //! `Φ_abs = T Φ` (prefix sums, precomputed), so that no suffix sums are needed: `Φᵀ Tᵀ v =
 //! Φ_absᵀ v`. At a new `η` the workspace computes once, and caches for further evaluations at the
-//! same `η`: the sines and cosines of `q = Φ η` (shared with the loads), the mass-centre velocity
+//! same `η`: the absolute angles `Φ_abs η` and their sines and cosines (shared with the loads; one
+//! reduction for each pair, `kinematics::sin_cos`), the mass-centre velocity
 //! of every element per unit modal rate, `G_i^c = ∂ġ_i/∂η̇_c` (one forward sweep per mode), the
 //! reduced mass matrix `M_r,ab = Σ_i m_i G_i^a · G_i^b + J_i ψ̇_i^a ψ̇_i^b` and its Cholesky
-//! factor. Then `p_r = M_r η̇`, `ġ_i = Σ_c η̇_c G_i^c` and `γ_r = Φ_absᵀ γ_abs` (one backward
-//! sweep) cost O(n r) each, and `Q_r = Φ_absᵀ Q_abs` reuses the trigonometry.
+//! factor. Then `p_r = M_r η̇`, `ġ_i` (the forward sweep once on the absolute rates `Φ_abs η̇`)
+//! and `γ_r = Φ_absᵀ γ_abs` (one backward sweep) cost O(n r) each, and `Q_r = Φ_absᵀ Q_abs` reuses the trigonometry.
 
 use nalgebra::{DMatrix, DVector};
 
+use super::kinematics::sin_cos;
 use super::{AppliedLoads, FullModel, StructuralModel, Workspace};
 use crate::error::InputError;
 use crate::solve::Damping;
@@ -189,11 +191,14 @@ pub struct ReducedWorkspace {
     column: Vec<f64>,
     /// The `η` the cache below belongs to (NaN: none yet).
     at: Vec<f64>,
-    /// `G_i^c = ∂ġ_i/∂η̇_c` at `element + n · mode`.
-    fields: Vec<[f64; 3]>,
-    /// Fluid terms per unit modal rate: node velocity `V_{i−1}` and normal velocity `u_i`
-    /// (`model::aero::fluid`), same layout; empty in vacuo.
-    fluid_fields: Vec<[f64; 3]>,
+    /// The components of `G_i^c = ∂ġ_i/∂η̇_c` at `element + n · mode`, one vector each (`gz`
+    /// stays zero without torsion).
+    gx: Vec<f64>,
+    gy: Vec<f64>,
+    gz: Vec<f64>,
+    /// The fluid's normal velocity `u_i` per unit modal rate (`model::aero::fluid`), same
+    /// layout; empty in vacuo.
+    fluid_u: Vec<f64>,
     /// Reduced mass matrix `M_r(η)`.
     mass: DMatrix<f64>,
     /// Its Cholesky factor (lower triangle), valid if `factored`.
@@ -227,67 +232,106 @@ impl ReducedModel {
         }
         let full = &self.full;
         let n = full.n;
-        let r = eta.len();
-        self.expand(eta, &mut ws.q);
-        ws.full.configure(full, &ws.q);
-        let kin = &ws.full.kin;
         let nd = full.n_dofs();
         let pa = self.phi_abs.as_slice();
-        // Mass-centre velocity per unit modal rate (model::kinetic's forward sweep).
+        // Absolute angles `θ = Φ_abs η` straight from the absolute modes (no joint rotations,
+        // no prefix sums), then their sines and cosines by one reduction each
+        // (`kinematics::sin_cos`), written where the loads (`kin`) and the kinetic sweeps
+        // (`kinetic`) read them.
+        let kin = &mut ws.full.kin;
+        combine(pa, nd, 0, eta, &mut kin.theta);
+        if full.torsion {
+            combine(pa, nd, n, eta, &mut kin.psi);
+        }
+        let sc = &mut ws.full.kinetic;
+        for i in 0..n {
+            let (s, c) = sin_cos(kin.theta[i]);
+            (kin.sin_theta[i], kin.cos_theta[i]) = (s, c);
+            (sc.sin_theta[i], sc.cos_theta[i]) = (s, c);
+        }
+        if full.torsion {
+            for i in 0..n {
+                let (s, c) = sin_cos(kin.psi[i]);
+                (kin.sin_psi[i], kin.cos_psi[i]) = (s, c);
+                (sc.sin_psi[i], sc.cos_psi[i]) = (s, c);
+            }
+        }
+        let kin = &ws.full.kin;
+        let r = eta.len();
+        let (gx, gy, gz) = (&mut ws.gx, &mut ws.gy, &mut ws.gz);
+        // Mass-centre velocity per unit modal rate (model::kinetic's forward sweep), one mode
+        // at a time; bending only, the ψ terms vanish (sin ψ = 0, ψ̇ = 0) and `gz` stays 0.
         for c in 0..r {
+            let col = &pa[c * nd..(c + 1) * nd];
+            let (gx, gy) = (&mut gx[c * n..(c + 1) * n], &mut gy[c * n..(c + 1) * n]);
             let mut v = [0.0; 2];
+            if !full.torsion && full.fluid.is_none() {
+                for i in 0..n {
+                    let (co, si) = (kin.cos_theta[i], kin.sin_theta[i]);
+                    let (l, td) = (full.ell[i], col[i]);
+                    let a_n = 0.5 * l * td;
+                    gx[i] = v[0] - a_n * si;
+                    gy[i] = v[1] + a_n * co;
+                    v[0] -= l * si * td;
+                    v[1] += l * co * td;
+                }
+                continue;
+            }
             for i in 0..n {
                 let (co, si) = (kin.cos_theta[i], kin.sin_theta[i]);
                 let (cp, sp) = (kin.cos_psi[i], kin.sin_psi[i]);
-                let td = pa[c * nd + i];
-                let pd = if full.torsion {
-                    pa[c * nd + n + i]
-                } else {
-                    0.0
-                };
+                let td = col[i];
+                let pd = if full.torsion { col[n + i] } else { 0.0 };
                 let (l, d) = (full.ell[i], full.d0[i]);
                 let a_n = 0.5 * l * td + d * cp * pd;
                 let a_e = -d * sp * td;
-                ws.fields[c * n + i] = [
-                    v[0] + a_e * co - a_n * si,
-                    v[1] + a_e * si + a_n * co,
-                    -d * sp * pd,
-                ];
+                gx[i] = v[0] + a_e * co - a_n * si;
+                gy[i] = v[1] + a_e * si + a_n * co;
+                gz[c * n + i] = -d * sp * pd;
                 if let Some(f) = &full.fluid {
                     let u = cp * (co * v[1] - si * v[0] + 0.5 * l * td) + f.station[i] * pd;
-                    ws.fluid_fields[c * n + i] = [v[0], v[1], u];
+                    ws.fluid_u[c * n + i] = u;
                 }
                 v[0] -= l * si * td;
                 v[1] += l * co * td;
             }
         }
-        // Slices rather than indexing: the bounds checks kept these O(n r²) loops from
-        // vectorizing (they were a quarter of a reduced aeroelastic right-hand side). The polar
-        // and rotary inertias' part does not depend on the configuration (`mass_constant`).
-        let fields = &ws.fields;
-        let fluid_fields = &ws.fluid_fields;
+        // `M_r,ab = Σ_i m_i G_i^a · G_i^b` (+ the fluid's `Σ m_a,i u_i^a u_i^b`), O(n r²):
+        // slices of one component each, which vectorize. The polar and rotary inertias' part
+        // does not depend on the configuration (`mass_constant`).
+        // Four running sums (independent chains, which the compiler keeps in one vector
+        // register) instead of one: a single sum waited on its addition's latency at every
+        // element, half of `configure` at n = 80, r = 6 by `perf`.
+        let dot = |w: &[f64], a: &[f64], b: &[f64]| -> f64 {
+            let mut lanes = [0.0; 4];
+            let (wc, ac, bc) = (w.chunks_exact(4), a.chunks_exact(4), b.chunks_exact(4));
+            let tail: f64 = wc
+                .remainder()
+                .iter()
+                .zip(ac.remainder())
+                .zip(bc.remainder())
+                .map(|((w, a), b)| w * a * b)
+                .sum();
+            for ((w, a), b) in wc.zip(ac).zip(bc) {
+                for k in 0..4 {
+                    lanes[k] += w[k] * a[k] * b[k];
+                }
+            }
+            (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
+        };
+        fn part(v: &[f64], a: usize, n: usize) -> &[f64] {
+            &v[a * n..(a + 1) * n]
+        }
         for a in 0..r {
-            let fa = &fields[a * n..(a + 1) * n];
             for b in a..r {
-                let fb = &fields[b * n..(b + 1) * n];
                 let mut m: f64 = self.mass_constant[(a, b)];
-                m += fa
-                    .iter()
-                    .zip(fb)
-                    .zip(&full.mass)
-                    .map(|((ga, gb), mi)| mi * (ga[0] * gb[0] + ga[1] * gb[1] + ga[2] * gb[2]))
-                    .sum::<f64>();
+                m += dot(&full.mass, part(&ws.gx, a, n), part(&ws.gx, b, n));
+                m += dot(&full.mass, part(&ws.gy, a, n), part(&ws.gy, b, n));
+                if full.torsion {
+                    m += dot(&full.mass, part(&ws.gz, a, n), part(&ws.gz, b, n));
+                }
                 if let Some(f) = &full.fluid {
-                    let (ua, ub) = (
-                        &fluid_fields[a * n..(a + 1) * n],
-                        &fluid_fields[b * n..(b + 1) * n],
-                    );
-                    m += ua
-                        .iter()
-                        .zip(ub)
-                        .zip(&f.mass)
-                        .map(|((x, y), mi)| mi * x[2] * y[2])
-                        .sum::<f64>();
+                    m += dot(&f.mass, part(&ws.fluid_u, a, n), part(&ws.fluid_u, b, n));
                 }
                 ws.mass[(a, b)] = m;
                 ws.mass[(b, a)] = m;
@@ -299,35 +343,50 @@ impl ReducedModel {
     }
 
     /// Rates and mass-centre velocities of the modal rates `etadot` into the kinetic scratch,
-    /// at the configuration of the last [`Self::configure`].
+    /// at the configuration of the last [`Self::configure`]: the absolute rates `Φ_abs η̇`
+    /// (O(n r)), then the mass-centre and node velocities by the forward sweep of
+    /// `configure` run once on those rates (O(n)) instead of `Σ_c η̇_c G^c` (O(n r) per
+    /// component).
     fn set_rates(&self, etadot: &[f64], ws: &mut ReducedWorkspace) {
         let full = &self.full;
         let n = full.n;
         let nd = full.n_dofs();
         let pa = self.phi_abs.as_slice();
         let sc = &mut ws.full.kinetic;
+        combine(pa, nd, 0, etadot, &mut sc.theta_dot);
+        if full.torsion {
+            combine(pa, nd, n, etadot, &mut sc.psi_dot);
+        }
+        let mut v = [0.0; 2];
         for i in 0..n {
-            let (mut td, mut pd, mut g) = (0.0, 0.0, [0.0; 3]);
-            for (c, &e) in etadot.iter().enumerate() {
-                td += e * pa[c * nd + i];
-                if full.torsion {
-                    pd += e * pa[c * nd + n + i];
-                }
-                let f = ws.fields[c * n + i];
-                g = [g[0] + e * f[0], g[1] + e * f[1], g[2] + e * f[2]];
+            let (co, si) = (sc.cos_theta[i], sc.sin_theta[i]);
+            let (cp, sp) = (sc.cos_psi[i], sc.sin_psi[i]);
+            let (l, d, td, pd) = (full.ell[i], full.d0[i], sc.theta_dot[i], sc.psi_dot[i]);
+            let a_n = 0.5 * l * td + d * cp * pd;
+            let a_e = -d * sp * td;
+            sc.g_dot[i] = [
+                v[0] + a_e * co - a_n * si,
+                v[1] + a_e * si + a_n * co,
+                -d * sp * pd,
+            ];
+            if let Some(f) = &full.fluid {
+                sc.node_v[i] = v;
+                sc.fluid_u[i] = cp * (co * v[1] - si * v[0] + 0.5 * l * td) + f.station[i] * pd;
             }
-            sc.theta_dot[i] = td;
-            sc.psi_dot[i] = pd;
-            sc.g_dot[i] = g;
-            if full.fluid.is_some() {
-                let mut w = [0.0; 3];
-                for (c, &e) in etadot.iter().enumerate() {
-                    let f = ws.fluid_fields[c * n + i];
-                    w = [w[0] + e * f[0], w[1] + e * f[1], w[2] + e * f[2]];
-                }
-                sc.node_v[i] = [w[0], w[1]];
-                sc.fluid_u[i] = w[2];
-            }
+            v[0] -= l * si * td;
+            v[1] += l * co * td;
+        }
+    }
+}
+
+/// `out = Σ_c w_c Φ_abs[offset.., c]` over the first `out.len()` rows from `offset`: absolute
+/// angles (offset 0: bending, n: torsion) or their rates of modal coordinates or rates `w`.
+fn combine(pa: &[f64], rows: usize, offset: usize, w: &[f64], out: &mut [f64]) {
+    out.fill(0.0);
+    for (c, &e) in w.iter().enumerate() {
+        let col = &pa[c * rows + offset..c * rows + offset + out.len()];
+        for (o, p) in out.iter_mut().zip(col) {
+            *o += e * p;
         }
     }
 }
@@ -338,8 +397,11 @@ impl StructuralModel for ReducedModel {
     fn workspace(&self) -> ReducedWorkspace {
         let nd = self.full.n_dofs();
         let r = self.phi.ncols();
+        let mut full = self.full.workspace();
+        // Bending only, `configure` never writes the twists' trigonometry: ψ = 0.
+        full.kinetic.cos_psi.fill(1.0);
         ReducedWorkspace {
-            full: self.full.workspace(),
+            full,
             q: vec![0.0; nd],
             qdot: vec![0.0; nd],
             f: DVector::zeros(nd),
@@ -347,9 +409,11 @@ impl StructuralModel for ReducedModel {
             block2: DMatrix::zeros(nd, r),
             column: vec![0.0; nd],
             at: vec![f64::NAN; r],
-            fields: vec![[0.0; 3]; self.full.n * r],
-            fluid_fields: if self.full.fluid.is_some() {
-                vec![[0.0; 3]; self.full.n * r]
+            gx: vec![0.0; self.full.n * r],
+            gy: vec![0.0; self.full.n * r],
+            gz: vec![0.0; self.full.n * r],
+            fluid_u: if self.full.fluid.is_some() {
+                vec![0.0; self.full.n * r]
             } else {
                 Vec::new()
             },
