@@ -184,8 +184,9 @@ impl Case {
     /// The plan of `analysis` on the 3-D chain, validated.
     ///
     /// # Errors
-    /// An analysis the 3-D chain cannot run yet (aeroelastic dynamics, linearization, gust
-    /// families), the keys' errors, the plan's checks.
+    /// An analysis the 3-D chain cannot run yet (aeroelastic dynamics, gust families), the
+    /// linearization and turbulence (plans of their own: [`Case::linearize_plan`]), the keys'
+    /// errors, the plan's checks.
     pub fn chain3d_plan(&self, analysis: Analysis) -> Result<Chain3dPlan, CaseError> {
         self.checked_chain3d_plan(analysis)
             .map_err(|e| self.error(e))
@@ -253,9 +254,16 @@ impl Case {
                 return not_yet("aeroelastic dynamic run (gust or manoeuvre response)")
             }
             Analysis::Dynamic => (Analysis3d::Dynamic(self.dynamic3d(&model)?), "dynamic"),
-            Analysis::Linearize => return not_yet("linearization"),
+            Analysis::Linearize | Analysis::Turbulence => {
+                // One linear model for both chains: `Case::plan` gives `Plan::Linearize` or
+                // `Plan::Turbulence` of the 3-D chain (`Case::linearize_plan`).
+                return Err(InputError::new(
+                    "beam.model",
+                    "the 3-D chain's linear models are the planar chain's plans: \
+                     Case::linearize_plan and Case::turbulence_plan take the 3-D chain",
+                ));
+            }
             Analysis::GustFamily => return not_yet("gust family"),
-            Analysis::Turbulence => return not_yet("turbulence analysis"),
         };
         let plan = Chain3dPlan {
             model,
@@ -329,7 +337,7 @@ impl Case {
 
     /// The planar loads of an aeroelastic run of the 3-D chain (in the x-y plane: no `fz`; no
     /// gravity load, which is `aero.flight.gravity`).
-    fn aero_loads3d(&self, model: &Chain3d) -> Result<Vec<Load>, InputError> {
+    pub(crate) fn aero_loads3d(&self, model: &Chain3d) -> Result<Vec<Load>, InputError> {
         self.refuse_gravity_loads()?;
         if let Some(i) = self.loads.iter().position(|l| l.fz.is_some()) {
             return Err(InputError::new(

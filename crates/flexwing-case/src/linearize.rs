@@ -1,9 +1,11 @@
 //! `[linearize]` and `[aero.flight]` into the library's
 //! [`flexwing::analysis::aero::linearize::LinearizePlan`]: the equilibrium's flight condition is
 //! `[aero.flight]` (its `speed` required), the models, signals and states `[linearize]`'s. The
-//! library parses the signal names and checks every value under the case file's names.
+//! library parses the signal names and checks every value under the case file's names. The
+//! structure is `[beam]`'s planar chain or, with `beam.model = "chain3d"`, the 3-D chain.
 
-use flexwing::analysis::aero::linearize::LinearizePlan;
+use flexwing::analysis::aero::linearize::{LinearStructure, LinearizePlan};
+use flexwing::model::FullModel;
 use flexwing::solve::aeroelastic::StateBasis;
 use flexwing::InputError;
 
@@ -25,7 +27,7 @@ impl Case {
     }
 
     pub(crate) fn checked_linearize_plan(&self) -> Result<LinearizePlan, InputError> {
-        let (spec, model, aero) = self.aero_parts()?;
+        let (spec, aero) = self.aero_of()?;
         refuse_histories(spec, LINEAR_RUN)?;
         let speed = spec.flight.speed.ok_or_else(|| {
             InputError::new(
@@ -34,7 +36,15 @@ impl Case {
                  this free-stream speed (m/s)",
             )
         })?;
-        let loads = self.aero_loads(&model)?;
+        let (model, loads): (LinearStructure, _) = if self.is_chain3d() {
+            let chain = self.beam.chain3d()?;
+            let loads = self.aero_loads3d(&chain)?;
+            (chain.into(), loads)
+        } else {
+            let model = FullModel::new(self.to_beam()?);
+            let loads = self.aero_loads(&model)?;
+            (model.into(), loads)
+        };
         let l = self.linearize.clone().unwrap_or_default();
         let mut plan = LinearizePlan::new(model, aero, condition(&spec.flight, speed));
         plan.loads = loads;

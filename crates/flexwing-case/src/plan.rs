@@ -92,7 +92,8 @@ impl Case {
     /// ```
     pub fn plan(&self, analysis: Analysis) -> Result<Plan, CaseError> {
         let aero = self.is_aeroelastic();
-        if self.is_chain3d() {
+        // The linear models (and turbulence through them) of either chain are one plan.
+        if self.is_chain3d() && !matches!(analysis, Analysis::Linearize | Analysis::Turbulence) {
             return Ok(Plan::Chain3d(self.chain3d_plan(analysis)?));
         }
         Ok(match analysis {

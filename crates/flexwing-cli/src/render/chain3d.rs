@@ -47,7 +47,11 @@ pub const FILES: &[&str] = &[
 
 /// One line describing the chain.
 pub fn model_line(plan: &Chain3dPlan) -> String {
-    let m = &plan.model;
+    chain_line(&plan.model)
+}
+
+/// One line describing a 3-D chain.
+pub fn chain_line(m: &flexwing::model::Chain3d) -> String {
     format!(
         "model: 3-D chain, {} elements, {} dofs (twist, lag, flap per joint), {} calibration",
         m.n_elements(),

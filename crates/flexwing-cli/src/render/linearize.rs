@@ -247,7 +247,7 @@ fn column(v: &[f64]) -> Vec<Option<f64>> {
 
 pub fn json(ctx: &Context, plan: &LinearizePlan, outcome: &LinearizeOutcome) -> Json {
     Json {
-        model: super::model_line(&plan.model),
+        model: super::structure_line(&plan.model),
         aerodynamics: super::aero_line(plan.aero.aerodynamics, plan.aero.density),
         speed_m_s: plan.flight.speed,
         root_angle_rad: plan.flight.root_angle,

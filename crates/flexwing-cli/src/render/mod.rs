@@ -27,7 +27,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use flexwing::analysis::aero::flutter::{FlutterOutcome, FlutterPlan};
 use flexwing::analysis::aero::gust_family::{GustFamilyOutcome, GustFamilyPlan};
-use flexwing::analysis::aero::linearize::{LinearizeOutcome, LinearizePlan};
+use flexwing::analysis::aero::linearize::{LinearStructure, LinearizeOutcome, LinearizePlan};
 use flexwing::analysis::aero::response::{AeroDynamicOutcome, AeroDynamicPlan};
 use flexwing::analysis::aero::statics::{AeroPoint, AeroStaticOutcome, AeroStaticPlan};
 use flexwing::analysis::aero::turbulence::{TurbulenceOutcome, TurbulencePlan};
@@ -147,8 +147,8 @@ impl<'a> View<'a> {
             View::Flutter(p, _) => &p.model,
             View::AeroDynamic(p, _) => &p.structure.model,
             View::GustFamily(p, _) => &p.response.structure.model,
-            View::Linearize(p, _) => &p.model,
-            View::Turbulence(p, _) => &p.linearize.model,
+            View::Linearize(p, _) => return structure_line(&p.model),
+            View::Turbulence(p, _) => return structure_line(&p.linearize.model),
         })
         .map_or_else(String::new, model_line)
     }
@@ -299,6 +299,14 @@ pub fn finite(v: f64) -> Option<f64> {
 }
 
 /// One line describing the model: elements, dofs, calibration, torsion.
+/// One line describing the structure of a linear model: the planar chain's or the 3-D chain's.
+pub fn structure_line(model: &LinearStructure) -> String {
+    match model {
+        LinearStructure::Planar(full) => model_line(full),
+        LinearStructure::Chain3d(chain) => chain3d::chain_line(chain),
+    }
+}
+
 pub fn model_line(model: &FullModel) -> String {
     let beam = model.beam();
     let kind = if !model.has_torsion() {

@@ -259,7 +259,7 @@ pub fn json(ctx: &Context, plan: &TurbulencePlan, outcome: &TurbulenceOutcome) -
     let mut rows = rms_rows(outcome).peekable();
     let l = &plan.linearize;
     Json {
-        model: super::model_line(&l.model),
+        model: super::structure_line(&l.model),
         aerodynamics: super::aero_line(l.aero.aerodynamics, l.aero.density),
         speed_m_s: outcome.speed,
         spectrum: outcome.turbulence.spectrum.name(),

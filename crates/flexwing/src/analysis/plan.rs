@@ -95,7 +95,8 @@ impl Plan {
         }
     }
 
-    /// The planar full model (in vacuo) the analysis is of; `None` for the 3-D chain's.
+    /// The planar full model (in vacuo) the analysis is of; `None` for the 3-D chain's (a
+    /// linearization or turbulence analysis of it too).
     pub fn model(&self) -> Option<&FullModel> {
         Some(match self {
             Plan::Modes(p) => &p.model,
@@ -105,8 +106,8 @@ impl Plan {
             Plan::Flutter(p) => &p.model,
             Plan::AeroDynamic(p) => &p.structure.model,
             Plan::GustFamily(p) => &p.response.structure.model,
-            Plan::Linearize(p) => &p.model,
-            Plan::Turbulence(p) => &p.linearize.model,
+            Plan::Linearize(p) => return p.model.planar(),
+            Plan::Turbulence(p) => return p.linearize.model.planar(),
             Plan::Chain3d(_) => return None,
         })
     }

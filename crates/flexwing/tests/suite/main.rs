@@ -4,6 +4,7 @@
 //! One module per validated case, as the files were; `cargo test --release -p flexwing --test suite
 //! MODULE::` runs one of them.
 
+mod aero3d_linearize;
 mod aero3d_patil_deformed;
 mod aero3d_planar_limit;
 mod aero_chain_reference;

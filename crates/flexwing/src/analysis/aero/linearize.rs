@@ -6,6 +6,11 @@
 //! A reduced model keeps its modal amplitudes, their rates and every strip's lag states: its
 //! order is `2 r + strips × lag states`, its poles the structural ones of the flutter analysis'
 //! reduced model.
+//!
+//! The structure is the paper's planar chain or the 3-D chain ([`LinearStructure`], the case
+//! file's `beam.model`): one plan, one outcome and one set of signals for both, so every front
+//! end renders the 3-D chain's linear model as the planar one's (the 3-D chain adds the outputs
+//! `tip_z`, `z[k]`, `root_lag_moment`; its reduced models are not linearized yet).
 
 use std::time::Instant;
 
@@ -14,8 +19,8 @@ use nalgebra::Complex;
 use super::{build, models, Aero, Built, Fields};
 use crate::analysis::{ModelKind, Note, Progress, Status, Stop};
 use crate::error::{Error, InputError};
-use crate::model::aero::{Aeroelastic, FlightCondition, PlanarStructure};
-use crate::model::{FullModel, Load};
+use crate::model::aero::{AeroStructure, Aeroelastic, FlightCondition};
+use crate::model::{Chain3d, FullModel, Load};
 use crate::solve::aeroelastic::{
     linearize as solve_linearize, poles as poles_of, Input, LinearizeOptions, Output, StateBasis,
     StateSpace,
@@ -27,12 +32,72 @@ pub const DEFAULT_INPUTS: [&str; 1] = ["gust"];
 /// The outputs when the plan names none.
 pub const DEFAULT_OUTPUTS: [&str; 3] = ["tip_y", "root_bending_moment", "lift"];
 
+/// The structure of a linearization (in vacuo): the paper's planar chain or the 3-D chain.
+#[derive(Debug, Clone)]
+#[allow(clippy::large_enum_variant)] // one per plan
+pub enum LinearStructure {
+    /// The planar full model (its reduced models: [`LinearizePlan::reduced`]).
+    Planar(FullModel),
+    /// The 3-D chain (docs/chain3d-model.md), its full chain only.
+    Chain3d(Chain3d),
+}
+
+impl From<FullModel> for LinearStructure {
+    fn from(model: FullModel) -> Self {
+        LinearStructure::Planar(model)
+    }
+}
+
+impl From<Chain3d> for LinearStructure {
+    fn from(model: Chain3d) -> Self {
+        LinearStructure::Chain3d(model)
+    }
+}
+
+impl LinearStructure {
+    /// The planar full model, or `None` for the 3-D chain.
+    pub fn planar(&self) -> Option<&FullModel> {
+        match self {
+            LinearStructure::Planar(m) => Some(m),
+            LinearStructure::Chain3d(_) => None,
+        }
+    }
+    /// Number of elements (strips).
+    pub fn n_elements(&self) -> usize {
+        match self {
+            LinearStructure::Planar(m) => m.n_elements(),
+            LinearStructure::Chain3d(m) => m.n_elements(),
+        }
+    }
+    /// Number of coordinates.
+    pub fn n_dofs(&self) -> usize {
+        match self {
+            LinearStructure::Planar(m) => m.n_dofs(),
+            LinearStructure::Chain3d(m) => m.n_dofs(),
+        }
+    }
+    /// Whether the structure twists (the 3-D chain always does).
+    pub fn has_torsion(&self) -> bool {
+        match self {
+            LinearStructure::Planar(m) => m.has_torsion(),
+            LinearStructure::Chain3d(_) => true,
+        }
+    }
+    /// Length of the beam (m): the planar span, the 3-D reference axis' arc length.
+    pub fn length(&self) -> f64 {
+        match self {
+            LinearStructure::Planar(m) => m.beam().length(),
+            LinearStructure::Chain3d(m) => m.beam().length(),
+        }
+    }
+}
+
 /// A linearization. Build it with [`LinearizePlan::new`], set the fields, check it with
 /// [`LinearizePlan::validate`].
 #[derive(Debug, Clone)]
 pub struct LinearizePlan {
-    /// The full model (in vacuo).
-    pub model: FullModel,
+    /// The structure (in vacuo).
+    pub model: LinearStructure,
     /// Section data, air, aerodynamic model.
     pub aero: Aero,
     /// Speed (positive), root angle and gravity of the equilibrium (`{aero}.flight`).
@@ -56,10 +121,11 @@ pub struct LinearizePlan {
 }
 
 impl LinearizePlan {
-    /// The full model in `aero` at `flight`, the default inputs and outputs, velocities.
-    pub fn new(model: FullModel, aero: Aero, flight: FlightCondition) -> Self {
+    /// The full model (planar or 3-D) in `aero` at `flight`, the default inputs and outputs,
+    /// velocities.
+    pub fn new(model: impl Into<LinearStructure>, aero: Aero, flight: FlightCondition) -> Self {
         Self {
-            model,
+            model: model.into(),
             aero,
             flight,
             loads: Vec::new(),
@@ -76,8 +142,9 @@ impl LinearizePlan {
     /// The inputs and outputs, parsed; errors name `{analysis}.inputs[i]`, `{analysis}.outputs[i]`.
     ///
     /// # Errors
-    /// An unknown name, an index outside the chain, a torsion signal of a bending-only beam, an
-    /// empty list, a name given twice.
+    /// An unknown name, an index outside the chain, a torsion signal of a bending-only beam, a
+    /// 3-D output of the planar chain, the root shear of the 3-D chain, an empty list, a name
+    /// given twice.
     pub fn signals(&self, fields: &Fields) -> Result<(Vec<Input>, Vec<Output>), InputError> {
         let n = self.model.n_elements();
         let torsion = self.model.has_torsion();
@@ -110,11 +177,26 @@ impl LinearizePlan {
         let inputs = parse(&self.inputs, fields.analysis("inputs"), "inputs", |s, f| {
             Input::parse(s, n, torsion, surfaces, f)
         })?;
+        let spatial = matches!(self.model, LinearStructure::Chain3d(_));
         let outputs = parse(
             &self.outputs,
             fields.analysis("outputs"),
             "outputs",
-            |s, f| Output::parse(s, n, torsion, surfaces, f),
+            |s, f| {
+                let output = Output::parse(s, n, torsion, surfaces, f)?;
+                if spatial && output == Output::RootShear {
+                    return Err(InputError::new(
+                        f,
+                        "root_shear is not available on the 3-D chain yet (the vertical \
+                         momentum of its mass centres and of the fluid is not written): use \
+                         lift and the root moments",
+                    ));
+                }
+                match output.planar_error(f) {
+                    Some(e) if !spatial => Err(e),
+                    _ => Ok(output),
+                }
+            },
         )?;
         Ok((inputs, outputs))
     }
@@ -126,7 +208,6 @@ impl LinearizePlan {
     /// positive), loads, options, inputs or outputs ([`LinearizePlan::signals`]); reduced
     /// models on modes the model does not have; nothing to run.
     pub fn validate(&self, fields: &Fields) -> Result<(), InputError> {
-        let wing = self.aero.wing(&self.model, fields.aero)?;
         let flight = fields.flight();
         self.flight.validate(&flight)?;
         if !(self.flight.speed > 0.0) {
@@ -136,17 +217,54 @@ impl LinearizePlan {
                  equilibrium in flight at this speed (m/s)",
             ));
         }
-        self.model.apply(&self.loads, fields.loads)?;
+        let dofs = match &self.model {
+            LinearStructure::Planar(model) => {
+                self.aero.wing(model, fields.aero)?;
+                model.apply(&self.loads, fields.loads)?;
+                model.n_dofs()
+            }
+            LinearStructure::Chain3d(model) => {
+                self.spatial_wing(model, fields.aero)?;
+                model.apply_planar(&self.loads, fields.loads)?;
+                let reduced = [
+                    ("reduced", !self.reduced.is_empty()),
+                    ("reduced_modes", !self.reduced_modes.is_empty()),
+                ];
+                if let Some((key, _)) = reduced.iter().find(|(_, given)| *given) {
+                    return Err(InputError::new(
+                        fields.analysis(key),
+                        "the 3-D chain's reduced models are not linearized yet: the full chain \
+                         is",
+                    ));
+                }
+                model.n_dofs()
+            }
+        };
         self.static_options.validate(fields.statics)?;
         self.signals(fields)?;
         models(
             self.full,
             &self.reduced,
             &self.reduced_modes,
-            wing.structure().n_dofs(),
+            dofs,
             fields.analysis,
         )?;
         Ok(())
+    }
+
+    /// The aeroelastic 3-D chain of `model`; errors name `{prefix}.chord`, ….
+    fn spatial_wing(
+        &self,
+        model: &Chain3d,
+        prefix: &str,
+    ) -> Result<Aeroelastic<Chain3d>, InputError> {
+        Aeroelastic::spatial(
+            model,
+            &self.aero.section,
+            self.aero.density,
+            self.aero.aerodynamics,
+            prefix,
+        )
     }
 
     /// The models linearized, in order: full (if asked), `reduced`, `reduced_modes`.
@@ -210,11 +328,13 @@ pub fn run(plan: &LinearizePlan, progress: &mut dyn Progress) -> Result<Lineariz
     let fields = Fields::RELATIVE;
     plan.validate(&fields)?;
     let (inputs, outputs) = plan.signals(&fields)?;
-    let full = plan.aero.wing(&plan.model, fields.aero)?;
     let kinds = plan.models()?;
     let mut runs = Vec::with_capacity(kinds.len());
+    let wing = match &plan.model {
+        LinearStructure::Planar(model) => Ok(plan.aero.wing(model, fields.aero)?),
+        LinearStructure::Chain3d(model) => Err(plan.spatial_wing(model, fields.aero)?),
+    };
     for (k, kind) in kinds.iter().enumerate() {
-        let built = build(&full, kind)?;
         progress.start(k, kinds.len(), &kind.label());
         let options = LinearizeOptions {
             flight: plan.flight,
@@ -226,9 +346,13 @@ pub fn run(plan: &LinearizePlan, progress: &mut dyn Progress) -> Result<Lineariz
             basis: plan.states,
             mode_numbers: kind.modes(),
         };
-        let run = match &built {
-            Built::Full => linearize_model(kind, &full, &options, &fields),
-            Built::Reduced(rom) => linearize_model(kind, rom.as_ref(), &options, &fields),
+        let run = match &wing {
+            Ok(full) => match build(full, kind)? {
+                Built::Full => linearize_model(kind, full, &options, &fields),
+                Built::Reduced(rom) => linearize_model(kind, rom.as_ref(), &options, &fields),
+            },
+            // The 3-D chain: its full chain only (validated).
+            Err(chain) => linearize_model(kind, chain, &options, &fields),
         }?;
         progress.finish();
         runs.push(run);
@@ -236,7 +360,7 @@ pub fn run(plan: &LinearizePlan, progress: &mut dyn Progress) -> Result<Lineariz
     Ok(LinearizeOutcome { runs })
 }
 
-fn linearize_model<M: PlanarStructure>(
+fn linearize_model<M: AeroStructure>(
     kind: &ModelKind,
     aero: &Aeroelastic<M>,
     options: &LinearizeOptions,

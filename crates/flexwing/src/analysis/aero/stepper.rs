@@ -161,6 +161,11 @@ pub fn check_output(output: &Output) -> Result<(), String> {
             "{} is an output of the linear model only; a stepper gives {STEPPER_OUTPUT_NAMES}",
             output.name()
         )),
+        _ if output.is_spatial() => Err(format!(
+            "{} is an output of the 3-D chain's linear model; a stepper gives \
+             {STEPPER_OUTPUT_NAMES}",
+            output.name()
+        )),
         _ => Ok(()),
     }
 }
@@ -802,7 +807,12 @@ fn evaluate<M: PlanarStructure>(
             Output::Lift => lift,
             Output::HingeMoment(s) => hinge_moments[s.index],
             // Refused by `check_output`.
-            Output::RootShear | Output::TipAcceleration | Output::Acceleration(_) => f64::NAN,
+            Output::RootShear
+            | Output::TipAcceleration
+            | Output::Acceleration(_)
+            | Output::TipZ
+            | Output::Z(_)
+            | Output::RootLagMoment => f64::NAN,
         };
     }
 }

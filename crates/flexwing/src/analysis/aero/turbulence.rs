@@ -42,7 +42,7 @@ impl TurbulencePlan {
     /// The grid used: the plan's, or the default one.
     pub fn grid(&self) -> FrequencyGrid {
         self.grid.unwrap_or_else(|| {
-            let length = self.linearize.model.beam().length();
+            let length = self.linearize.model.length();
             let chord = &self.linearize.aero.section.chord;
             let widest = (0..=100)
                 .map(|k| chord.at(length * k as f64 / 100.0))

@@ -67,6 +67,29 @@ impl<D: DualNum<Primitive = f64> + Copy> AeroScratch<D> {
     }
 }
 
+impl AeroScratch<f64> {
+    /// Strip `i`'s section at the evaluation: its chord direction toward the leading edge, its
+    /// normal (global components) and its nose-up pitch rate, on either chain (the frame
+    /// `strip::section_loads` takes).
+    pub(crate) fn section_frame(&self, i: usize) -> ([f64; 3], [f64; 3], f64) {
+        if let Some(sp) = self.spatial.as_deref() {
+            let r = &sp.fr.r[i];
+            return (
+                crate::model::chain3d::algebra::column(r, 2),
+                crate::model::chain3d::algebra::column(r, 1),
+                sp.pitch_rate[i],
+            );
+        }
+        let m = &self.motion[i];
+        let (c, si, cp, sp) = (m.cos_theta, m.sin_theta, m.cos_psi, m.sin_psi);
+        (
+            [-(sp * si), sp * c, cp],
+            [-(cp * si), cp * c, -sp],
+            m.psi_dot,
+        )
+    }
+}
+
 impl<M: AeroStructure> Aeroelastic<M> {
     /// Buffers for chain evaluations.
     pub(crate) fn scratch<D: DualNum<Primitive = f64> + Copy>(&self) -> AeroScratch<D> {

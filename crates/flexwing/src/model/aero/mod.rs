@@ -25,7 +25,7 @@ pub use flap::FlapCoefficients;
 pub(crate) use flap::{flap_air, hinge_moment, FlapAir, StripFlap};
 pub(crate) use fluid::FluidInertia;
 pub(crate) use lag::Lag;
-pub(crate) use strip::{loads as strip_loads, Air, Motion, StripData};
+pub(crate) use strip::{section_loads, Air, StripData};
 pub use theodorsen::{theodorsen, theodorsen_derivative};
 
 use nalgebra::DMatrix;

@@ -7,7 +7,7 @@
 //! the stiffness is constant and block diagonal; all the non-linearity is in the kinematics.
 
 use nalgebra::{DMatrix, DVector};
-use num_dual::Dual64;
+use num_dual::{Dual64, DualNum};
 
 use super::aba::Articulated;
 use super::algebra::{cross, zero, V3};
@@ -85,6 +85,35 @@ impl Chain3d {
         let mut fr = Frames::new(self.n);
         self.configure(x, &mut fr);
         fr
+    }
+
+    /// Node positions `P_0 … P_n` (m) and each element's nose-up pitch `atan2(−n·ẑ, c·ẑ)` (rad,
+    /// the angle of its chord above `ẑ` in the section plane: `AeroChain::tip`'s twist) at `x`,
+    /// with their derivatives along every coordinate (`d_positions[j][node]`,
+    /// `d_pitch[j][element]`): one dual-number configuration per coordinate, O(n²) in all (the
+    /// linear model's outputs, `solve::aeroelastic::linearize`).
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn geometry_derivatives(
+        &self,
+        x: &[f64],
+    ) -> (Vec<[f64; 3]>, Vec<Vec<[f64; 3]>>, Vec<f64>, Vec<Vec<f64>>) {
+        let pitch = |r: &[[Dual64; 3]; 3]| (-r[2][1]).atan2(r[2][2]);
+        let mut fr: Frames<Dual64> = Frames::new(self.n);
+        let mut xd: Vec<Dual64> = x.iter().map(|&v| Dual64::from(v)).collect();
+        let (mut dp, mut dpitch) = (Vec::with_capacity(x.len()), Vec::with_capacity(x.len()));
+        let (mut p0, mut pitch0) = (Vec::new(), Vec::new());
+        for j in 0..x.len() {
+            xd[j] = Dual64::new(x[j], 1.0);
+            self.configure_from(&xd, &mut fr, 0, false);
+            xd[j] = Dual64::from(x[j]);
+            if j == 0 {
+                p0 = fr.p.iter().map(|p| p.map(|v| v.re)).collect();
+                pitch0 = fr.r.iter().map(|r| pitch(r).re).collect();
+            }
+            dp.push(fr.p.iter().map(|p| p.map(|v| v.eps)).collect());
+            dpitch.push(fr.r.iter().map(|r| pitch(r).eps).collect());
+        }
+        (p0, dp, pitch0, dpitch)
     }
 
     /// Node positions `P_0 … P_n` at the configuration `x` (m).

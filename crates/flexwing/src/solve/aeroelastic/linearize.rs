@@ -36,10 +36,10 @@ use super::signals::{Input, Output, Signal, StateBasis, Surface};
 use super::statics::SteadyAeroModel;
 use crate::error::{Error, InputError};
 use crate::model::aero::{
-    strip_loads, AeroScratch, Aerodynamics, Aeroelastic, FlapAir, FlightCondition, Motion,
-    PlanarStructure,
+    section_loads, AeroChain, AeroScratch, AeroStructure, Aerodynamics, Aeroelastic, FlapAir,
+    FlightCondition,
 };
-use crate::model::{DistributedForce, Force, Load, StructuralModel};
+use crate::model::{Chain3d, DistributedForce, Force, FullModel, Load, StructuralModel};
 use crate::solve::integrate::OdeSystem;
 use crate::solve::{continue_static, Damping, StaticOptions, TimeFunction};
 
@@ -101,7 +101,7 @@ pub struct StateSpace {
 /// Invalid input: a flight condition, speed not positive, loads, no input or output, an output
 /// the model cannot give (the root shear with follower loads). A solve error if no stable
 /// static equilibrium is found (past the divergence speed: `SolveError::StaticUnstable`).
-pub fn linearize<M: PlanarStructure>(
+pub fn linearize<M: AeroStructure>(
     aero: &Aeroelastic<M>,
     options: &LinearizeOptions,
     field: &str,
@@ -144,10 +144,25 @@ pub fn linearize<M: PlanarStructure>(
         )
         .into());
     }
+    let spatial = matches!(aero.chain(), AeroChain::Spatial(_));
+    for (i, output) in options.outputs.iter().enumerate() {
+        let key = crate::field(field, &format!("outputs[{i}]"));
+        if !spatial {
+            if let Some(e) = output.planar_error(&key) {
+                return Err(e.into());
+            }
+        } else if *output == Output::RootShear {
+            return Err(InputError::new(
+                key,
+                "root_shear is not available on the 3-D chain yet (the momentum of its mass \
+                 centres and of the fluid along the vertical is not written): use lift and \
+                 the root moments",
+            )
+            .into());
+        }
+    }
     let x = equilibrium(aero, options, field)?;
-    let other = aero
-        .full()
-        .apply(&options.loads, &crate::field(field, "loads"))?;
+    let other = aero.apply(&options.loads, &crate::field(field, "loads"))?;
     let mut eqs = AeroelasticEquations::new(
         aero,
         &other,
@@ -210,7 +225,7 @@ pub fn poles(a: &DMatrix<f64>) -> Option<Vec<nalgebra::Complex<f64>>> {
 
 /// The static aeroelastic equilibrium of `options` (the steady model, load stepping in dynamic
 /// pressure from rest), as the flutter analysis' and the responses'.
-fn equilibrium<M: PlanarStructure>(
+fn equilibrium<M: AeroStructure>(
     aero: &Aeroelastic<M>,
     options: &LinearizeOptions,
     field: &str,
@@ -223,7 +238,7 @@ fn equilibrium<M: PlanarStructure>(
             g: g * flight.root_angle.cos(),
         });
     }
-    let applied = aero.full().apply(&all, &crate::field(field, "loads"))?;
+    let applied = aero.apply(&all, &crate::field(field, "loads"))?;
     let model = SteadyAeroModel::new(&steady, flight.root_angle);
     let k = applied.n_loads();
     let n = model.n_dofs();
@@ -240,15 +255,21 @@ fn equilibrium<M: PlanarStructure>(
 }
 
 /// The names and units of the states.
-fn state_signals<M: PlanarStructure>(
+fn state_signals<M: AeroStructure>(
     aero: &Aeroelastic<M>,
     options: &LinearizeOptions,
 ) -> Vec<Signal> {
     let n = aero.structure().n_dofs();
     let mut names: Vec<(String, &'static str, &'static str, &'static str)> = Vec::new();
-    match aero.structure().basis() {
-        None => {
-            let full = aero.full();
+    match (aero.structure().basis(), aero.chain()) {
+        (None, AeroChain::Spatial(_)) => {
+            // Joint-major: the rotation vector of joint k in (t, n, c) of its element.
+            for j in 0..n {
+                let base = ["phi_twist", "phi_lag", "phi_flap"][j % 3];
+                names.push((format!("{base}[{}]", j / 3 + 1), "rad", "rad/s", "N·m·s"));
+            }
+        }
+        (None, AeroChain::Planar(full)) => {
             let ne = full.n_elements();
             for j in 0..n {
                 let (base, k) = if j < ne {
@@ -259,7 +280,7 @@ fn state_signals<M: PlanarStructure>(
                 names.push((format!("{base}[{k}]"), "rad", "rad/s", "N·m·s"));
             }
         }
-        Some(_) => {
+        (Some(_), _) => {
             let numbers: Vec<usize> = options
                 .mode_numbers
                 .clone()
@@ -346,7 +367,7 @@ struct WindDerivative {
 
 /// The linearization point: the evaluation of the strips at the equilibrium and what the rows
 /// and columns of inputs and outputs need.
-struct Point<'a, M: PlanarStructure> {
+struct Point<'a, M: AeroStructure> {
     aero: &'a Aeroelastic<M>,
     eval: AeroEvaluator<'a, M>,
     x: Vec<f64>,
@@ -358,7 +379,7 @@ struct Point<'a, M: PlanarStructure> {
     ws: M::Workspace,
 }
 
-impl<'a, M: PlanarStructure> Point<'a, M> {
+impl<'a, M: AeroStructure> Point<'a, M> {
     fn new(
         aero: &'a Aeroelastic<M>,
         x: &[f64],
@@ -393,43 +414,32 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
     /// Strip `i`'s loads per unit wind (module documentation).
     fn wind_derivative(&self, i: usize) -> WindDerivative {
         let s = &self.aero.strips[i];
-        let m = self.eval.sc.motion[i];
         let air = self.eval.air[i];
         let rho = self.aero.density();
         let unsteady = self.aero.aerodynamics().is_unsteady();
-        let dual = |v: f64| Dual64::from(v);
-        let md = Motion {
-            cos_theta: dual(m.cos_theta),
-            sin_theta: dual(m.sin_theta),
-            cos_psi: dual(m.cos_psi),
-            sin_psi: dual(m.sin_psi),
-            cdot: [dual(m.cdot[0]), dual(m.cdot[1])],
-            psi_dot: dual(m.psi_dot),
-        };
+        let (t, nu, psi_dot) = self.eval.sc.section_frame(i);
+        let dual = |v: [f64; 3]| v.map(Dual64::from);
+        let frame = (dual(t), dual(nu), Dual64::from(psi_dot));
         let (w, wt, weff) = (self.eval.sc.w[i], self.eval.sc.wt[i], self.eval.sc.weff[i]);
         let along = |k: usize| {
             let v = |j: usize, x: f64| Dual64::new(x, if j == k { 1.0 } else { 0.0 });
-            let (f, mo) = strip_loads(s, &md, &air, rho, (v(0, w), v(1, wt), v(2, weff)), unsteady);
+            let (f, mo) = section_loads(
+                s,
+                frame,
+                &air,
+                rho,
+                (v(0, w), v(1, wt), v(2, weff)),
+                unsteady,
+            );
             [f[0].eps, f[1].eps, f[2].eps, mo.eps]
         };
         let (dw, dwt, dweff) = (along(0), along(1), along(2));
         // The circulatory loads (proportional to the dynamic pressure) at the equilibrium.
-        let mr = Motion {
-            cos_theta: m.cos_theta,
-            sin_theta: m.sin_theta,
-            cos_psi: m.cos_psi,
-            sin_psi: m.sin_psi,
-            cdot: m.cdot,
-            psi_dot: m.psi_dot,
-        };
-        let (fc, mc) = strip_loads(s, &mr, &air, rho, (w, wt, weff), false);
+        let (fc, mc) = section_loads(s, (t, nu, psi_dot), &air, rho, (w, wt, weff), false);
         let per_pressure = [fc[0], fc[1], fc[2], mc].map(|v| v / air.pressure);
         // The non-circulatory velocity term πρb²|W|ψ̇ along ν at the three-quarter chord.
-        let (c, si, cp, sp) = (m.cos_theta, m.sin_theta, m.cos_psi, m.sin_psi);
-        let t = [-(sp * si), sp * c, cp];
-        let nu = [-(cp * si), cp * c, -sp];
         let nc = if unsteady {
-            let fv = m.psi_dot * std::f64::consts::PI * rho * s.b * s.b;
+            let fv = psi_dot * std::f64::consts::PI * rho * s.b * s.b;
             [fv * nu[0], fv * nu[1], fv * nu[2], fv * s.zeta_34()]
         } else {
             [0.0; 4]
@@ -519,12 +529,7 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
                 .enumerate()
                 .map(|(i, fa)| {
                     let d = &self.wind[i];
-                    let m = self.eval.sc.motion[i];
-                    let nu = [
-                        -(m.cos_psi * m.sin_theta),
-                        m.cos_psi * m.cos_theta,
-                        -m.sin_psi,
-                    ];
+                    let (_, nu, _) = self.eval.sc.section_frame(i);
                     let mut c: [f64; 4] = std::array::from_fn(|r| d.per_upwash[r] * fa.upwash);
                     for k in 0..3 {
                         c[k] += nu[k] * fa.normal;
@@ -559,9 +564,7 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
                     return [0.0; 4];
                 }
                 let s = &self.aero.strips[i];
-                let m = self.eval.sc.motion[i];
-                let (c, si, cp, sp) = (m.cos_theta, m.sin_theta, m.cos_psi, m.sin_psi);
-                let nu = [-(cp * si), cp * c, -sp];
+                let (_, nu, _) = self.eval.sc.section_frame(i);
                 let fa = (nu[1] * ca + nu[2] * sa) * std::f64::consts::PI * rho * s.b * s.b;
                 [fa * nu[0], fa * nu[1], fa * nu[2], fa * s.a * s.b]
             })
@@ -585,8 +588,7 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
         let na = self.aero.n_aero_states();
         let ns = self.aero.aerodynamics().states_per_strip();
         let mut b = DMatrix::zeros(2 * n + na, inputs.len());
-        let full = self.aero.full();
-        let nodes = full.beam().nodes().to_vec();
+        let nodes = self.aero.chain().nodes().to_vec();
         for (col, input) in inputs.iter().enumerate() {
             let q = match input {
                 Input::Force(k) | Input::Torque(k) => {
@@ -600,8 +602,9 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
                             value: 1.0,
                         },
                     };
-                    let applied =
-                        full.apply(&[load], &crate::field(field, &format!("inputs[{col}]")))?;
+                    let applied = self
+                        .aero
+                        .apply(&[load], &crate::field(field, &format!("inputs[{col}]")))?;
                     let mut out = DVector::zeros(n);
                     self.aero.structure().generalized_forces_into(
                         &self.x,
@@ -616,7 +619,7 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
                     let mut q = self.assemble(&self.strip_changes(input));
                     if let (Input::RootAngle, Some(g)) = (input, self.flight.gravity) {
                         // Gravity's share in the wing frame: g cos α.
-                        let grav = full.apply(&[Load::Gravity { g }], field)?;
+                        let grav = self.aero.apply(&[Load::Gravity { g }], field)?;
                         let mut out = DVector::zeros(n);
                         self.aero.structure().generalized_forces_into(
                             &self.x,
@@ -682,12 +685,7 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
         let nf = direction.len();
         let dbar = self.eval.feedthrough();
         if rates {
-            for (m, b) in dsc.motion.iter_mut().zip(&sc.motion) {
-                m.cos_theta = Dual64::from(b.cos_theta);
-                m.sin_theta = Dual64::from(b.sin_theta);
-                m.cos_psi = Dual64::from(b.cos_psi);
-                m.sin_psi = Dual64::from(b.sin_psi);
-            }
+            aero.freeze_configuration(sc, &mut dsc);
             let dq: Vec<Dual64> = direction.iter().map(|&v| Dual64::new(0.0, v)).collect();
             aero.set_rates(&dq, &mut dsc);
         } else {
@@ -706,20 +704,13 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
     /// The per-strip load changes per unit lag state `(strip i, state k)`: `∂F_i/∂w_eff C̄_k`.
     fn strip_changes_per_lag(&self, i: usize) -> [f64; 4] {
         let s = &self.aero.strips[i];
-        let m = self.eval.sc.motion[i];
+        let (t, nu, psi_dot) = self.eval.sc.section_frame(i);
+        let lift3 = |v: [f64; 3]| v.map(Dual64::from);
         let dual = |v: f64| Dual64::from(v);
-        let md = Motion {
-            cos_theta: dual(m.cos_theta),
-            sin_theta: dual(m.sin_theta),
-            cos_psi: dual(m.cos_psi),
-            sin_psi: dual(m.sin_psi),
-            cdot: [dual(m.cdot[0]), dual(m.cdot[1])],
-            psi_dot: dual(m.psi_dot),
-        };
         let sc = &self.eval.sc;
-        let (f, mo) = strip_loads(
+        let (f, mo) = section_loads(
             s,
-            &md,
+            (lift3(t), lift3(nu), Dual64::from(psi_dot)),
             &self.eval.air[i],
             self.aero.density(),
             (dual(sc.w[i]), dual(sc.wt[i]), Dual64::new(sc.weff[i], 1.0)),
@@ -740,14 +731,11 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
     ) -> (DMatrix<f64>, DMatrix<f64>, Vec<f64>) {
         let aero = self.aero;
         let structure = aero.structure();
-        let full = aero.full();
         let n = structure.n_dofs();
-        let ne = full.n_elements();
-        let nf = full.n_dofs();
+        let ne = aero.chain().n_elements();
         let dim = a.nrows();
         let q = structure.full_coordinates(&self.x);
-        let kin = full.kinematics(&q);
-        let nodes = full.beam().nodes();
+        let geometry = Geometry::new(aero.chain(), &q);
         let phi = |row: &DVector<f64>| -> DVector<f64> { project(aero, row.as_slice()) };
         // M⁻¹ [A_p, B_p]: the coordinates' accelerations per unit state and input.
         let chol = self
@@ -761,44 +749,15 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
         let mut c = DMatrix::zeros(outputs.len(), dim);
         let mut d = DMatrix::zeros(outputs.len(), inputs.len());
         let mut values = Vec::with_capacity(outputs.len());
-        let positions = full.node_positions(&kin);
-        let shape = full.shape(&q);
-        let node_row = |k: usize, comp: usize| -> DVector<f64> {
-            let j = full.point_jacobian(&kin, nodes[k]);
-            DVector::from_iterator(nf, j.row(comp).iter().copied())
-        };
-        let twist_row = |k: usize| -> DVector<f64> {
-            let mut r = DVector::zeros(nf);
-            for j in 0..k {
-                r[ne + j] = 1.0;
-            }
-            r
-        };
         let mut vertical: Option<VerticalForce> = None;
         for (r, output) in outputs.iter().enumerate() {
             let (row, value): (Option<DVector<f64>>, f64) = match output {
-                Output::TipX => (Some(phi(&node_row(ne, 0))), positions[ne][0]),
-                Output::TipY => (Some(phi(&node_row(ne, 1))), positions[ne][1]),
-                Output::TipTwist => (Some(phi(&twist_row(ne))), shape.twist[ne]),
-                Output::X(k) => (Some(phi(&node_row(*k, 0))), positions[*k][0]),
-                Output::Y(k) => (Some(phi(&node_row(*k, 1))), positions[*k][1]),
-                Output::Twist(k) => (Some(phi(&twist_row(*k))), shape.twist[*k]),
-                Output::RootBendingMoment => {
-                    let mut e = DVector::zeros(nf);
-                    e[0] = full.stiffness()[0];
-                    (Some(phi(&e)), full.stiffness()[0] * q[0])
-                }
-                Output::RootTorque => {
-                    let mut e = DVector::zeros(nf);
-                    e[ne] = full.stiffness()[ne];
-                    (Some(phi(&e)), full.stiffness()[ne] * q[ne])
-                }
                 Output::TipAcceleration | Output::Acceleration(_) => {
                     let k = match output {
                         Output::Acceleration(k) => *k,
                         _ => ne,
                     };
-                    let j = phi(&node_row(k, 1));
+                    let j = phi(&geometry.row(&Output::Y(k)).0);
                     c.row_mut(r).copy_from(&(j.transpose() * &acc_a));
                     d.row_mut(r).copy_from(&(j.transpose() * &acc_b));
                     (None, 0.0)
@@ -824,7 +783,7 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
                             }
                         }
                     } else {
-                        let (momentum, gravity, applied) = self.shear_parts(&kin, loads);
+                        let (momentum, gravity, applied) = self.shear_parts(&q, loads);
                         let lp = phi(&momentum).transpose();
                         crow -= (&lp * &acc_a).transpose();
                         drow -= (&lp * &acc_b).transpose();
@@ -842,6 +801,10 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
                     d.row_mut(r).copy_from(&drow.transpose());
                     (None, value)
                 }
+                geometric => {
+                    let (row, value) = geometry.row(geometric);
+                    (Some(phi(&row)), value)
+                }
             };
             if let Some(row) = row {
                 c.view_mut((r, 0), (1, n)).copy_from(&row.transpose());
@@ -854,12 +817,11 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
     /// The wing's vertical momentum per unit velocity `∂P_y/∂q̇` (full coordinates: the
     /// structure's mass centres and the fluid's normal momentum at mid-chord), gravity's share
     /// of the external vertical force and the applied dead loads' (N) at the equilibrium.
-    fn shear_parts(
-        &self,
-        kin: &crate::model::Kinematics,
-        loads: &[Load],
-    ) -> (DVector<f64>, f64, f64) {
-        let full = self.aero.full();
+    fn shear_parts(&self, q: &[f64], loads: &[Load]) -> (DVector<f64>, f64, f64) {
+        let AeroChain::Planar(full) = self.aero.chain() else {
+            unreachable!("root_shear is refused on the 3-D chain (`linearize`)")
+        };
+        let kin = &full.kinematics(q);
         let ne = full.n_elements();
         let nf = full.n_dofs();
         let masses = full.beam().masses();
@@ -919,7 +881,7 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
         let ns = aero.aerodynamics().states_per_strip();
         let unsteady = aero.aerodynamics().is_unsteady();
         let rho = aero.density();
-        let nf = aero.full().n_dofs();
+        let nf = aero.chain().n_dofs();
         let rest = self.eval.deflections()[surface.index];
         let lagged = if self.eval.lag().is_some() {
             self.eval.feedthrough()
@@ -1022,12 +984,7 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
                     };
                     let d = &self.wind[i];
                     let air = &self.eval.air[i];
-                    let m = self.eval.sc.motion[i];
-                    let t = [
-                        -(m.sin_psi * m.sin_theta),
-                        m.sin_psi * m.cos_theta,
-                        m.cos_psi,
-                    ];
+                    let (t, _, _) = self.eval.sc.section_frame(i);
                     let dot = |v: &[f64; 3]| -> f64 { (0..3).map(|k| v[k] * dw[k]).sum() };
                     let dv = dot(&d.speed);
                     let dq = rho * dot(&air.wind);
@@ -1061,7 +1018,7 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
             u_z: DVector::zeros(inputs.len()),
             value: [0.0; 2],
         };
-        let nf = aero.full().n_dofs();
+        let nf = aero.chain().n_dofs();
         let mut rate_y = DVector::zeros(n);
         let mut rate_z = DVector::zeros(n);
         for k in 0..n {
@@ -1109,6 +1066,149 @@ impl<'a, M: PlanarStructure> Point<'a, M> {
     }
 }
 
+/// The outputs linear in the chain's joint coordinates — node positions, twists, the root
+/// springs' moments — as rows `∂y/∂q` (full coordinates) with their values at `q`.
+enum Geometry<'a> {
+    Planar {
+        full: &'a FullModel,
+        kin: crate::model::Kinematics,
+        positions: Vec<[f64; 3]>,
+        twist: Vec<f64>,
+        q: Vec<f64>,
+    },
+    /// Positions and pitches with their derivatives along each coordinate
+    /// (`Chain3d::geometry_derivatives`).
+    Spatial {
+        chain: &'a Chain3d,
+        positions: Vec<[f64; 3]>,
+        d_positions: Vec<Vec<[f64; 3]>>,
+        pitch: Vec<f64>,
+        d_pitch: Vec<Vec<f64>>,
+        q: Vec<f64>,
+    },
+}
+
+impl<'a> Geometry<'a> {
+    fn new(chain: AeroChain<'a>, q: &[f64]) -> Self {
+        match chain {
+            AeroChain::Planar(full) => {
+                let kin = full.kinematics(q);
+                Geometry::Planar {
+                    full,
+                    positions: full.node_positions(&kin),
+                    twist: full.shape(q).twist,
+                    kin,
+                    q: q.to_vec(),
+                }
+            }
+            AeroChain::Spatial(chain) => {
+                let (positions, d_positions, pitch, d_pitch) = chain.geometry_derivatives(q);
+                Geometry::Spatial {
+                    chain,
+                    positions,
+                    d_positions,
+                    pitch,
+                    d_pitch,
+                    q: q.to_vec(),
+                }
+            }
+        }
+    }
+
+    /// The row and value of a geometric output (`tip_x` … `root_lag_moment`); the 3-D outputs
+    /// are refused on the planar chain before (`linearize`).
+    fn row(&self, output: &Output) -> (DVector<f64>, f64) {
+        let n = match self {
+            Geometry::Planar { full, .. } => full.n_elements(),
+            Geometry::Spatial { chain, .. } => chain.n_elements(),
+        };
+        let (node, comp) = match output {
+            Output::TipX => (n, 0),
+            Output::TipY => (n, 1),
+            Output::TipZ => (n, 2),
+            Output::X(k) => (*k, 0),
+            Output::Y(k) => (*k, 1),
+            Output::Z(k) => (*k, 2),
+            _ => (usize::MAX, 0),
+        };
+        let twist_node = match output {
+            Output::TipTwist => Some(n),
+            Output::Twist(k) => Some(*k),
+            _ => None,
+        };
+        match self {
+            Geometry::Planar {
+                full,
+                kin,
+                positions,
+                twist,
+                q,
+            } => {
+                let nf = full.n_dofs();
+                let mut r = DVector::zeros(nf);
+                if node != usize::MAX {
+                    let j = full.point_jacobian(kin, full.beam().nodes()[node]);
+                    r.iter_mut()
+                        .zip(j.row(comp).iter())
+                        .for_each(|(r, v)| *r = *v);
+                    return (r, positions[node][comp]);
+                }
+                if let Some(k) = twist_node {
+                    for j in 0..k {
+                        r[n + j] = 1.0;
+                    }
+                    return (r, twist[k]);
+                }
+                let k = match output {
+                    Output::RootBendingMoment => 0,
+                    Output::RootTorque => n,
+                    _ => return (r, 0.0),
+                };
+                r[k] = full.stiffness()[k];
+                (r, full.stiffness()[k] * q[k])
+            }
+            Geometry::Spatial {
+                chain,
+                positions,
+                d_positions,
+                pitch,
+                d_pitch,
+                q,
+            } => {
+                let nf = q.len();
+                if node != usize::MAX {
+                    let r = DVector::from_iterator(nf, d_positions.iter().map(|d| d[node][comp]));
+                    return (r, positions[node][comp]);
+                }
+                if let Some(k) = twist_node {
+                    // The pitch of the element inboard of node k (none at the clamp).
+                    return match k.checked_sub(1) {
+                        None => (DVector::zeros(nf), 0.0),
+                        Some(e) => (
+                            DVector::from_iterator(nf, d_pitch.iter().map(|d| d[e])),
+                            pitch[e],
+                        ),
+                    };
+                }
+                // The clamp spring's moment K_0 φ_0 in (t, n, c) of the root element: flap about
+                // c, lag about n, and the torque nose-up (about −t).
+                let (axis, sign) = match output {
+                    Output::RootBendingMoment => (2, 1.0),
+                    Output::RootLagMoment => (1, 1.0),
+                    Output::RootTorque => (0, -1.0),
+                    _ => return (DVector::zeros(nf), 0.0),
+                };
+                let k = &chain.beam().joint_stiffness()[0];
+                let mut r = DVector::zeros(nf);
+                for col in 0..3 {
+                    r[col] = sign * k[axis][col];
+                }
+                (r.clone(), (0..3).map(|col| r[col] * q[col]).sum())
+            }
+        }
+    }
+}
+
 /// The strips' summed forces along `y` and `z` (N) per unit state (`x_*`, momentum basis) and
 /// input (`u_*`), and at the equilibrium (`value`).
 struct VerticalForce {
@@ -1120,7 +1220,7 @@ struct VerticalForce {
 }
 
 /// `Φᵀ v` (model coordinates) of full-model coordinates `v`.
-fn project<M: PlanarStructure>(aero: &Aeroelastic<M>, v: &[f64]) -> DVector<f64> {
+fn project<M: AeroStructure>(aero: &Aeroelastic<M>, v: &[f64]) -> DVector<f64> {
     match aero.structure().basis() {
         None => DVector::from_column_slice(v),
         Some(phi) => phi.transpose() * DVector::from_column_slice(v),

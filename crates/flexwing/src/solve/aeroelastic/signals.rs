@@ -60,12 +60,17 @@ pub enum Output {
     TipX,
     /// `tip_y` (m): the tip node's vertical position (wing frame).
     TipY,
+    /// `tip_z` (m): the tip node's chordwise position (toward the leading edge; the 3-D chain's
+    /// lag displacement).
+    TipZ,
     /// `tip_twist` (rad): the twist of the tip element, nose-up.
     TipTwist,
     /// `x[k]` (m): node `k`'s spanwise position.
     X(usize),
     /// `y[k]` (m): node `k`'s vertical position.
     Y(usize),
+    /// `z[k]` (m): node `k`'s chordwise position (the 3-D chain).
+    Z(usize),
     /// `twist[k]` (rad): the twist of the element inboard of node `k`.
     Twist(usize),
     /// `root_bending_moment` (N·m): the clamp spring's moment `K_θ,1 q_1`.
@@ -76,6 +81,10 @@ pub enum Output {
     RootShear,
     /// `root_torque` (N·m): the clamp's torsion spring moment `K_ψ,1 q_{n+1}`.
     RootTorque,
+    /// `root_lag_moment` (N·m): the 3-D chain's clamp moment about the root element's section
+    /// normal `n`, `(K_0 φ_0)_n` (positive in the sense of a lag rotation: tip toward the
+    /// trailing edge).
+    RootLagMoment,
     /// `lift` (N): the total aerodynamic force along the ground's vertical (the circulatory and
     /// non-circulatory velocity terms; the apparent-mass terms are in the mass matrix), as the
     /// `lift` of a response.
@@ -158,7 +167,7 @@ pub const INPUT_NAMES: &str =
 pub const OUTPUT_NAMES: &str = "tip_x, tip_y, tip_twist, x[k], y[k], twist[k] (node k), \
                                 root_bending_moment, root_shear, root_torque, lift, \
                                 tip_acceleration, acceleration[k], hinge_moment[NAME] (surface \
-                                NAME)";
+                                NAME); on the 3-D chain also tip_z, z[k], root_lag_moment";
 
 /// The surface called `inner` among `surfaces`.
 fn surface_in(inner: &str, surfaces: &[ControlSurface]) -> Result<Surface, String> {
@@ -309,14 +318,17 @@ impl Output {
         let output = match (name, indexed(name)) {
             ("tip_x", _) => Output::TipX,
             ("tip_y", _) => Output::TipY,
+            ("tip_z", _) => Output::TipZ,
             ("tip_twist", _) => Output::TipTwist,
             ("root_bending_moment", _) => Output::RootBendingMoment,
             ("root_shear", _) => Output::RootShear,
             ("root_torque", _) => Output::RootTorque,
+            ("root_lag_moment", _) => Output::RootLagMoment,
             ("lift", _) => Output::Lift,
             ("tip_acceleration", _) => Output::TipAcceleration,
             (_, Some(("x", i))) => Output::X(node(i)?),
             (_, Some(("y", i))) => Output::Y(node(i)?),
+            (_, Some(("z", i))) => Output::Z(node(i)?),
             (_, Some(("twist", i))) => Output::Twist(node(i)?),
             (_, Some(("acceleration", i))) => Output::Acceleration(node(i)?),
             (_, Some(("hinge_moment", i))) => {
@@ -338,18 +350,41 @@ impl Output {
         Ok(output)
     }
 
+    /// Whether the output exists on the 3-D chain only (`tip_z`, `z[k]`, `root_lag_moment`:
+    /// the planar chain has no lag).
+    pub fn is_spatial(&self) -> bool {
+        matches!(self, Output::TipZ | Output::Z(_) | Output::RootLagMoment)
+    }
+
+    /// The error of a 3-D output asked of the planar chain, naming `field`; `None` otherwise.
+    pub fn planar_error(&self, field: &str) -> Option<InputError> {
+        self.is_spatial().then(|| {
+            InputError::new(
+                field,
+                format!(
+                    "{} is an output of the 3-D chain (beam.model = \"chain3d\"): the planar \
+                     chain has no lag",
+                    self.name()
+                ),
+            )
+        })
+    }
+
     /// The output's name.
     pub fn name(&self) -> String {
         match self {
             Output::TipX => "tip_x".into(),
             Output::TipY => "tip_y".into(),
+            Output::TipZ => "tip_z".into(),
             Output::TipTwist => "tip_twist".into(),
             Output::X(k) => format!("x[{k}]"),
             Output::Y(k) => format!("y[{k}]"),
+            Output::Z(k) => format!("z[{k}]"),
             Output::Twist(k) => format!("twist[{k}]"),
             Output::RootBendingMoment => "root_bending_moment".into(),
             Output::RootShear => "root_shear".into(),
             Output::RootTorque => "root_torque".into(),
+            Output::RootLagMoment => "root_lag_moment".into(),
             Output::Lift => "lift".into(),
             Output::TipAcceleration => "tip_acceleration".into(),
             Output::Acceleration(k) => format!("acceleration[{k}]"),
@@ -360,9 +395,17 @@ impl Output {
     /// The output's unit.
     pub fn unit(&self) -> &'static str {
         match self {
-            Output::TipX | Output::TipY | Output::X(_) | Output::Y(_) => "m",
+            Output::TipX
+            | Output::TipY
+            | Output::TipZ
+            | Output::X(_)
+            | Output::Y(_)
+            | Output::Z(_) => "m",
             Output::TipTwist | Output::Twist(_) => "rad",
-            Output::RootBendingMoment | Output::RootTorque | Output::HingeMoment(_) => "N·m",
+            Output::RootBendingMoment
+            | Output::RootTorque
+            | Output::RootLagMoment
+            | Output::HingeMoment(_) => "N·m",
             Output::RootShear | Output::Lift => "N",
             Output::TipAcceleration | Output::Acceleration(_) => "m/s²",
         }
@@ -373,13 +416,16 @@ impl Output {
         match self {
             Output::TipX => "tip node's spanwise position".into(),
             Output::TipY => "tip node's vertical position (wing frame)".into(),
+            Output::TipZ => "tip node's chordwise position (toward the leading edge)".into(),
             Output::TipTwist => "twist of the tip element (nose-up)".into(),
             Output::X(k) => format!("node {k}'s spanwise position"),
             Output::Y(k) => format!("node {k}'s vertical position (wing frame)"),
+            Output::Z(k) => format!("node {k}'s chordwise position (toward the leading edge)"),
             Output::Twist(k) => format!("twist of the element inboard of node {k} (nose-up)"),
             Output::RootBendingMoment => "root bending moment (the clamp spring's)".into(),
             Output::RootShear => "force of the wing on the clamp (up, wing frame)".into(),
             Output::RootTorque => "root torque (the clamp's torsion spring)".into(),
+            Output::RootLagMoment => "root lag bending moment (the clamp's, about n)".into(),
             Output::Lift => "total aerodynamic force along the ground's vertical".into(),
             Output::TipAcceleration => "tip node's vertical acceleration".into(),
             Output::Acceleration(k) => format!("node {k}'s vertical acceleration"),
@@ -440,6 +486,9 @@ mod tests {
             "tip_acceleration",
             "acceleration[3]",
             "hinge_moment[flap]",
+            "tip_z",
+            "z[2]",
+            "root_lag_moment",
         ] {
             let output = Output::parse(name, 4, true, &surfaces, "o").unwrap();
             assert_eq!(output.name(), name);
