@@ -18,30 +18,46 @@ use flexwing::solve::StaticOptions;
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
-/// Steady thin-airfoil loads by the lumped-vortex method: `n` equal panels on the chord
-/// `[0, 1]`, a vortex at each panel's quarter point, flow tangency at its three-quarter point
-/// (exact for the flat plate with any `n`). Returns `(c_l, c_m about the quarter chord,
-/// c_h about the hinge)` on `q c`, `q c²` for angle of attack `alpha` and flap deflection
-/// `delta` (trailing edge down) hinged at `xh` (a panel edge).
-fn lumped_vortex(n: usize, xh: f64, alpha: f64, delta: f64) -> (f64, f64, f64) {
-    let h = 1.0 / n as f64;
-    let xv: Vec<f64> = (0..n).map(|j| (j as f64 + 0.25) * h).collect();
-    let xc: Vec<f64> = (0..n).map(|j| (j as f64 + 0.75) * h).collect();
-    // Downwash of a unit vortex at xv_j at xc_i: 1/(2π (xc_i − xv_j)); tangency with the camber
-    // line of slope −δ aft of the hinge: U(α − dz/dx) = Σ Γ_j / (2π (x_i − x_j)), U = 1.
-    let a = DMatrix::from_fn(n, n, |i, j| 1.0 / (2.0 * PI * (xc[i] - xv[j])));
-    let rhs = DVector::from_fn(n, |i, _| alpha + if xc[i] > xh { delta } else { 0.0 });
-    let gamma = a.lu().solve(&rhs).unwrap();
-    // ρ = 1, U = 1: q = ½; lift ρUΓ per vortex.
-    let (mut l, mut m, mut hm) = (0.0, 0.0, 0.0);
-    for j in 0..n {
-        l += gamma[j];
-        m -= gamma[j] * (xv[j] - 0.25);
-        if xv[j] > xh {
-            hm -= gamma[j] * (xv[j] - xh);
-        }
+/// The lumped-vortex discretization of the steady thin-airfoil problem: `n` equal panels on the
+/// chord `[0, 1]`, a vortex at each panel's quarter point, flow tangency at its three-quarter
+/// point (exact for the flat plate with any `n`). The influence matrix depends on `n` alone, so
+/// it is factored once for every hinge and load case.
+struct LumpedVortex {
+    xv: Vec<f64>,
+    xc: Vec<f64>,
+    lu: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
+}
+
+impl LumpedVortex {
+    fn new(n: usize) -> Self {
+        let h = 1.0 / n as f64;
+        let xv: Vec<f64> = (0..n).map(|j| (j as f64 + 0.25) * h).collect();
+        let xc: Vec<f64> = (0..n).map(|j| (j as f64 + 0.75) * h).collect();
+        // Downwash of a unit vortex at xv_j at xc_i: 1/(2π (xc_i − xv_j)).
+        let a = DMatrix::from_fn(n, n, |i, j| 1.0 / (2.0 * PI * (xc[i] - xv[j])));
+        Self { lu: a.lu(), xv, xc }
     }
-    (l / 0.5, m / 0.5, hm / 0.5)
+
+    /// `(c_l, c_m about the quarter chord, c_h about the hinge)` on `q c`, `q c²` for angle of
+    /// attack `alpha` and flap deflection `delta` (trailing edge down) hinged at `xh` (a panel
+    /// edge).
+    fn loads(&self, xh: f64, alpha: f64, delta: f64) -> (f64, f64, f64) {
+        let n = self.xv.len();
+        // Tangency with the camber line of slope −δ aft of the hinge:
+        // U(α − dz/dx) = Σ Γ_j / (2π (x_i − x_j)), U = 1.
+        let rhs = DVector::from_fn(n, |i, _| alpha + if self.xc[i] > xh { delta } else { 0.0 });
+        let gamma = self.lu.solve(&rhs).unwrap();
+        // ρ = 1, U = 1: q = ½; lift ρUΓ per vortex.
+        let (mut l, mut m, mut hm) = (0.0, 0.0, 0.0);
+        for (g, &x) in gamma.iter().zip(&self.xv) {
+            l += g;
+            m -= g * (x - 0.25);
+            if x > xh {
+                hm -= g * (x - xh);
+            }
+        }
+        (l / 0.5, m / 0.5, hm / 0.5)
+    }
 }
 
 /// Theodorsen's steady lift, moment and hinge-moment coefficients per radian of deflection and
@@ -52,12 +68,14 @@ fn lumped_vortex(n: usize, xh: f64, alpha: f64, delta: f64) -> (f64, f64, f64) {
 #[test]
 fn steady_coefficients_match_thin_airfoil_numerics() {
     let n = 1600;
+    let fine = LumpedVortex::new(n);
+    let coarse: Vec<(usize, LumpedVortex)> = [200, 800].map(|m| (m, LumpedVortex::new(m))).into();
     for &xh in &[0.5, 0.75, 0.875] {
         let f = FlapCoefficients::at_chord_fractions(xh, 0.5);
-        let (cl_d, cm_d, ch_d) = lumped_vortex(n, xh, 0.0, 1.0);
-        let (cl_a, cm_a, ch_a) = lumped_vortex(n, xh, 1.0, 0.0);
-        for m in [200, 800] {
-            let (_, _, chm) = lumped_vortex(m, xh, 0.0, 1.0);
+        let (cl_d, cm_d, ch_d) = fine.loads(xh, 0.0, 1.0);
+        let (cl_a, cm_a, ch_a) = fine.loads(xh, 1.0, 0.0);
+        for (m, lv) in &coarse {
+            let (_, _, chm) = lv.loads(xh, 0.0, 1.0);
             eprintln!(
                 "x_h = {xh}, n = {m}: c_hδ error {:.3e}",
                 chm - f.hinge_per_deflection()
