@@ -169,7 +169,7 @@ mod tests {
 
     /// Through the plan (a regression test of the wrapper: the spectra are validated in
     /// `solve/aeroelastic/turbulence_tests.rs` and tests/suite/aero_turbulence.rs): the full
-    /// model (a reduced one stops: its poles are not computed), the lift's variance diverging
+    /// and a reduced model, the lift's variance diverging
     /// (the gust rate's apparent mass feeds through), a stop past the flutter speed, errors
     /// naming the fields.
     #[test]
@@ -180,14 +180,11 @@ mod tests {
         let mut plan = TurbulencePlan::new(lin, Turbulence::new(Spectrum::VonKarman, 1.0));
         let out = run(&plan, &mut NoProgress).unwrap();
         assert_eq!(out.runs.len(), 2);
-        // The reduced model's poles are not computed (its real Schur form does not converge,
-        // 2026-12-03): it stops rather than give spectra of unknown stability.
-        assert!(matches!(
-            out.runs[1].status.stop(),
-            Some(Stop::TurbulencePolesUnknown { .. })
-        ));
-        assert!(out.runs[1].spectra.is_none());
-        for r in &out.runs[..1] {
+        // Both models run. The reduced model's real Schur form did not converge before the
+        // reduced model's sines and cosines changed at round-off (d8cd3a2): that failure is
+        // sensitive to round-off (a run where it happens stops with `TurbulencePolesUnknown`,
+        // never spectra of unknown stability; the eigen-solve is still to be made robust).
+        for r in &out.runs {
             assert!(r.status.is_complete(), "{:?}", r.status);
             let s = r.spectra.as_ref().unwrap();
             assert_eq!(s.frequencies.len(), 500);
