@@ -182,7 +182,8 @@ pub struct AeroDynamicRun {
     /// Each control surface's hinge moment (N·m, positive trailing edge down: the deflection,
     /// flap-rate and circulatory terms, as the linear model's `hinge_moment[NAME]` and the
     /// stepper's) at each sample: one row per sample, the surfaces in the order of
-    /// `[[aero.surfaces]]`; empty rows without surfaces.
+    /// `[[aero.surfaces]]`; empty rows without surfaces (and no rows in the gust family's
+    /// output-only samples, `Samples::Outputs`, which never report them).
     pub hinge_moments: Vec<Vec<f64>>,
     /// The deformed shape at the plan's snapshot times reached.
     pub snapshots: Vec<Snapshot>,
@@ -238,8 +239,9 @@ pub(super) enum Samples {
     /// Every field of [`AeroSample`].
     All,
     /// The outputs of a gust family ([`super::gust_family::OUTPUTS`]: the tip, the root moments,
-    /// the lift); the energies, work, dissipation and balance are NaN (not computed: the family
-    /// reports peaks, and its energy audit is the run's own, over the accepted steps).
+    /// the lift); the energies, work, dissipation and balance are NaN and no hinge moments are
+    /// taken (not computed: the family reports peaks, and its energy audit is the run's own,
+    /// over the accepted steps).
     Outputs,
 }
 
@@ -459,9 +461,9 @@ impl Simulator<'_> {
             let shape = full.shape(&q);
             let (tip_x, tip_y, tip_twist) = shape.tip();
             let lift = eqs.vertical_aerodynamic_force_at(t, y);
-            run.hinge_moments.push(eqs.hinge_moments_at(t, y));
             let (kinetic, strain, work, dissipated, balance_error) = match self.samples {
                 Samples::All => {
+                    run.hinge_moments.push(eqs.hinge_moments_at(t, y));
                     let (kinetic, strain) = eqs.energies(y);
                     let (work, dissipated) = eqs.work_and_dissipation(y).unwrap_or((0.0, 0.0));
                     let error = balance.relative(kinetic + strain, work, dissipated);
